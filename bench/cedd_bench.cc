@@ -1,0 +1,78 @@
+// CEDD extraction speed against a memory-bound baseline measured in the same run: a
+// single-threaded BGR->grey conversion of the same frame (one read of every pixel).
+//
+// Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
+// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray'
+#include <benchmark/benchmark.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <iostream>
+#include <string>
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "client/image_file.h"
+#include "core/cedd.h"
+
+namespace orbit {
+namespace {
+
+std::filesystem::path DataDir() {
+  const char* env = std::getenv("ORBIT_DATA");
+  return env != nullptr ? std::filesystem::path(env)
+                        : std::filesystem::path(ORBIT_SOURCE_DIR) / ".." / "shared" / "data";
+}
+
+cv::Mat Frame(int width, int height) {
+  static const cv::Mat photo = ReadImageFile(
+      (DataDir() / "cedd-conformance/photos/011_2828686873_2fa36f83d7_b.png").string());
+  cv::Mat frame;
+  cv::resize(photo, frame, cv::Size(width, height), 0, 0, cv::INTER_AREA);
+  return frame;
+}
+
+void BM_Cedd(benchmark::State& state, DescriptorVariant variant, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  for (auto _ : state) benchmark::DoNotOptimize(ExtractCedd(frame, variant));
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_Bgr2Gray(benchmark::State& state, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  cv::Mat grey;
+  for (auto _ : state) {
+    cv::cvtColor(frame, grey, cv::COLOR_BGR2GRAY);
+    benchmark::DoNotOptimize(grey.data);
+  }
+}
+
+int RegisterCeddBenchmarks() {
+  struct Size {
+    int width, height;
+  };
+  for (const Size s : {Size{128, 128}, Size{640, 480}, Size{1280, 720}}) {
+    for (const DescriptorVariant v : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
+      const std::string name = std::string(VariantName(v)) + "/" + std::to_string(s.width) + "x" +
+                               std::to_string(s.height);
+      benchmark::RegisterBenchmark(name.c_str(), BM_Cedd, v, s.width, s.height);
+    }
+  }
+  benchmark::RegisterBenchmark("bgr2gray/640x480", BM_Bgr2Gray, 640, 480);
+  return 0;
+}
+
+const int registered = RegisterCeddBenchmarks();
+
+}  // namespace
+}  // namespace orbit
+
+int main(int argc, char** argv) {
+  cv::setNumThreads(1);  // every figure is single-threaded, the baseline included
+  benchmark::Initialize(&argc, argv);
+  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

@@ -1,0 +1,11 @@
+// The subcommands of the `orbit` command-line tool. Each Add*Command registers one subcommand on
+// the application; when it runs, its callback stores the process exit code in `exit_code`.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace orbit::cli {
+
+void AddDescriptorCommand(CLI::App& app, int& exit_code);
+
+}  // namespace orbit::cli

@@ -1,0 +1,16 @@
+# Third-party libraries, all from Debian 12 packages (see scripts/setup.sh).
+#
+# Debian splits OpenCV into per-module -dev packages that ship no CMake config, so the three
+# modules the project uses are found by hand and exposed as imported targets.
+
+find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4 REQUIRED)
+foreach(module core imgproc imgcodecs)
+  find_library(OPENCV_${module}_LIBRARY opencv_${module} REQUIRED)
+  add_library(opencv::${module} UNKNOWN IMPORTED)
+  set_target_properties(opencv::${module} PROPERTIES
+    IMPORTED_LOCATION "${OPENCV_${module}_LIBRARY}"
+    INTERFACE_INCLUDE_DIRECTORIES "${OPENCV_INCLUDE_DIR}")
+endforeach()
+
+find_package(PkgConfig REQUIRED)
+find_package(Threads REQUIRED)

@@ -1,0 +1,35 @@
+// Where the tests find the shared data and the orbit binary.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "core/descriptor.h"
+
+namespace orbit::testing {
+
+// The shared data folder: $ORBIT_DATA if set, else ../shared/data beside the repository.
+// Fails the calling test (fatally, never a skip) when the folder is missing.
+std::filesystem::path DataDir();
+
+// One line of a LIRE reference file: `<relative path> v0 ... v143`.
+struct ReferenceVector {
+  std::string path;
+  DescriptorValues values;
+};
+std::vector<ReferenceVector> ReadReferenceVectors(const std::filesystem::path& file);
+
+// Runs a command through the shell; returns its exit status and what it printed.
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;  // stdout
+  std::string err;  // stderr
+};
+CommandResult RunCommand(const std::string& command);
+
+// Path of the built `orbit` binary.
+std::string OrbitBinary();
+
+}  // namespace orbit::testing
