@@ -67,12 +67,3 @@ const int registered = RegisterCeddBenchmarks();
 
 }  // namespace
 }  // namespace orbit
-
-int main(int argc, char** argv) {
-  cv::setNumThreads(1);  // every figure is single-threaded, the baseline included
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
-}
