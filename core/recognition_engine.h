@@ -1,0 +1,178 @@
+// RecognitionEngine: one recognition session's state and its frame-by-frame answer (SPEC.md,
+// "Engines", "Recognition", "Active vision"). Public interface of the engines.
+//
+//   std::unique_ptr<RecognitionEngine> engine = CreateEngine("vci", options);
+//   for each frame:  FrameUpdate u = engine->Observe(index.Snapshot(), {descriptor, azimuth});
+//
+// Engines, by name (CreateEngine):
+//   "eis"     EIS: mean over frames of each frame's best view distance (baseline).
+//   "siis"    SIIS: best view of one selected frame by search, other frames matched through
+//             the IMU to the views at the same relative orientation (baseline).
+//   "eiis"    EIIS: every rotation of the candidate tried, frames matched through the IMU,
+//             smallest mean distance (baseline).
+//   "vci-bm"  VCI Best Match: Hough voting over retrieval lists, no list extension, w = 0.
+//   "vci-w0"  VCI_W: with the lists' extension (by most similar view: no IMU), w = 0.
+//   "vci"     VCI with the orientation term (w = options.orientation_weight, default 0.5) and
+//             the lists' extension by the orientation the IMU implies.
+//   "hmm"     The orientation HMM (options.hmm_states sectors), online Viterbi.
+// See baseline_engines.h, hough_voter.h and orientation_hmm.h for each engine's formula.
+//
+// Every engine keeps a sliding window of the last options.window frames and answers from the
+// window alone, so feeding frames one by one with Observe() and giving them all at once to
+// ObserveSequence() yield the same final update.
+//
+// Scores: higher is better for every engine, and comparable across engines as a per-frame
+// similarity: baselines report 1 - mean distance, VCI reports H(c_i) / n (SPEC.md's Hough
+// score divided by the number of frames in the window), the HMM its winner-rule value (mean TC
+// along the object's Viterbi path).
+//
+// Angles: only differences between frame azimuths are used; shifting every azimuth of a session
+// by the same constant leaves every update unchanged, and sequences may cross 0/360.
+//
+// Index updates: each call takes the snapshot to answer from; when it differs from the previous
+// call's, the engine recomputes its per-frame state for the frames still in its window, so
+// objects enrolled or deleted since are seen from this frame on.
+//
+// Thread safety: an engine (a session) must be used by one thread at a time; different engines
+// may run concurrently on the same snapshot.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "core/descriptor.h"
+#include "core/object_model.h"
+#include "core/view_index.h"
+
+namespace orbit {
+
+inline constexpr int kMaxWindow = 64;
+
+struct EngineOptions {
+  int window = 8;                   // W: frames kept (1..kMaxWindow)
+  int list_length = 4;              // N_L: views per VCI retrieval list (>= 1)
+  double orientation_weight = 0.5;  // w: VCI's orientation term, per radian (>= 0; "vci" only)
+  int hmm_states = 8;               // HMM states = equal azimuth sectors (1..360)
+  double threshold = 2.0;           // Th: accept when T_M / mean Ttyp <= Th (> 0)
+  int top_k = 5;                    // objects in each update's ranking (>= 1)
+  int averaged_views = 8;           // N_avg: active vision's averaged views per object (2..360)
+  // Active vision: objects whose score is within this margin of the best are the ambiguous
+  // candidates; when only the best is, it dominates and the move is NONE (>= 0).
+  double ambiguity_margin = 0.05;
+};
+
+// Throws std::invalid_argument naming the first option out of its range.
+void ValidateEngineOptions(const EngineOptions& options);
+
+// One arriving frame: the descriptor of the object's region and the device azimuth (degrees,
+// any finite value; only differences between frames matter).
+struct QueryFrame {
+  Descriptor descriptor;
+  double azimuth = 0;
+};
+
+struct RankedObject {
+  ObjectId object = 0;
+  double score = 0;  // higher is better; see "Scores" above
+};
+
+enum class Decision {
+  kAccept,     // the best object fits as well as its views fit distorted copies of themselves
+  kUnknown,    // the best object fits too badly: an object the index does not know
+  kUndecided,  // no answer possible: empty index, or the matched views have no typical distance
+};
+
+// Where the device should move next to settle an ambiguity. RIGHT means toward increasing
+// device azimuth, LEFT toward decreasing.
+enum class SuggestedMove { kNone, kLeft, kRight };
+
+struct FrameUpdate {
+  std::int64_t frame_index = 0;      // 0 for the first frame after construction or Reset()
+  std::vector<RankedObject> ranking;  // best first, at most options.top_k; empty index: empty
+  Decision decision = Decision::kUndecided;
+  SuggestedMove move = SuggestedMove::kNone;
+};
+
+std::string_view DecisionName(Decision decision);     // "ACCEPT", "UNKNOWN", "UNDECIDED"
+std::string_view MoveName(SuggestedMove move);        // "LEFT", "RIGHT", "NONE"
+
+class RecognitionEngine {
+ public:
+  virtual ~RecognitionEngine();
+
+  RecognitionEngine(const RecognitionEngine&) = delete;
+  RecognitionEngine& operator=(const RecognitionEngine&) = delete;
+
+  // Adds one frame to the window (dropping the oldest when it holds options.window frames) and
+  // returns the answer for the window.
+  // Throws std::invalid_argument when `index` is null, when the frame's variant is not the
+  // index's, when a descriptor value exceeds 7 or when the azimuth is not finite; the session's
+  // state is then unchanged.
+  FrameUpdate Observe(std::shared_ptr<const ViewIndexSnapshot> index, const QueryFrame& frame);
+
+  // Batch form: Reset(), then all frames in order, answering once. Equal to the last update of
+  // Observe() called on each frame after a Reset(). Throws as Observe() (and std::invalid_argument
+  // for an empty `frames`), leaving the session reset.
+  FrameUpdate ObserveSequence(std::shared_ptr<const ViewIndexSnapshot> index,
+                              std::span<const QueryFrame> frames);
+
+  // Forgets every frame; the next frame has index 0.
+  void Reset();
+
+  std::string_view name() const { return name_; }
+  const EngineOptions& options() const { return options_; }
+
+ protected:
+  RecognitionEngine(std::string_view name, const EngineOptions& options);
+
+  // One view matched to one window frame, for the rejection rule.
+  struct MatchedView {
+    int frame = 0;  // position in the window
+    int view = 0;   // index in the object's ObjectModel::views
+    double similarity = 0;
+  };
+
+  // An engine's verdict on one object for the current window.
+  struct Assessment {
+    const IndexedObject* object = nullptr;
+    double score = 0;                  // higher is better
+    std::vector<MatchedView> matched;  // the views the score used, one per frame
+    // The object's azimuth facing the camera at the latest frame, in model degrees (for
+    // active vision).
+    double latest_azimuth = 0;
+  };
+
+  // A frame entered the window at its end (position window.size() - 1); do its per-frame work.
+  virtual void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) = 0;
+  // The frame at window position 0 left.
+  virtual void DropOldest() = 0;
+  // Forget every per-frame state (Reset, or a new snapshot before the window is re-appended).
+  virtual void Clear() = 0;
+  // Every candidate object's assessment for the window, any order. `window` is not empty.
+  virtual std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
+                                         std::span<const QueryFrame> window) = 0;
+
+ private:
+  void Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const;
+  void Push(const QueryFrame& frame);
+  FrameUpdate Answer();
+
+  const std::string_view name_;
+  const EngineOptions options_;
+  std::shared_ptr<const ViewIndexSnapshot> index_;
+  std::vector<QueryFrame> window_;  // oldest first
+  std::int64_t frames_seen_ = 0;
+};
+
+// The engine called `name` (one of EngineNames()).
+// Throws std::invalid_argument for an unknown name or options out of range.
+std::unique_ptr<RecognitionEngine> CreateEngine(std::string_view name,
+                                                const EngineOptions& options = {});
+
+// {"eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm"}, in this order.
+std::span<const std::string_view> EngineNames();
+
+}  // namespace orbit

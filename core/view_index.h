@@ -1,0 +1,164 @@
+// ViewIndex: every view of every known object (descriptor, object, azimuth), searchable by
+// Tanimoto similarity (SPEC.md, "Similarity" and "Engines": VCI's retrieval lists, the
+// baselines' scans). Public interface of the index for the engines, the evaluation and the server.
+//
+//   ViewIndex index(models, {.search = SearchMode::kKdTree});
+//   std::shared_ptr<const ViewIndexSnapshot> snapshot = index.Snapshot();
+//   std::vector<ViewMatch> list = snapshot->Search(query, /*count=*/4);
+//
+// Two search modes behind one call (ViewIndexSnapshot::Search):
+//   kExact   brute-force Tanimoto over all views (integer dot products, vectorised).
+//   kKdTree  FLANN randomised kd-trees over the 144-dim vectors (Euclidean), which propose
+//            `kd_candidates` views; those are re-ranked by exact Tanimoto. Approximate: see
+//            docs/results/engines-speed.md for recall@N_L against kExact on COIL-100.
+//
+// Updates without a rebuild from scratch: views live in immutable segments, each with its own
+// kd-tree. Add() appends a segment holding the new object and merges segments of similar size
+// (log-structured, so each view is re-indexed O(log views) times over the index's life);
+// Remove() records the object as deleted and a segment is rewritten only when more than half of
+// it is deleted. Searches skip deleted objects.
+//
+// Snapshots: Snapshot() returns an immutable view of the index at that moment; later Add() and
+// Remove() never change it. A session takes the current snapshot for each frame, so an object
+// enrolled or deleted is seen from that session's next frame on.
+//
+// Thread safety: ViewIndex is safe for concurrent use from multiple threads (writers are
+// serialised internally; Snapshot() never waits for a segment build). A ViewIndexSnapshot is
+// immutable and safe to share read-only across any number of threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "core/descriptor.h"
+#include "core/indexed_object.h"
+#include "core/object_model.h"
+
+namespace orbit {
+
+enum class SearchMode {
+  kExact,   // brute-force Tanimoto over every view
+  kKdTree,  // FLANN kd-trees, candidates re-ranked by exact Tanimoto
+};
+
+struct ViewIndexOptions {
+  SearchMode search = SearchMode::kExact;
+  int kd_trees = 4;         // FLANN randomised kd-trees per segment
+  int kd_checks = 1024;     // leaves FLANN visits per segment and query
+  int kd_candidates = 32;   // views FLANN proposes for re-ranking (at least the count asked)
+};
+
+// One view found by a search: the object, the position of the view in that object's
+// ObjectModel::views, its azimuth and its exact Tanimoto coefficient with the query.
+struct ViewMatch {
+  ObjectId object = 0;
+  int view = 0;
+  double azimuth = 0;
+  double similarity = 0;  // TC(query, view), in [0, 1]
+};
+
+class ViewIndexSnapshot;
+
+class ViewIndex {
+ public:
+  // An empty index of one descriptor variant.
+  // Throws std::invalid_argument when an option is out of range (kd_trees, kd_checks,
+  // kd_candidates < 1).
+  explicit ViewIndex(DescriptorVariant variant, ViewIndexOptions options = {});
+
+  // An index of `models`, built in one pass (one segment).
+  // Throws std::invalid_argument when `models` is empty (the variant would be unknown: use the
+  // other constructor), when the models' variants differ, when two models share an id, when a
+  // model has no views, or when a view's azimuth is not finite or a value exceeds 7.
+  explicit ViewIndex(std::vector<ObjectModel> models, ViewIndexOptions options = {});
+
+  ViewIndex(const ViewIndex&) = delete;
+  ViewIndex& operator=(const ViewIndex&) = delete;
+
+  // Adds one object. Snapshots taken before are unchanged.
+  // Throws std::invalid_argument when the model's variant is not the index's, when its id is
+  // already present, when it has no views, or when a view is invalid (as above).
+  void Add(ObjectModel model);
+
+  // Removes the object; returns false (and changes nothing) when no object has this id.
+  bool Remove(ObjectId id);
+
+  // The index as it is now. Never null; cheap (no copy of views).
+  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const;
+
+  DescriptorVariant variant() const { return variant_; }
+  const ViewIndexOptions& options() const { return options_; }
+
+ private:
+  void Publish(std::shared_ptr<const ViewIndexSnapshot> next);
+
+  const DescriptorVariant variant_;
+  const ViewIndexOptions options_;
+  std::mutex write_mutex_;             // serialises Add/Remove
+  mutable std::mutex publish_mutex_;   // guards current_ (held only to copy the pointer)
+  std::shared_ptr<const ViewIndexSnapshot> current_;
+};
+
+// An object's place in a snapshot: its data and the slots of its views in the arrays filled by
+// ViewIndexSnapshot::SimilarityToEveryView (view v of the object is slot first_slot + v).
+struct ObjectSlot {
+  const IndexedObject* object = nullptr;
+  std::size_t first_slot = 0;
+};
+
+// An immutable state of a ViewIndex. Safe to share across threads; all methods are const and
+// thread-safe.
+class ViewIndexSnapshot {
+ public:
+  struct Segment;  // private representation, defined in view_index.cc
+
+  ViewIndexSnapshot(DescriptorVariant variant, ViewIndexOptions options,
+                    std::vector<std::shared_ptr<const Segment>> segments);
+  ~ViewIndexSnapshot();
+
+  DescriptorVariant variant() const { return variant_; }
+  SearchMode search_mode() const { return options_.search; }
+
+  // The objects present, in a stable order (the order of addition, deleted objects skipped).
+  const std::vector<ObjectSlot>& objects() const { return objects_; }
+  std::size_t object_count() const { return objects_.size(); }
+  std::size_t view_count() const { return view_count_; }
+
+  // The object with this id, or nullptr.
+  const IndexedObject* Find(ObjectId id) const;
+
+  // The `count` views most similar to `query` by Tanimoto, best first (ties: lower object
+  // position, then lower view index first), using the snapshot's search mode. Returns fewer
+  // when the index holds fewer views. In kKdTree mode the list is approximate (a true
+  // neighbour can be missed) but every similarity returned is exact.
+  // Throws std::invalid_argument when count < 1.
+  std::vector<ViewMatch> Search(const DescriptorValues& query, int count) const;
+
+  // Exact search regardless of the snapshot's mode (the reference the kd-tree is measured by).
+  std::vector<ViewMatch> SearchExact(const DescriptorValues& query, int count) const;
+
+  // Fills `similarities` (resized to slot_count()) with TC(query, view) for every view slot;
+  // slots of deleted objects hold unspecified values. One brute-force pass: the baselines'
+  // scan and the `exact-scan` benchmark.
+  void SimilarityToEveryView(const DescriptorValues& query, std::vector<float>& similarities) const;
+  std::size_t slot_count() const { return slot_count_; }
+
+ private:
+  std::vector<ViewMatch> SearchKdTree(const DescriptorValues& query, int count) const;
+
+  DescriptorVariant variant_;
+  ViewIndexOptions options_;
+  std::vector<std::shared_ptr<const Segment>> segments_;
+  std::vector<std::size_t> segment_first_slot_;
+  std::vector<ObjectSlot> objects_;
+  std::vector<std::int32_t> object_position_of_slot_;  // -1 for deleted objects' slots
+  std::size_t view_count_ = 0;
+  std::size_t slot_count_ = 0;
+
+  friend class ViewIndex;
+};
+
+}  // namespace orbit
