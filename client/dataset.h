@@ -1,0 +1,60 @@
+// Datasets of object views on disk: the images `orbit import` turns into a model set and
+// `orbit eval` runs the evaluation protocol on (SPEC.md, "Evaluation protocol").
+//
+// Two layouts:
+//   coil100   a folder of files objN__A.png (COIL-100: object N, azimuth A degrees);
+//   manifest  a CSV file with columns path,object,azimuth and an optional elevation column.
+//
+// All functions are thread-safe (they share no state); errors are thrown as described.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace orbit {
+
+// One image of one object, at a known orientation.
+struct DatasetImage {
+  std::string path;                 // image file; absolute, or relative to the working directory
+  std::string object;               // object name, e.g. "obj7"; images of one object share it
+  double azimuth = 0;               // degrees, normalised to [0, 360)
+  std::optional<double> elevation;  // degrees, when the dataset records it
+
+  friend bool operator==(const DatasetImage&, const DatasetImage&) = default;
+};
+
+// Parses an object selection such as "1-20", "7" or "1-5,9": comma-separated numbers and
+// inclusive ranges "a-b" (a <= b), numbers from 1. Spaces around items are allowed.
+// Returns the selected numbers sorted ascending, each once (overlapping items are merged).
+//
+// Throws std::invalid_argument, quoting the offending item, for empty text, an empty item, a
+// non-number, 0, a reversed range ("5-1"), a range of a million numbers or more, or a number
+// too large for int.
+std::vector<int> ParseObjectRange(std::string_view text);
+
+// Lists the COIL-100 images in `dir`: every file named objN__A.png (N >= 1 and A integers),
+// object name "obj<N>", azimuth A, no elevation; other files are ignored. Sorted by object number,
+// then azimuth (numerically, so obj2 precedes obj10 and 5 degrees precede 10).
+// When `objects` is given (see ParseObjectRange), only those object numbers are listed.
+//
+// Throws std::runtime_error naming the folder when it is not a readable directory, when it holds
+// no objN__A.png file, or when a selected object has no image there.
+std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,
+                                      const std::optional<std::vector<int>>& objects = std::nullopt);
+
+// Reads a manifest: a CSV file whose first row is a header naming the columns path, object,
+// azimuth and optionally elevation, in any order (no other column is allowed). Fields may be
+// quoted with "..." ("" inside quotes is one quote); spaces around unquoted fields are trimmed;
+// blank lines and CRLF line ends are accepted. A relative path resolves against the folder that
+// holds the CSV file; an empty elevation field means "not recorded". Images keep the file's order.
+//
+// Throws std::runtime_error "FILE:LINE: problem" when the file cannot be read, the header is
+// missing, incomplete or has an unknown or repeated column, a row has the wrong number of
+// fields, a path or object is empty, or an azimuth or elevation is not a finite number; and
+// "FILE: no images" when there are no data rows. Image files are not opened here.
+std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
+
+}  // namespace orbit
