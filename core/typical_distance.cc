@@ -1,0 +1,33 @@
+#include "core/typical_distance.h"
+
+#include <stdexcept>
+
+#include "core/cedd.h"
+#include "core/distortion.h"
+#include "core/similarity.h"
+
+namespace orbit {
+
+std::array<cv::Mat, kTypicalDistortionCount> TypicalDistortions(const cv::Mat& view,
+                                                                std::uint64_t seed) {
+  return {MotionBlur(view), AddGaussianNoise(view, kGaussianNoiseVariance, seed)};
+}
+
+double TypicalDistance(const DescriptorValues& view, std::span<const DescriptorValues> copies) {
+  if (copies.empty()) throw std::invalid_argument("TypicalDistance: no distorted copies");
+  double sum = 0;
+  for (const DescriptorValues& copy : copies) sum += TanimotoDistance(view, copy);
+  return sum / static_cast<double>(copies.size());
+}
+
+double TypicalDistance(const cv::Mat& view, DescriptorVariant variant, std::uint64_t seed) {
+  const DescriptorValues original = ExtractCedd(view, variant).values;
+  std::array<DescriptorValues, kTypicalDistortionCount> copies;
+  const auto distorted = TypicalDistortions(view, seed);
+  for (int i = 0; i < kTypicalDistortionCount; ++i) {
+    copies[i] = ExtractCedd(distorted[i], variant).values;
+  }
+  return TypicalDistance(original, copies);
+}
+
+}  // namespace orbit
