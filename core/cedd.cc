@@ -240,11 +240,11 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
           cedd::FuzzyColour(static_cast<int>(block.Divide(channel[2]).quotient),
                             static_cast<int>(block.Divide(channel[1]).quotient),
                             static_cast<int>(block.Divide(channel[0]).quotient));
+      // The reference adds only bins > 0; colour bins are never negative and adding +0.0 leaves
+      // a sum unchanged, so adding all 24 unconditionally is bit-identical (and vectorises).
       for (int t = 0; t < texture.count; ++t) {
         double* bins = histogram + kColourBins * texture.classes[t];
-        for (int j = 0; j < kColourBins; ++j) {
-          if (colour[j] > 0) bins[j] += colour[j];
-        }
+        for (int j = 0; j < kColourBins; ++j) bins[j] += colour[j];
       }
     }
   }

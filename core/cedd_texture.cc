@@ -33,7 +33,15 @@ TextureClasses ClassifyTexture(const QuadrantMeans& m) {
   }
   const double threshold[5] = {kT1, kT2, kT2, kT3, kT3};
   for (int i = 0; i < 5; ++i) {
-    if (mask[i] / max > threshold[i]) result.classes[result.count++] = i + 1;
+    // mask / max > threshold, decided without the division when the margin is clear (the
+    // products below are exact to far better than 1e-9 relative), else with the reference's own
+    // division. Stored unconditionally and counted, to keep the loop free of branches.
+    const double scaled = threshold[i] * max;
+    const bool above = mask[i] > scaled * (1 + 1e-9)   ? true
+                       : mask[i] < scaled * (1 - 1e-9) ? false
+                                                       : mask[i] / max > threshold[i];
+    result.classes[result.count] = i + 1;
+    result.count += above;
   }
   return result;
 }
