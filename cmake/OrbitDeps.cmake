@@ -14,3 +14,10 @@ endforeach()
 
 find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
+
+# FLANN (the view index's kd-trees) is used header-only; its headers include lz4's.
+find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
+find_path(LZ4_INCLUDE_DIR lz4.h REQUIRED)
+add_library(flann::flann INTERFACE IMPORTED)
+set_target_properties(flann::flann PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}")

@@ -35,7 +35,8 @@ struct SectorViews {
   int count = 0;
   std::vector<MeanDescriptor> descriptor;        // [count]
   std::vector<double> squared_norm;              // [count]: descriptor . descriptor
-  std::vector<std::vector<int>> views;           // [count]: model view indices in the sector
+  // [count]: the model views the mean was taken over (the sector's own, or the stand-ins)
+  std::vector<std::vector<int>> views;
 };
 
 // Sector views of `model` for `count` sectors (the function the cache calls).
@@ -61,7 +62,7 @@ class IndexedObject {
   // or the object has one view.
   std::pair<int, int> NeighbourViews(double azimuth) const;
 
-  // The view whose azimuth is closest to `azimuth` circularly (ties: the lower azimuth).
+  // The view whose azimuth is closest to `azimuth` circularly (ties: NeighbourViews().first).
   int NearestView(double azimuth) const;
 
   // Sector views for `count` sectors, computed on first use and cached.

@@ -151,9 +151,14 @@ class RecognitionEngine {
   virtual void DropOldest() = 0;
   // Forget every per-frame state (Reset, or a new snapshot before the window is re-appended).
   virtual void Clear() = 0;
-  // Every candidate object's assessment for the window, any order. `window` is not empty.
+  // Every candidate object's assessment for the window, any order; `matched` and
+  // `latest_azimuth` may be left for Complete(). `window` is not empty.
   virtual std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
                                          std::span<const QueryFrame> window) = 0;
+  // Fills `matched` and `latest_azimuth` of an assessment from the last Assess() call; called
+  // only for the few objects the decision and the move need. Default: Assess() filled them.
+  virtual void Complete(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
+                        Assessment& assessment);
 
  private:
   void Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const;

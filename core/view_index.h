@@ -31,6 +31,8 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "core/descriptor.h"
@@ -113,10 +115,13 @@ struct ObjectSlot {
 // thread-safe.
 class ViewIndexSnapshot {
  public:
-  struct Segment;  // private representation, defined in view_index.cc
+  // Private representation, defined in view_index.cc: immutable segments of views, each with
+  // the liveness of its objects in this snapshot.
+  struct Segment;
+  struct SegmentState;
 
   ViewIndexSnapshot(DescriptorVariant variant, ViewIndexOptions options,
-                    std::vector<std::shared_ptr<const Segment>> segments);
+                    std::vector<SegmentState> segments);
   ~ViewIndexSnapshot();
 
   DescriptorVariant variant() const { return variant_; }
@@ -148,13 +153,17 @@ class ViewIndexSnapshot {
 
  private:
   std::vector<ViewMatch> SearchKdTree(const DescriptorValues& query, int count) const;
+  std::vector<ViewMatch> Best(const std::vector<std::pair<double, std::size_t>>& scored,
+                              int count) const;
 
   DescriptorVariant variant_;
   ViewIndexOptions options_;
-  std::vector<std::shared_ptr<const Segment>> segments_;
+  std::vector<SegmentState> segments_;
   std::vector<std::size_t> segment_first_slot_;
   std::vector<ObjectSlot> objects_;
-  std::vector<std::int32_t> object_position_of_slot_;  // -1 for deleted objects' slots
+  std::unordered_map<ObjectId, std::size_t> position_of_id_;
+  std::vector<std::int32_t> position_of_slot_;  // object position; -1 for deleted objects
+  std::vector<std::int32_t> view_of_slot_;      // view index within its object
   std::size_t view_count_ = 0;
   std::size_t slot_count_ = 0;
 

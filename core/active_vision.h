@@ -1,0 +1,42 @@
+// Active vision (SPEC.md, "Active vision"): where should the device move so that the objects
+// still in contention look most different from one another?
+//
+// Each object has N_avg averaged views (IndexedObject::Sectors(N_avg): the mean CEDD of the views
+// in each equal azimuth sector). For every ambiguous candidate, its estimated orientation (the
+// model azimuth facing the camera now) picks the averaged view one sector to the right
+// (azimuth + 360/N_avg: what the camera would see after moving RIGHT, toward increasing device
+// azimuth) and one sector to the left. A side's separation is the smallest Tanimoto distance
+// between any two candidates' averaged views on that side: the pair most likely to stay confused
+// decides, which is the intent of the thesis' eq. 5.10 (minimise ambiguity) rather than its
+// literal distance sum, which one very different candidate can dominate. Ties are broken by the
+// sum of pairwise distances; a complete tie gives NONE.
+//
+// Pure and thread-safe.
+#pragma once
+
+#include <span>
+
+#include "core/indexed_object.h"
+#include "core/recognition_engine.h"
+
+namespace orbit {
+
+struct MoveCandidate {
+  const IndexedObject* object = nullptr;
+  double azimuth = 0;  // estimated model azimuth facing the camera at the latest frame (degrees)
+};
+
+// NONE for fewer than two candidates (one dominates); else LEFT or RIGHT by the rule above.
+// Throws std::invalid_argument when averaged_views < 2 or a candidate's object is null.
+SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int averaged_views);
+
+// The separation of one side, as defined above: {smallest pairwise distance, sum of pairwise
+// distances} between the candidates' averaged views at azimuth + offset. Exposed for tests.
+struct Separation {
+  double smallest = 0;
+  double sum = 0;
+};
+Separation SideSeparation(std::span<const MoveCandidate> candidates, int averaged_views,
+                          double offset);
+
+}  // namespace orbit

@@ -1,0 +1,130 @@
+#include "core/baseline_engines.h"
+
+#include <deque>
+#include <vector>
+
+#include "core/angles.h"
+
+namespace orbit {
+namespace {
+
+class BaselineEngine final : public RecognitionEngine {
+ public:
+  BaselineEngine(BaselineMethod method, const EngineOptions& options)
+      : RecognitionEngine(Name(method), options), method_(method) {}
+
+ protected:
+  void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
+    similarities_.emplace_back();
+    index.SimilarityToEveryView(frame.descriptor.values, similarities_.back());
+  }
+  void DropOldest() override { similarities_.pop_front(); }
+  void Clear() override { similarities_.clear(); }
+
+  std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
+                                 std::span<const QueryFrame> window) override {
+    std::vector<Assessment> assessments;
+    assessments.reserve(index.object_count());
+    for (const ObjectSlot& slot : index.objects()) {
+      switch (method_) {
+        case BaselineMethod::kEis: assessments.push_back(AssessEis(slot)); break;
+        case BaselineMethod::kSiis: assessments.push_back(AssessSiis(slot, window)); break;
+        case BaselineMethod::kEiis: assessments.push_back(AssessEiis(slot, window)); break;
+      }
+    }
+    return assessments;
+  }
+
+ private:
+  static std::string_view Name(BaselineMethod method) {
+    switch (method) {
+      case BaselineMethod::kEis: return "eis";
+      case BaselineMethod::kSiis: return "siis";
+      case BaselineMethod::kEiis: break;
+    }
+    return "eiis";
+  }
+
+  float Similarity(int frame, const ObjectSlot& slot, int view) const {
+    return similarities_[frame][slot.first_slot + view];
+  }
+
+  // The view of frame k's object at the most similar of the object's views.
+  int BestView(int frame, const ObjectSlot& slot) const {
+    int best = 0;
+    for (int v = 1; v < slot.object->view_count(); ++v) {
+      if (Similarity(frame, slot, v) > Similarity(frame, slot, best)) best = v;
+    }
+    return best;
+  }
+
+  Assessment Finish(const ObjectSlot& slot, std::vector<MatchedView> matched) const {
+    Assessment a;
+    a.object = slot.object;
+    double sum = 0;
+    for (const MatchedView& m : matched) sum += m.similarity;
+    a.score = sum / static_cast<double>(matched.size());
+    a.latest_azimuth = slot.object->model().views[matched.back().view].azimuth;
+    a.matched = std::move(matched);
+    return a;
+  }
+
+  Assessment AssessEis(const ObjectSlot& slot) const {
+    std::vector<MatchedView> matched;
+    for (int k = 0; k < static_cast<int>(similarities_.size()); ++k) {
+      const int view = BestView(k, slot);
+      matched.push_back({k, view, Similarity(k, slot, view)});
+    }
+    return Finish(slot, std::move(matched));
+  }
+
+  // Frames matched through the IMU to the views at the orientations implied by `anchor`, the
+  // view facing the camera at the oldest frame; returns the sum of similarities.
+  double MatchFromAnchor(const ObjectSlot& slot, std::span<const QueryFrame> window, int anchor,
+                         std::vector<MatchedView>* matched) const {
+    const double anchor_azimuth = slot.object->model().views[anchor].azimuth;
+    double sum = Similarity(0, slot, anchor);
+    if (matched != nullptr) matched->push_back({0, anchor, Similarity(0, slot, anchor)});
+    for (int k = 1; k < static_cast<int>(window.size()); ++k) {
+      const double target = anchor_azimuth + AzimuthChange(window[0].azimuth, window[k].azimuth);
+      const auto [left, right] = slot.object->NeighbourViews(target);
+      const int view = Similarity(k, slot, right) > Similarity(k, slot, left) ? right : left;
+      sum += Similarity(k, slot, view);
+      if (matched != nullptr) matched->push_back({k, view, Similarity(k, slot, view)});
+    }
+    return sum;
+  }
+
+  Assessment AssessSiis(const ObjectSlot& slot, std::span<const QueryFrame> window) const {
+    std::vector<MatchedView> matched;
+    MatchFromAnchor(slot, window, BestView(0, slot), &matched);
+    return Finish(slot, std::move(matched));
+  }
+
+  Assessment AssessEiis(const ObjectSlot& slot, std::span<const QueryFrame> window) const {
+    int best_anchor = 0;
+    double best_sum = -1;
+    for (const int anchor : slot.object->views_by_azimuth()) {
+      const double sum = MatchFromAnchor(slot, window, anchor, nullptr);
+      if (sum > best_sum) {
+        best_sum = sum;
+        best_anchor = anchor;
+      }
+    }
+    std::vector<MatchedView> matched;
+    MatchFromAnchor(slot, window, best_anchor, &matched);
+    return Finish(slot, std::move(matched));
+  }
+
+  const BaselineMethod method_;
+  std::deque<std::vector<float>> similarities_;  // per window frame, per view slot
+};
+
+}  // namespace
+
+std::unique_ptr<RecognitionEngine> MakeBaselineEngine(BaselineMethod method,
+                                                      const EngineOptions& options) {
+  return std::make_unique<BaselineEngine>(method, options);
+}
+
+}  // namespace orbit

@@ -1,0 +1,182 @@
+#include "core/recognition_engine.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+#include "core/active_vision.h"
+#include "core/baseline_engines.h"
+#include "core/hough_voter.h"
+#include "core/orientation_hmm.h"
+#include "core/rejection.h"
+#include "core/similarity.h"
+
+namespace orbit {
+namespace {
+
+constexpr std::array<std::string_view, 7> kEngineNames = {"eis", "siis",   "eiis", "vci-bm",
+                                                          "vci-w0", "vci", "hmm"};
+
+void Require(bool condition, const std::string& message) {
+  if (!condition) throw std::invalid_argument("engine option " + message);
+}
+
+}  // namespace
+
+void ValidateEngineOptions(const EngineOptions& o) {
+  Require(o.window >= 1 && o.window <= kMaxWindow,
+          "window must be in 1.." + std::to_string(kMaxWindow) + ", got " + std::to_string(o.window));
+  Require(o.list_length >= 1, "list_length (N_L) must be at least 1");
+  Require(std::isfinite(o.orientation_weight) && o.orientation_weight >= 0,
+          "orientation_weight (w) must be finite and >= 0");
+  Require(o.hmm_states >= 1 && o.hmm_states <= 360, "hmm_states must be in 1..360");
+  Require(std::isfinite(o.threshold) && o.threshold > 0, "threshold (Th) must be finite and > 0");
+  Require(o.top_k >= 1, "top_k must be at least 1");
+  Require(o.averaged_views >= 2 && o.averaged_views <= 360, "averaged_views must be in 2..360");
+  Require(std::isfinite(o.ambiguity_margin) && o.ambiguity_margin >= 0,
+          "ambiguity_margin must be finite and >= 0");
+}
+
+std::string_view DecisionName(Decision decision) {
+  switch (decision) {
+    case Decision::kAccept: return "ACCEPT";
+    case Decision::kUnknown: return "UNKNOWN";
+    case Decision::kUndecided: break;
+  }
+  return "UNDECIDED";
+}
+
+std::string_view MoveName(SuggestedMove move) {
+  switch (move) {
+    case SuggestedMove::kLeft: return "LEFT";
+    case SuggestedMove::kRight: return "RIGHT";
+    case SuggestedMove::kNone: break;
+  }
+  return "NONE";
+}
+
+RecognitionEngine::RecognitionEngine(std::string_view name, const EngineOptions& options)
+    : name_(name), options_(options) {
+  ValidateEngineOptions(options_);
+  window_.reserve(options_.window);
+}
+
+RecognitionEngine::~RecognitionEngine() = default;
+
+void RecognitionEngine::Complete(const ViewIndexSnapshot&, std::span<const QueryFrame>,
+                                 Assessment&) {}
+
+void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const {
+  if (index == nullptr) throw std::invalid_argument("no view index to recognise against");
+  if (frame.descriptor.variant != index->variant()) {
+    throw std::invalid_argument("frame descriptor has variant " +
+                                std::string(VariantName(frame.descriptor.variant)) +
+                                ", the model set has " + std::string(VariantName(index->variant())));
+  }
+  for (const std::uint8_t value : frame.descriptor.values) {
+    if (value > kDescriptorMaxValue) {
+      throw std::invalid_argument("frame descriptor value " + std::to_string(value) +
+                                  " exceeds 7");
+    }
+  }
+  if (!std::isfinite(frame.azimuth)) throw std::invalid_argument("frame azimuth is not finite");
+}
+
+void RecognitionEngine::Push(const QueryFrame& frame) {
+  if (static_cast<int>(window_.size()) == options_.window) {
+    DropOldest();
+    window_.erase(window_.begin());
+  }
+  window_.push_back(frame);
+  Append(*index_, frame);
+  ++frames_seen_;
+}
+
+FrameUpdate RecognitionEngine::Observe(std::shared_ptr<const ViewIndexSnapshot> index,
+                                       const QueryFrame& frame) {
+  Validate(index.get(), frame);
+  if (index != index_) {
+    // A new model set: redo the per-frame work of the frames still in the window.
+    Clear();
+    index_ = std::move(index);
+    for (const QueryFrame& kept : window_) Append(*index_, kept);
+  }
+  Push(frame);
+  return Answer();
+}
+
+FrameUpdate RecognitionEngine::ObserveSequence(std::shared_ptr<const ViewIndexSnapshot> index,
+                                               std::span<const QueryFrame> frames) {
+  Reset();
+  if (frames.empty()) throw std::invalid_argument("ObserveSequence needs at least one frame");
+  for (const QueryFrame& frame : frames) Validate(index.get(), frame);
+  index_ = std::move(index);
+  // Only the last `window` frames can matter; the earlier ones still count in frame_index.
+  const std::size_t skipped = frames.size() > static_cast<std::size_t>(options_.window)
+                                  ? frames.size() - options_.window
+                                  : 0;
+  frames_seen_ = static_cast<std::int64_t>(skipped);
+  for (const QueryFrame& frame : frames.subspan(skipped)) Push(frame);
+  return Answer();
+}
+
+void RecognitionEngine::Reset() {
+  Clear();
+  window_.clear();
+  index_.reset();
+  frames_seen_ = 0;
+}
+
+FrameUpdate RecognitionEngine::Answer() {
+  FrameUpdate update;
+  update.frame_index = frames_seen_ - 1;
+  std::vector<Assessment> assessments = Assess(*index_, window_);
+  if (assessments.empty()) return update;
+  std::sort(assessments.begin(), assessments.end(), [](const Assessment& a, const Assessment& b) {
+    return a.score > b.score || (a.score == b.score && a.object->id() < b.object->id());
+  });
+  const std::size_t shown = std::min<std::size_t>(assessments.size(), options_.top_k);
+  for (std::size_t i = 0; i < shown; ++i) {
+    update.ranking.push_back({assessments[i].object->id(), assessments[i].score});
+  }
+
+  // Recognition: the winner's matched views against their typical distances.
+  Assessment& winner = assessments.front();
+  Complete(*index_, window_, winner);
+  std::vector<MatchedDistance> distances;
+  for (const MatchedView& match : winner.matched) {
+    distances.push_back({1.0 - match.similarity,
+                         winner.object->model().views[match.view].typical_distance});
+  }
+  update.decision = DecideRecognition(distances, options_.threshold);
+
+  // Active vision among the objects scoring within the margin of the winner.
+  std::vector<MoveCandidate> candidates{{winner.object, winner.latest_azimuth}};
+  for (std::size_t i = 1; i < shown; ++i) {
+    if (assessments[i].score < winner.score - options_.ambiguity_margin) break;
+    Complete(*index_, window_, assessments[i]);
+    candidates.push_back({assessments[i].object, assessments[i].latest_azimuth});
+  }
+  update.move = SuggestMove(candidates, options_.averaged_views);
+  return update;
+}
+
+std::unique_ptr<RecognitionEngine> CreateEngine(std::string_view name,
+                                                const EngineOptions& options) {
+  if (name == "eis") return MakeBaselineEngine(BaselineMethod::kEis, options);
+  if (name == "siis") return MakeBaselineEngine(BaselineMethod::kSiis, options);
+  if (name == "eiis") return MakeBaselineEngine(BaselineMethod::kEiis, options);
+  if (name == "vci-bm") return MakeHoughEngine(HoughVariant::kBestMatch, options);
+  if (name == "vci-w0") return MakeHoughEngine(HoughVariant::kWeightless, options);
+  if (name == "vci") return MakeHoughEngine(HoughVariant::kOriented, options);
+  if (name == "hmm") return MakeHmmEngine(options);
+  std::string known;
+  for (const std::string_view n : kEngineNames) known += (known.empty() ? "" : ", ") + std::string(n);
+  throw std::invalid_argument("unknown engine \"" + std::string(name) + "\" (known: " + known + ")");
+}
+
+std::span<const std::string_view> EngineNames() { return kEngineNames; }
+
+}  // namespace orbit
