@@ -18,6 +18,7 @@
 
 #include "core/cedd_colour.h"
 #include "core/cedd_grid.h"
+#include "core/cedd_quantisation.h"
 #include "core/cedd_texture.h"
 
 namespace orbit {
@@ -56,19 +57,6 @@ class Divider {
   std::int64_t divisor_;
   double inverse_;
 };
-
-// Quantisation tables of docs/CEDD.md, scaled by 1e6 as in the reference.
-constexpr double kQuantTables[4][8] = {
-    {180.19686541079636, 23730.024499150866, 61457.152912541605, 113918.55437576842,
-     179122.46400035513, 260980.3325940354, 341795.93301552488, 554729.98648386425},
-    {209.25176965926232, 22490.5872862417345, 60250.8935141849988, 120705.788057580583,
-     181128.08709063051, 234132.081356900555, 325660.617733105708, 520702.175858657472},
-    {405.4642173212585, 4877.9763319071481, 10882.170090625908, 18167.239081219657,
-     27043.385568785292, 38129.413201299016, 52675.221316293857, 79555.402607004813},
-    {968.88475977695578, 10725.159033657819, 24161.205360376698, 41555.917344385321,
-     62895.628446402261, 93066.271379694881, 136976.13317822068, 262897.86056221306},
-};
-constexpr int kTableOfClass[kTextureClasses] = {0, 1, 2, 2, 3, 3};
 
 // Brings any supported image to 8-bit BGR (a view, not a copy, when it already is).
 cv::Mat ToBgr(const cv::Mat& region) {
@@ -150,30 +138,6 @@ double ExactQuadrantMean(const std::int64_t* cell, std::int64_t pixels) {
   return static_cast<double>(Divider(1000 * pixels).Divide(luma1000).quotient);
 }
 
-// Normalises the histogram by its sum and quantises each bin to the nearest of its class's
-// eight levels (ties to the lower level), as LIRE's CEDDQuant does.
-DescriptorValues Quantise(const double (&histogram)[kDescriptorSize]) {
-  DescriptorValues values{};
-  double sum = 0;
-  for (double bin : histogram) sum += bin;
-  if (sum == 0) return values;  // no blocks: every bin is 0, nothing to divide
-  for (int i = 0; i < kDescriptorSize; ++i) {
-    const double v = histogram[i] / sum;
-    const double* levels = kQuantTables[kTableOfClass[i / kColourBins]];
-    int best = 0;
-    double best_distance = std::fabs(v - levels[0] / 1000000);
-    for (int j = 1; j < 8; ++j) {
-      const double d = std::fabs(v - levels[j] / 1000000);
-      if (d < best_distance) {
-        best_distance = d;
-        best = j;
-      }
-    }
-    values[i] = static_cast<std::uint8_t>(best);
-  }
-  return values;
-}
-
 }  // namespace
 
 Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::optional<cv::Rect> roi) {
@@ -207,7 +171,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
   const LireQuadrantMean lire_quadrant_mean(bgr, grid, lire_block_area);
   const Divider lire_block(lire_block_area);
 
-  double histogram[kDescriptorSize] = {};
+  cedd::Histogram histogram = {};
   for (int by = 0; by < grid.blocks_y(); ++by) {
     const int rows[2] = {grid.top[by], grid.bottom[by]};
     const int row_count = rows[0] == rows[1] ? 1 : 2;
@@ -248,7 +212,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
       }
     }
   }
-  descriptor.values = Quantise(histogram);
+  descriptor.values = cedd::Quantise(histogram);
   return descriptor;
 }
 

@@ -11,6 +11,7 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/cedd_colour.h"
+#include "core/cedd_quantisation.h"
 #include "core/cedd_texture.h"
 #include "tests/test_data.h"
 
@@ -138,7 +139,8 @@ TEST(Cedd, RefusesWhatItCannotDescribe) {
 
 // docs/CEDD.md transcribed line by line for the LIRE grid: per-pixel double luminance summed per
 // quadrant in row-major order, truncated means, integer mean colour. Shares only the colour and
-// texture classification (covered by the reference vectors) with the product.
+// texture classification and the quantisation (covered by the reference vectors) with the
+// product.
 DescriptorValues LiteralLireCedd(const cv::Mat& bgr) {
   const int width = bgr.cols, height = bgr.rows, m = std::min(width, height);
   int n = -1;
@@ -185,36 +187,7 @@ DescriptorValues LiteralLireCedd(const cv::Mat& bgr) {
       }
     }
   }
-  // Normalisation and quantisation: compare through the product's quantiser by building a
-  // descriptor from a histogram is not exposed, so quantise here as docs/CEDD.md says.
-  static const double kLevels[4][8] = {
-      {180.19686541079636, 23730.024499150866, 61457.152912541605, 113918.55437576842,
-       179122.46400035513, 260980.3325940354, 341795.93301552488, 554729.98648386425},
-      {209.25176965926232, 22490.5872862417345, 60250.8935141849988, 120705.788057580583,
-       181128.08709063051, 234132.081356900555, 325660.617733105708, 520702.175858657472},
-      {405.4642173212585, 4877.9763319071481, 10882.170090625908, 18167.239081219657,
-       27043.385568785292, 38129.413201299016, 52675.221316293857, 79555.402607004813},
-      {968.88475977695578, 10725.159033657819, 24161.205360376698, 41555.917344385321,
-       62895.628446402261, 93066.271379694881, 136976.13317822068, 262897.86056221306}};
-  static const int kTable[6] = {0, 1, 2, 2, 3, 3};
-  double sum = 0;
-  for (double h : histogram) sum += h;
-  DescriptorValues values{};
-  if (sum == 0) return values;
-  for (int i = 0; i < kDescriptorSize; ++i) {
-    const double v = histogram[i] / sum;
-    int best = 0;
-    double best_distance = std::fabs(v - kLevels[kTable[i / 24]][0] / 1000000);
-    for (int j = 1; j < 8; ++j) {
-      const double d = std::fabs(v - kLevels[kTable[i / 24]][j] / 1000000);
-      if (d < best_distance) {
-        best_distance = d;
-        best = j;
-      }
-    }
-    values[i] = static_cast<std::uint8_t>(best);
-  }
-  return values;
+  return cedd::Quantise(histogram);
 }
 
 // Random images built to hit the fast path's hard cases: flat patches and grey pixels make
