@@ -1,0 +1,93 @@
+#include "storage/schema.h"
+
+#include <iterator>
+#include <string>
+
+#include "storage/sqlite_transaction.h"
+#include "storage/store_error.h"
+
+namespace orbit {
+namespace {
+
+// migrations[v - 1] takes the schema from version v - 1 to v. Never edit a shipped migration:
+// databases in the field were built by it; add a new one instead.
+constexpr const char* kMigrations[] = {
+    // 1: the recognition data. AUTOINCREMENT so that an id is never reused after a delete (a
+    // client holding an old id must get NOT_FOUND, not another object). STRICT tables refuse
+    // values of the wrong type; the CHECKs are the last line behind storage/model_validation.h.
+    R"sql(
+      CREATE TABLE schema_version (
+        version INTEGER PRIMARY KEY,
+        applied_at TEXT NOT NULL
+      ) STRICT;
+      CREATE TABLE objects (
+        id INTEGER PRIMARY KEY AUTOINCREMENT,
+        name TEXT NOT NULL UNIQUE CHECK (length(name) BETWEEN 1 AND 64),
+        variant TEXT NOT NULL CHECK (variant IN ('cedd-lire', 'cedd-full')),
+        created_at TEXT NOT NULL,
+        updated_at TEXT NOT NULL
+      ) STRICT;
+      CREATE TABLE views (
+        id INTEGER PRIMARY KEY,
+        object_id INTEGER NOT NULL REFERENCES objects (id) ON DELETE CASCADE,
+        azimuth REAL NOT NULL CHECK (azimuth >= 0 AND azimuth < 360),
+        elevation REAL CHECK (elevation BETWEEN -90 AND 90),
+        descriptor BLOB NOT NULL CHECK (length(descriptor) = 144),
+        typical_distance REAL NOT NULL CHECK (typical_distance BETWEEN 0 AND 1)
+      ) STRICT;
+      CREATE INDEX views_by_object ON views (object_id, azimuth);
+    )sql",
+    // 2: the extras a user sees but the engines do not need.
+    R"sql(
+      ALTER TABLE objects ADD COLUMN metadata TEXT NOT NULL DEFAULT '{}'
+        CHECK (json_valid(metadata) AND json_type(metadata) = 'object');
+      ALTER TABLE views ADD COLUMN thumbnail BLOB CHECK (length(thumbnail) <= 65536);
+    )sql",
+};
+static_assert(std::size(kMigrations) == kSchemaVersion);
+
+}  // namespace
+
+int ReadSchemaVersion(SqliteConnection& connection) {
+  const std::string has_version_table = connection.QueryText(
+      "SELECT count(*) FROM sqlite_schema WHERE type = 'table' AND name = 'schema_version'");
+  if (has_version_table == "0") {
+    if (connection.QueryText("SELECT count(*) FROM sqlite_schema") == "0") return 0;
+    throw StoreError(StoreError::Code::kIncompatible,
+                     connection.file().string() +
+                         " is not an Orbit model store: it holds tables but no schema_version");
+  }
+  StatementLease version = connection.Prepare("SELECT max(version) FROM schema_version");
+  if (!version->Step() || version->IsNull(0)) {
+    throw StoreError(StoreError::Code::kIncompatible,
+                     connection.file().string() +
+                         " is not an Orbit model store: its schema_version table is empty");
+  }
+  return static_cast<int>(version->ColumnInt64(0));
+}
+
+void MigrateSchema(SqliteConnection& connection) {
+  // The common case, an up-to-date store, needs no write lock.
+  if (ReadSchemaVersion(connection) == kSchemaVersion) return;
+  for (;;) {
+    SqliteTransaction transaction(connection, SqliteTransaction::Mode::kWrite);
+    const int version = ReadSchemaVersion(connection);
+    if (version > kSchemaVersion) {
+      throw StoreError(StoreError::Code::kIncompatible,
+                       connection.file().string() + " has schema version " +
+                           std::to_string(version) + ", newer than the versions 1.." +
+                           std::to_string(kSchemaVersion) +
+                           " this program knows: use a newer orbit");
+    }
+    if (version == kSchemaVersion) return;  // the read-only transaction just ends
+    connection.Execute(kMigrations[version]);
+    StatementLease record = connection.Prepare(
+        "INSERT INTO schema_version (version, applied_at) "
+        "VALUES (?1, strftime('%Y-%m-%dT%H:%M:%fZ', 'now'))");
+    record->Bind(1, static_cast<std::int64_t>(version + 1));
+    record->Run();
+    transaction.Commit();
+  }
+}
+
+}  // namespace orbit

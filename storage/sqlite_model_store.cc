@@ -1,0 +1,452 @@
+#include "storage/sqlite_model_store.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include <sqlite3.h>
+
+#include "core/angles.h"
+#include "storage/model_validation.h"
+#include "storage/schema.h"
+#include "storage/sqlite_connection.h"
+#include "storage/sqlite_error.h"
+#include "storage/sqlite_transaction.h"
+
+namespace orbit {
+namespace {
+
+constexpr int kMaxIdleReaders = 8;  // read connections kept open for reuse
+constexpr int kEscalateCheckpointFactor = 4;
+
+constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
+
+// The columns SummaryFromRow reads, in order.
+#define ORBIT_SUMMARY_COLUMNS                                                              \
+  "o.id, o.name, o.variant, o.created_at, o.updated_at, o.metadata, "                     \
+  "(SELECT count(*) FROM views v WHERE v.object_id = o.id)"
+
+DescriptorVariant VariantFromColumn(std::string_view text, ObjectId id) {
+  const std::optional<DescriptorVariant> variant = ParseVariant(text);
+  if (!variant) {
+    throw StoreError(StoreError::Code::kCorrupt, "object " + std::to_string(id) +
+                                                     " has an unknown descriptor variant \"" +
+                                                     std::string(text) + "\"");
+  }
+  return *variant;
+}
+
+ObjectSummary SummaryFromRow(const SqliteStatement& row) {
+  ObjectSummary summary;
+  summary.id = row.ColumnInt64(0);
+  summary.name = row.ColumnText(1);
+  summary.variant = VariantFromColumn(row.ColumnText(2), summary.id);
+  summary.created_at = row.ColumnText(3);
+  summary.updated_at = row.ColumnText(4);
+  summary.metadata = row.ColumnText(5);
+  summary.view_count = row.ColumnInt64(6);
+  return summary;
+}
+
+// The descriptor stored in a views row; the schema guarantees 144 bytes, not their range.
+DescriptorValues DescriptorFromColumn(const SqliteStatement& row, int column, ObjectId object) {
+  try {
+    return DescriptorFromBytes(row.ColumnBlob(column));
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(StoreError::Code::kCorrupt,
+                     "a view of object " + std::to_string(object) + ": " + e.what());
+  }
+}
+
+ModelView ViewFromRow(const SqliteStatement& row, int first_column, ObjectId object) {
+  ModelView view;
+  view.azimuth = row.ColumnDouble(first_column);
+  if (!row.IsNull(first_column + 1)) view.elevation = row.ColumnDouble(first_column + 1);
+  view.descriptor = DescriptorFromColumn(row, first_column + 2, object);
+  view.typical_distance = row.ColumnDouble(first_column + 3);
+  return view;
+}
+
+// Records the size of the write-ahead log after each commit on the writer connection (it replaces
+// SQLite's own auto-checkpoint, which CommitWrite takes over).
+int OnWalCommit(void* wal_pages, sqlite3*, const char*, int pages) {
+  *static_cast<int*>(wal_pages) = pages;
+  return SQLITE_OK;
+}
+
+StoreError NotFound(ObjectId id) {
+  return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
+}
+
+StoreError NameTaken(std::string_view name, ObjectId owner) {
+  return StoreError(StoreError::Code::kAlreadyExists,
+                    "an object named \"" + std::string(name) + "\" already exists (id " +
+                        std::to_string(owner) + ")");
+}
+
+// The id of the object named `name` on `connection`, if any.
+std::optional<ObjectId> FindId(SqliteConnection& connection, std::string_view name) {
+  StatementLease find = connection.Prepare("SELECT id FROM objects WHERE name = ?1");
+  find->Bind(1, name);
+  if (!find->Step()) return std::nullopt;
+  return find->ColumnInt64(0);
+}
+
+// Makes a completed rename or file creation in `directory` durable.
+void SyncDirectory(const std::filesystem::path& directory) {
+  const int fd = ::open(directory.empty() ? "." : directory.c_str(), O_RDONLY | O_DIRECTORY);
+  if (fd < 0) return;  // nothing to sync on file systems without directory handles
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+// A read connection on loan from the store's pool.
+class SqliteModelStore::Reader {
+ public:
+  explicit Reader(SqliteModelStore& store) : store_(store) {
+    {
+      std::lock_guard lock(store_.readers_mutex_);
+      if (!store_.idle_readers_.empty()) {
+        connection_ = std::move(store_.idle_readers_.back());
+        store_.idle_readers_.pop_back();
+      }
+    }
+    if (!connection_) {
+      connection_ = std::make_unique<SqliteConnection>(
+          store_.file_, SqliteConnection::Mode::kReadOnly, store_.options_.busy_timeout);
+    }
+  }
+  ~Reader() {
+    std::lock_guard lock(store_.readers_mutex_);
+    if (store_.idle_readers_.size() < kMaxIdleReaders) {
+      store_.idle_readers_.push_back(std::move(connection_));
+    }
+  }
+  Reader(const Reader&) = delete;
+  Reader& operator=(const Reader&) = delete;
+
+  SqliteConnection& connection() { return *connection_; }
+
+ private:
+  SqliteModelStore& store_;
+  std::unique_ptr<SqliteConnection> connection_;
+};
+
+SqliteModelStore::SqliteModelStore(const std::filesystem::path& file,
+                                   const SqliteModelStoreOptions& options)
+    : file_(file), options_(options) {
+  if (options_.checkpoint_pages < 1) {
+    throw std::invalid_argument("checkpoint_pages must be at least 1");
+  }
+  if (!options_.create_if_missing && !std::filesystem::exists(file_)) {
+    throw StoreError(StoreError::Code::kIo, "model store " + file_.string() + " does not exist");
+  }
+  try {
+    writer_ = std::make_unique<SqliteConnection>(
+        file_,
+        options_.create_if_missing ? SqliteConnection::Mode::kReadWriteCreate
+                                   : SqliteConnection::Mode::kReadWrite,
+        options_.busy_timeout);
+    // WAL: readers never block the writer nor the writer the readers, and a commit is one
+    // sequential append plus one fsync.
+    const std::string journal_mode = writer_->QueryText("PRAGMA journal_mode = WAL");
+    if (journal_mode != "wal") {
+      throw StoreError(StoreError::Code::kIo,
+                       "cannot switch to write-ahead logging (journal mode stays \"" +
+                           journal_mode + "\"); the store needs a local file system");
+    }
+    // FULL: the log is synced at every commit, so an acknowledged write survives power loss
+    // (NORMAL would only guarantee consistency).
+    writer_->Execute("PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON;");
+    if (options_.quick_check_on_open) {
+      const std::string verdict = writer_->QueryText("PRAGMA quick_check");
+      if (verdict != "ok") {
+        throw StoreError(StoreError::Code::kCorrupt, "PRAGMA quick_check failed: " + verdict);
+      }
+    }
+    MigrateSchema(*writer_);
+    // When a checkpoint resets the log, the file is cut back to this size (bytes).
+    StatementLease limit = writer_->Prepare("PRAGMA journal_size_limit = 4194304");
+    limit->Run();
+    sqlite3_wal_hook(writer_->handle(), &OnWalCommit, &wal_pages_);
+  } catch (const StoreError& e) {
+    throw StoreError(e.code(), "cannot open model store " + file_.string() + ": " + e.what());
+  }
+}
+
+SqliteModelStore::~SqliteModelStore() = default;
+
+ObjectId SqliteModelStore::Enroll(const Enrollment& enrollment) {
+  ValidateObjectName(enrollment.name);
+  ValidateViews(enrollment.views, enrollment.thumbnails);
+  ValidateMetadata(enrollment.metadata);
+
+  std::lock_guard lock(write_mutex_);
+  SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  if (const std::optional<ObjectId> owner = FindId(*writer_, enrollment.name)) {
+    throw NameTaken(enrollment.name, *owner);
+  }
+  ObjectId id = 0;
+  {
+    StatementLease insert = writer_->Prepare(
+        std::string("INSERT INTO objects (name, variant, created_at, updated_at, metadata) "
+                    "VALUES (?1, ?2, ") +
+        kNow + ", " + kNow + ", ?3) RETURNING id");
+    insert->Bind(1, std::string_view(enrollment.name));
+    insert->Bind(2, VariantName(enrollment.variant));
+    insert->Bind(3, std::string_view(enrollment.metadata));
+    insert->Step();
+    id = insert->ColumnInt64(0);
+    insert->Run();  // RETURNING: the row is only written once the statement has run to its end
+  }
+  InsertViews(id, enrollment.views, enrollment.thumbnails);
+  CommitWrite(transaction);
+  return id;
+}
+
+void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views,
+                                const std::vector<std::string>& thumbnails) {
+  ValidateViews(views, thumbnails);
+
+  std::lock_guard lock(write_mutex_);
+  SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  {
+    StatementLease count = writer_->Prepare(
+        "SELECT (SELECT count(*) FROM views WHERE object_id = ?1) FROM objects WHERE id = ?1");
+    count->Bind(1, id);
+    if (!count->Step()) throw NotFound(id);
+    const auto existing = static_cast<std::size_t>(count->ColumnInt64(0));
+    if (existing + views.size() > kMaxViewsPerObject) {
+      throw std::invalid_argument("object " + std::to_string(id) + " has " +
+                                  std::to_string(existing) + " views; " +
+                                  std::to_string(views.size()) + " more would exceed the limit of " +
+                                  std::to_string(kMaxViewsPerObject) + " per object");
+    }
+  }
+  InsertViews(id, views, thumbnails);
+  {
+    StatementLease touch = writer_->Prepare(std::string("UPDATE objects SET updated_at = ") +
+                                            kNow + " WHERE id = ?1");
+    touch->Bind(1, id);
+    touch->Run();
+  }
+  CommitWrite(transaction);
+}
+
+void SqliteModelStore::InsertViews(ObjectId id, const std::vector<ModelView>& views,
+                                   const std::vector<std::string>& thumbnails) {
+  StatementLease insert = writer_->Prepare(
+      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, thumbnail) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const ModelView& view = views[i];
+    insert->Bind(1, id);
+    insert->Bind(2, NormaliseAzimuth(view.azimuth));
+    if (view.elevation) {
+      insert->Bind(3, *view.elevation);
+    } else {
+      insert->BindNull(3);
+    }
+    insert->BindBlob(4, view.descriptor);
+    insert->Bind(5, view.typical_distance);
+    if (i < thumbnails.size() && !thumbnails[i].empty()) {
+      const std::string& thumbnail = thumbnails[i];
+      insert->BindBlob(6, {reinterpret_cast<const std::uint8_t*>(thumbnail.data()),
+                           thumbnail.size()});
+    } else {
+      insert->BindNull(6);
+    }
+    insert->Run();
+    insert->Reset();
+  }
+}
+
+void SqliteModelStore::Delete(ObjectId id) {
+  std::lock_guard lock(write_mutex_);
+  SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  {
+    // The views go with it: ON DELETE CASCADE (foreign_keys is on).
+    StatementLease remove = writer_->Prepare("DELETE FROM objects WHERE id = ?1 RETURNING id");
+    remove->Bind(1, id);
+    if (!remove->Step()) throw NotFound(id);
+    remove->Run();
+  }
+  CommitWrite(transaction);
+}
+
+void SqliteModelStore::Rename(ObjectId id, std::string_view new_name) {
+  ValidateObjectName(new_name);
+
+  std::lock_guard lock(write_mutex_);
+  SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  if (const std::optional<ObjectId> owner = FindId(*writer_, new_name)) {
+    if (*owner == id) return;  // already so named
+    throw NameTaken(new_name, *owner);
+  }
+  {
+    StatementLease rename = writer_->Prepare(std::string("UPDATE objects SET name = ?2, "
+                                                         "updated_at = ") +
+                                             kNow + " WHERE id = ?1 RETURNING id");
+    rename->Bind(1, id);
+    rename->Bind(2, new_name);
+    if (!rename->Step()) throw NotFound(id);
+    rename->Run();
+  }
+  CommitWrite(transaction);
+}
+
+void SqliteModelStore::CommitWrite(SqliteTransaction& transaction) {
+  transaction.Commit();
+  if (wal_pages_ < options_.checkpoint_pages) return;
+  // Copies the logged pages into the database as far as no reader still needs them; the next
+  // write then starts the log again from its beginning. Errors are not the caller's: the write
+  // is committed, and a checkpoint that fails now is tried again after the next commit.
+  int log_pages = 0;
+  int copied_pages = 0;
+  const int rc = sqlite3_wal_checkpoint_v2(writer_->handle(), "main", SQLITE_CHECKPOINT_PASSIVE,
+                                           &log_pages, &copied_pages);
+  if (rc == SQLITE_OK && copied_pages == log_pages) return;
+  if (wal_pages_ < kEscalateCheckpointFactor * options_.checkpoint_pages) return;
+  // Readers kept the log from being recycled for too long: wait for them (busy timeout), copy
+  // everything and cut the log to zero bytes.
+  sqlite3_wal_checkpoint_v2(writer_->handle(), "main", SQLITE_CHECKPOINT_TRUNCATE, nullptr,
+                            nullptr);
+}
+
+std::vector<ObjectSummary> SqliteModelStore::List(const ListRequest& request) {
+  if (request.limit < 1 || request.limit > kMaxListLimit) {
+    throw std::invalid_argument("list limit " + std::to_string(request.limit) +
+                                " is outside 1.." + std::to_string(kMaxListLimit));
+  }
+  Reader reader(*this);
+  StatementLease list = reader.connection().Prepare(
+      "SELECT " ORBIT_SUMMARY_COLUMNS " FROM objects o WHERE o.id > ?1 ORDER BY o.id LIMIT ?2");
+  list->Bind(1, request.after_id);
+  list->Bind(2, static_cast<std::int64_t>(request.limit));
+  std::vector<ObjectSummary> page;
+  while (list->Step()) page.push_back(SummaryFromRow(*list));
+  return page;
+}
+
+std::optional<StoredObject> SqliteModelStore::Get(ObjectId id) {
+  Reader reader(*this);
+  SqliteConnection& connection = reader.connection();
+  SqliteTransaction snapshot(connection, SqliteTransaction::Mode::kRead);
+  StoredObject object;
+  {
+    StatementLease find = connection.Prepare("SELECT " ORBIT_SUMMARY_COLUMNS
+                                             " FROM objects o WHERE o.id = ?1");
+    find->Bind(1, id);
+    if (!find->Step()) return std::nullopt;
+    object.summary = SummaryFromRow(*find);
+  }
+  StatementLease views = connection.Prepare(
+      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
+      "WHERE object_id = ?1 ORDER BY azimuth, id");
+  views->Bind(1, id);
+  while (views->Step()) {
+    object.views.push_back(ViewFromRow(*views, 0, id));
+    const std::span<const std::uint8_t> thumbnail = views->ColumnBlob(4);
+    object.thumbnails.emplace_back(thumbnail.begin(), thumbnail.end());
+  }
+  return object;
+}
+
+std::optional<ObjectSummary> SqliteModelStore::Find(std::string_view name) {
+  Reader reader(*this);
+  StatementLease find = reader.connection().Prepare("SELECT " ORBIT_SUMMARY_COLUMNS
+                                                    " FROM objects o WHERE o.name = ?1");
+  find->Bind(1, name);
+  if (!find->Step()) return std::nullopt;
+  return SummaryFromRow(*find);
+}
+
+std::vector<ObjectModel> SqliteModelStore::LoadAll() {
+  Reader reader(*this);
+  SqliteConnection& connection = reader.connection();
+  SqliteTransaction snapshot(connection, SqliteTransaction::Mode::kRead);
+  std::vector<ObjectModel> models;
+  std::unordered_map<ObjectId, std::size_t> position;  // object id -> index in models
+  {
+    StatementLease objects =
+        connection.Prepare("SELECT id, name, variant FROM objects ORDER BY id");
+    while (objects->Step()) {
+      ObjectModel& model = models.emplace_back();
+      model.id = objects->ColumnInt64(0);
+      model.name = objects->ColumnText(1);
+      model.variant = VariantFromColumn(objects->ColumnText(2), model.id);
+      position.emplace(model.id, models.size() - 1);
+    }
+  }
+  {
+    // One pass over the table in storage order: faster than one index lookup per object. The
+    // foreign key guarantees every view's object was read above, in the same snapshot.
+    StatementLease views = connection.Prepare(
+        "SELECT object_id, azimuth, elevation, descriptor, typical_distance FROM views "
+        "ORDER BY id");
+    while (views->Step()) {
+      const ObjectId object = views->ColumnInt64(0);
+      models[position.at(object)].views.push_back(ViewFromRow(*views, 1, object));
+    }
+  }
+  for (ObjectModel& model : models) {
+    std::stable_sort(model.views.begin(), model.views.end(),
+                     [](const ModelView& a, const ModelView& b) { return a.azimuth < b.azimuth; });
+  }
+  return models;
+}
+
+void SqliteModelStore::Backup(const std::filesystem::path& destination) {
+  std::error_code ignored;
+  if (std::filesystem::equivalent(destination, file_, ignored)) {
+    throw std::invalid_argument("backup destination " + destination.string() +
+                                " is the model store itself");
+  }
+  // Written beside the destination and renamed over it once complete and checked, so that a
+  // crash mid-backup never leaves a truncated file under the destination's name.
+  const std::filesystem::path partial = destination.string() + ".partial";
+  std::filesystem::remove(partial, ignored);
+  try {
+    {
+      SqliteConnection copy(partial, SqliteConnection::Mode::kReadWriteCreate,
+                            options_.busy_timeout);
+      Reader reader(*this);
+      sqlite3_backup* backup =
+          sqlite3_backup_init(copy.handle(), "main", reader.connection().handle(), "main");
+      if (backup == nullptr) {
+        throw SqliteError(sqlite3_errcode(copy.handle()), copy.handle(), "cannot start backup");
+      }
+      // All pages in one step: the source stays in one read transaction (one snapshot) for the
+      // whole copy, while writers carry on in the write-ahead log.
+      const int step = sqlite3_backup_step(backup, -1);
+      const int finish = sqlite3_backup_finish(backup);
+      if (step != SQLITE_DONE) throw SqliteError(step, nullptr, "backup failed");
+      if (finish != SQLITE_OK) throw SqliteError(finish, copy.handle(), "backup failed");
+      // A self-contained single file (the copied header says WAL), checked before it is kept.
+      copy.Execute("PRAGMA journal_mode = DELETE");
+      const std::string verdict = copy.QueryText("PRAGMA quick_check");
+      if (verdict != "ok") {
+        throw StoreError(StoreError::Code::kCorrupt, "the copy failed quick_check: " + verdict);
+      }
+    }
+    std::filesystem::rename(partial, destination);
+    SyncDirectory(destination.parent_path());
+  } catch (const StoreError& e) {
+    std::filesystem::remove(partial, ignored);
+    throw StoreError(e.code(), "cannot back up " + file_.string() + " to " +
+                                   destination.string() + ": " + e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    std::filesystem::remove(partial, ignored);
+    throw StoreError(StoreError::Code::kIo, "cannot back up " + file_.string() + " to " +
+                                                destination.string() + ": " + e.what());
+  }
+}
+
+}  // namespace orbit

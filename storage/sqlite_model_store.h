@@ -1,0 +1,85 @@
+// SqliteModelStore: the embedded ModelStore, one SQLite file (docs/storage.md).
+//
+// Durability: write-ahead log with synchronous=FULL, so a method that returned has its change on
+// disk and it survives a crash of the process or of the machine; every write is one
+// BEGIN IMMEDIATE transaction, so a crash or an error mid-write leaves no trace of it.
+//
+// Concurrency: safe for concurrent use from many threads (ModelStore's contract). Writes go
+// through one connection, one at a time; each reading thread gets a connection of its own from a
+// small pool, so reads never wait for writes and see a committed snapshot. Other processes may
+// open the same file: SQLite's locks keep one writer at a time, and a writer waits up to
+// `busy_timeout` for another before failing with StoreError kBusy.
+#pragma once
+
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <vector>
+
+#include "storage/model_store.h"
+
+namespace orbit {
+
+class SqliteConnection;
+class SqliteTransaction;
+
+struct SqliteModelStoreOptions {
+  bool create_if_missing = false;  // otherwise a missing file is StoreError kIo
+  std::chrono::milliseconds busy_timeout{5000};  // how long to wait for another writer
+  bool quick_check_on_open = true;               // PRAGMA quick_check before anything else
+  // After a commit that leaves at least this many pages (4 KiB each) in the write-ahead log, the
+  // log is checkpointed into the database without waiting for readers. At four times this many
+  // (readers kept those checkpoints from finishing) the writer waits for readers, up to
+  // `busy_timeout`, and truncates the log: the log cannot grow without bound.
+  int checkpoint_pages = 1000;
+};
+
+class SqliteModelStore final : public ModelStore {
+ public:
+  // Opens the store in `file`, creating it when asked; sets the durability pragmas, runs
+  // PRAGMA quick_check and migrates the schema to kSchemaVersion (storage/schema.h).
+  // Throws StoreError: kIo when the file cannot be opened (or is missing and not to be created),
+  // kCorrupt when it is not a database or fails the check, kIncompatible when it is not an
+  // Orbit store or is newer than this program.
+  explicit SqliteModelStore(const std::filesystem::path& file,
+                            const SqliteModelStoreOptions& options = {});
+  ~SqliteModelStore() override;
+
+  SqliteModelStore(const SqliteModelStore&) = delete;
+  SqliteModelStore& operator=(const SqliteModelStore&) = delete;
+
+  ObjectId Enroll(const Enrollment& enrollment) override;
+  void AddViews(ObjectId id, const std::vector<ModelView>& views,
+                const std::vector<std::string>& thumbnails = {}) override;
+  void Delete(ObjectId id) override;
+  void Rename(ObjectId id, std::string_view new_name) override;
+  std::vector<ObjectSummary> List(const ListRequest& request) override;
+  std::optional<StoredObject> Get(ObjectId id) override;
+  std::optional<ObjectSummary> Find(std::string_view name) override;
+  std::vector<ObjectModel> LoadAll() override;
+  void Backup(const std::filesystem::path& destination) override;
+
+  const std::filesystem::path& file() const { return file_; }
+
+ private:
+  class Reader;  // a pooled read connection, returned to the pool when it goes out of scope
+
+  void InsertViews(ObjectId id, const std::vector<ModelView>& views,
+                   const std::vector<std::string>& thumbnails);
+  // Commits a write and, when the log has grown enough, checkpoints it.
+  // REQUIRES: write_mutex_ held.
+  void CommitWrite(SqliteTransaction& transaction);
+
+  const std::filesystem::path file_;
+  const SqliteModelStoreOptions options_;
+
+  std::mutex write_mutex_;  // one writer: guards writer_ and wal_pages_
+  std::unique_ptr<SqliteConnection> writer_;
+  int wal_pages_ = 0;  // pages in the write-ahead log after the last commit (a WAL hook sets it)
+
+  std::mutex readers_mutex_;  // guards idle_readers_
+  std::vector<std::unique_ptr<SqliteConnection>> idle_readers_;
+};
+
+}  // namespace orbit

@@ -1,0 +1,113 @@
+// What the storage tests share: a scratch folder, synthetic object models, and a raw SQLite
+// connection to look at a store's file from outside the store.
+#pragma once
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <sqlite3.h>
+
+#include "core/object_model.h"
+#include "storage/model_store.h"
+
+namespace orbit::testing {
+
+// A fresh folder under the system's temp dir, removed with everything in it at the end.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    static int counter = 0;
+    path_ = std::filesystem::temp_directory_path() /
+            ("orbit_storage_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() { std::filesystem::remove_all(path_); }
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// A view whose descriptor values are a deterministic function of (seed, i), all in 0..7.
+inline ModelView SyntheticView(int seed, double azimuth) {
+  ModelView view;
+  for (int i = 0; i < kDescriptorSize; ++i) {
+    view.descriptor[i] = static_cast<std::uint8_t>((seed * 31 + i * 7 + (seed ^ i)) % 8);
+  }
+  view.azimuth = azimuth;
+  view.typical_distance = 0.01 * (seed % 50);
+  return view;
+}
+
+// An object of `view_count` views at equal azimuth steps, view f with seed `seed + f`.
+inline Enrollment SyntheticObject(const std::string& name, int view_count, int seed = 1) {
+  Enrollment enrollment;
+  enrollment.name = name;
+  for (int f = 0; f < view_count; ++f) {
+    enrollment.views.push_back(SyntheticView(seed + f, 360.0 * f / view_count));
+  }
+  return enrollment;
+}
+
+// A plain SQLite connection to a store's file, bypassing the store: to count rows, check
+// integrity, or hold locks the way another process would.
+class RawDatabase {
+ public:
+  explicit RawDatabase(const std::filesystem::path& file) {
+    if (sqlite3_open(file.c_str(), &db_) != SQLITE_OK) {
+      throw std::runtime_error("cannot open " + file.string() + ": " + sqlite3_errmsg(db_));
+    }
+    sqlite3_busy_timeout(db_, 10000);
+  }
+  ~RawDatabase() { sqlite3_close(db_); }
+  RawDatabase(const RawDatabase&) = delete;
+  RawDatabase& operator=(const RawDatabase&) = delete;
+
+  void Execute(const std::string& sql) {
+    char* message = nullptr;
+    if (sqlite3_exec(db_, sql.c_str(), nullptr, nullptr, &message) != SQLITE_OK) {
+      const std::string text = message != nullptr ? message : "?";
+      sqlite3_free(message);
+      throw std::runtime_error("`" + sql + "` failed: " + text);
+    }
+  }
+
+  // The first column of every row of `sql`, as text (NULL as "NULL").
+  std::vector<std::string> Column(const std::string& sql) {
+    sqlite3_stmt* statement = nullptr;
+    if (sqlite3_prepare_v2(db_, sql.c_str(), -1, &statement, nullptr) != SQLITE_OK) {
+      throw std::runtime_error("cannot prepare `" + sql + "`: " + sqlite3_errmsg(db_));
+    }
+    std::vector<std::string> values;
+    int rc = 0;
+    while ((rc = sqlite3_step(statement)) == SQLITE_ROW) {
+      const auto* text = reinterpret_cast<const char*>(sqlite3_column_text(statement, 0));
+      values.push_back(text != nullptr ? text : "NULL");
+    }
+    sqlite3_finalize(statement);
+    if (rc != SQLITE_DONE) throw std::runtime_error("`" + sql + "` failed: " + sqlite3_errmsg(db_));
+    return values;
+  }
+
+  // The single value of `sql`.
+  std::string Text(const std::string& sql) {
+    const std::vector<std::string> values = Column(sql);
+    if (values.size() != 1) throw std::runtime_error("`" + sql + "` gave no single value");
+    return values[0];
+  }
+  std::int64_t Int(const std::string& sql) { return std::stoll(Text(sql)); }
+
+ private:
+  sqlite3* db_ = nullptr;
+};
+
+}  // namespace orbit::testing
