@@ -15,9 +15,15 @@ endforeach()
 find_package(PkgConfig REQUIRED)
 find_package(Threads REQUIRED)
 
-# FLANN (the view index's kd-trees) is used header-only; its headers include lz4's.
+# FLANN (the view index's kd-trees) is used header-only; its headers use lz4.
 find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
 find_path(LZ4_INCLUDE_DIR lz4.h REQUIRED)
+find_library(LZ4_LIBRARY lz4 REQUIRED)
 add_library(flann::flann INTERFACE IMPORTED)
 set_target_properties(flann::flann PROPERTIES
-  INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}")
+  INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}"
+  INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
+
+# gRPC and Protobuf (Debian ships gRPC's CMake config; Protobuf is found by CMake's module).
+find_package(Protobuf REQUIRED)
+find_package(gRPC CONFIG REQUIRED)

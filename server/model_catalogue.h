@@ -1,0 +1,47 @@
+// ModelCatalogue: the server's objects, durable in a ModelStore and searchable in a ViewIndex,
+// kept in step. A write goes to the store first (when it returns, the object survives a crash)
+// and then to the index, so every session sees it from its next frame on (SPEC.md, "Service
+// behaviour").
+//
+// Thread-safe: writes are serialised among themselves; reads (Snapshot, store reads) run beside
+// them.
+#pragma once
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "core/view_index.h"
+#include "storage/model_store.h"
+
+namespace orbit::server {
+
+class ModelCatalogue {
+ public:
+  // Indexes every object of `store`. Throws std::runtime_error when the store holds an object
+  // of another variant than `variant` (naming it), and as ModelStore::LoadAll.
+  ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options);
+
+  // Each throws as the ModelStore method of the same name, and std::invalid_argument when the
+  // enrollment's variant is not the catalogue's. Return the object as stored.
+  ObjectSummary Enroll(const Enrollment& enrollment);
+  ObjectSummary AddViews(ObjectId id, const std::vector<ModelView>& views,
+                         const std::vector<std::string>& thumbnails);
+  ObjectSummary Delete(ObjectId id);
+
+  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_.Snapshot(); }
+  ModelStore& store() { return store_; }
+  DescriptorVariant variant() const { return index_.variant(); }
+
+ private:
+  // Re-reads one object from the store into the index.
+  void Reindex(ObjectId id);
+
+  ModelStore& store_;
+  ViewIndex index_;
+  std::mutex write_mutex_;
+};
+
+}  // namespace orbit::server

@@ -1,0 +1,117 @@
+#include "server/orbit_server.h"
+
+#include <chrono>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/health_check_service_interface.h>
+
+#include "server/model_catalogue.h"
+#include "server/models_service.h"
+#include "server/recognition_service.h"
+#include "server/session_registry.h"
+#include "server/worker_pool.h"
+#include "storage/sqlite_model_store.h"
+
+namespace orbit::server {
+namespace {
+
+std::string ReadFile(const std::filesystem::path& file, const char* what) {
+  std::ifstream in(file);
+  if (!in) throw std::runtime_error(std::string("cannot read the ") + what + " " + file.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerConfig& config) {
+  if (!config.tls_cert && !config.tls_key) return grpc::InsecureServerCredentials();
+  if (!config.tls_cert || !config.tls_key) {
+    throw std::runtime_error("TLS needs both --tls-cert and --tls-key");
+  }
+  grpc::SslServerCredentialsOptions options;
+  options.pem_key_cert_pairs.push_back(
+      {ReadFile(*config.tls_key, "TLS key"), ReadFile(*config.tls_cert, "TLS certificate")});
+  return grpc::SslServerCredentials(options);
+}
+
+}  // namespace
+
+OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
+  if (config_.tokens_file) {
+    access_ = AccessControl::FromFile(*config_.tokens_file);
+  } else if (!IsLoopbackAddress(config_.listen) && !config_.allow_remote_without_tokens) {
+    throw std::runtime_error(
+        "refusing to serve " + config_.listen +
+        " without tokens: anyone reaching it could enroll and delete objects. Give --tokens FILE,"
+        " listen on 127.0.0.1, or pass --allow-remote-without-tokens if you really mean it");
+  }
+  SqliteModelStoreOptions store_options;
+  store_options.create_if_missing = true;
+  store_ = std::make_unique<SqliteModelStore>(config_.database, store_options);
+  catalogue_ = std::make_unique<ModelCatalogue>(*store_, config_.variant, config_.index);
+  const int threads = config_.worker_threads > 0
+                          ? config_.worker_threads
+                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+  pool_ = std::make_unique<WorkerPool>(threads);
+  registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
+  recognition_ = std::make_unique<RecognitionService>(
+      SessionEnvironment{*catalogue_, *pool_, *registry_, config_.limits, config_.session_defaults},
+      access_);
+  models_ = std::make_unique<ModelsService>(ModelsEnvironment{
+      *catalogue_, *pool_, access_, config_.limits, config_.session_defaults, kOrbitVersion});
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(config_.listen, Credentials(config_), &port_);
+  builder.SetMaxReceiveMessageSize(config_.limits.max_message_bytes);
+  builder.RegisterService(recognition_.get());
+  builder.RegisterService(models_.get());
+  server_ = builder.BuildAndStart();
+  if (!server_ || port_ == 0) {
+    throw std::runtime_error("cannot listen on " + config_.listen +
+                             " (address in use, or not an address of this machine?)");
+  }
+  grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
+  health->SetServingStatus("", true);
+  health->SetServingStatus(v1::Recognition::service_full_name(), true);
+  health->SetServingStatus(v1::Models::service_full_name(), true);
+  sweeper_ = std::thread([this] { SweepIdleSessions(); });
+}
+
+OrbitServer::~OrbitServer() { Shutdown(); }
+
+std::string OrbitServer::address() const {
+  const std::string& listen = config_.listen;
+  return listen.substr(0, listen.rfind(':')) + ":" + std::to_string(port_);
+}
+
+void OrbitServer::SweepIdleSessions() {
+  const auto timeout = std::chrono::seconds(config_.limits.idle_timeout_seconds);
+  std::unique_lock lock(sweeper_mutex_);
+  while (!sweeper_wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stopping_; })) {
+    registry_->CloseIdle(std::chrono::steady_clock::now() - timeout,
+                         config_.limits.idle_timeout_seconds);
+  }
+}
+
+void OrbitServer::Shutdown() {
+  std::call_once(shutdown_once_, [this] {
+    server_->GetHealthCheckService()->Shutdown();  // every service NOT_SERVING, for good
+    registry_->CloseAll({grpc::StatusCode::UNAVAILABLE, "the server is shutting down"});
+    {
+      std::lock_guard lock(sweeper_mutex_);
+      stopping_ = true;
+    }
+    sweeper_wake_.notify_all();
+    sweeper_.join();
+    server_->Shutdown(std::chrono::system_clock::now() +
+                      std::chrono::seconds(config_.shutdown_grace_seconds));
+    pool_.reset();  // runs what is queued (calls already cancelled finish harmlessly)
+  });
+}
+
+}  // namespace orbit::server

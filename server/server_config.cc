@@ -1,0 +1,51 @@
+#include "server/server_config.h"
+
+#include <sstream>
+
+namespace orbit::server {
+
+bool IsLoopbackAddress(const std::string& host_and_port) {
+  std::string host = host_and_port;
+  if (const auto colon = host.rfind(':'); colon != std::string::npos && host.front() != '[') {
+    // "host:port"; a bare IPv6 address has several colons and no port here.
+    if (host.find(':') == colon) host = host.substr(0, colon);
+  } else if (host.front() == '[') {
+    host = host.substr(1, host.find(']') - 1);
+  }
+  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+std::string ServerConfig::Describe() const {
+  const SessionSettings& d = session_defaults;
+  std::ostringstream out;
+  out << "orbit serve " << "configuration:\n"
+      << "  database            " << database.string() << "\n"
+      << "  listen              " << listen << "\n"
+      << "  access control      "
+      << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"
+      << "  tls                 "
+      << (tls_cert ? "certificate " + tls_cert->string() + ", key " + tls_key->string() : "off")
+      << "\n"
+      << "  descriptor variant  " << VariantName(variant) << "\n"
+      << "  index               "
+      << (index.search == SearchMode::kKdTree
+              ? "kd-tree (" + std::to_string(index.kd_trees) + " trees, " +
+                    std::to_string(index.kd_checks) + " checks)"
+              : std::string("exact"))
+      << "\n"
+      << "  session defaults    engine " << CoreEngineNames(d.engine).front()
+      << (d.engine == v1::ENGINE_VCI_HMM ? "+hmm" : "") << ", top-k " << d.options.top_k
+      << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
+      << d.options.list_length << ", HMM states " << d.options.hmm_states << ", Th "
+      << d.options.threshold << "\n"
+      << "  limits              " << limits.max_sessions << " sessions, "
+      << limits.max_frames_per_second << " frames/s per session, window <= "
+      << limits.max_window << ", messages <= " << limits.max_message_bytes << " bytes, idle "
+      << limits.idle_timeout_seconds << " s\n"
+      << "  workers             " << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
+      << "\n"
+      << "  shutdown grace      " << shutdown_grace_seconds << " s\n";
+  return out.str();
+}
+
+}  // namespace orbit::server

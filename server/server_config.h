@@ -1,0 +1,38 @@
+// Everything `orbit serve` can be told (flags, environment, config file: client/cli/
+// serve_command.cc), with the defaults a single edge server should start with.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "core/view_index.h"
+#include "server/session_settings.h"
+
+namespace orbit::server {
+
+struct ServerConfig {
+  std::filesystem::path database;           // the SQLite model store; created when missing
+  std::string listen = "127.0.0.1:50051";   // HOST:PORT; port 0 picks a free port
+  std::optional<std::filesystem::path> tokens_file;  // server/access_control.h
+  std::optional<std::filesystem::path> tls_cert;     // PEM certificate chain (with tls_key)
+  std::optional<std::filesystem::path> tls_key;      // PEM private key
+  // Serving without tokens on a non-loopback address exposes enrollment and deletion to anyone
+  // who can reach the port: refused unless explicitly allowed.
+  bool allow_remote_without_tokens = false;
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;  // of every model and session
+  ViewIndexOptions index{.search = SearchMode::kKdTree};
+  SessionSettings session_defaults;
+  ServerLimits limits;
+  int worker_threads = 0;          // engine and store work; 0: one per core
+  int shutdown_grace_seconds = 5;  // SIGTERM: time open calls get to end cleanly
+
+  // Multi-line, human-readable account of the configuration in force (no secrets: token and
+  // key files are named, not read), printed once at start-up.
+  std::string Describe() const;
+};
+
+// True for 127.0.0.0/8, ::1 and "localhost" (HOST of a HOST:PORT address, brackets allowed).
+bool IsLoopbackAddress(const std::string& host_and_port);
+
+}  // namespace orbit::server

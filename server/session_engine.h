@@ -1,0 +1,38 @@
+// SessionEngine: the recognition state of one session, behind the engine the device chose:
+// one engine of core/recognition_engine.h, or VCI and the HMM together (ENGINE_VCI_HMM).
+//
+// The combination runs both engines on every frame and ranks objects by the mean of their two
+// scores (an object missing from one engine's ranking counts 0 there; both rankings are taken
+// deeper than top_k so that this is rare). Its decision is the decision of whichever engine
+// ranks the combined winner first (VCI's when both do), UNDECIDED when neither does; its
+// suggested move is VCI's.
+//
+// Not thread-safe: one session, one thread at a time.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include "core/recognition_engine.h"
+#include "server/session_settings.h"
+
+namespace orbit::server {
+
+class SessionEngine {
+ public:
+  // REQUIRES: settings came from ResolveSessionSettings.
+  explicit SessionEngine(const SessionSettings& settings);
+
+  // One frame in, one update out. Throws std::invalid_argument as RecognitionEngine::Observe
+  // (the session's state is then unchanged).
+  FrameUpdate Observe(const std::shared_ptr<const ViewIndexSnapshot>& index,
+                      const QueryFrame& frame);
+
+  void Reset();
+
+ private:
+  int top_k_;
+  std::vector<std::unique_ptr<RecognitionEngine>> engines_;
+};
+
+}  // namespace orbit::server

@@ -1,0 +1,80 @@
+// SessionReactor: one Recognition.Session stream (proto/orbit/v1/recognition.proto).
+//
+// Frames are handled strictly one after another: read a request, process it on the worker
+// pool (decode, engine update), write its update, then read the next. So there is never more
+// than one read and one write in flight, reactions stay short, and engine work never runs on a
+// gRPC thread. Any bad request ends this stream alone with the status SPEC.md names.
+//
+// Lifetime: created by RecognitionService for each call, deleted in OnDone.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <optional>
+
+#include <grpcpp/grpcpp.h>
+
+#include "orbit/v1/recognition.grpc.pb.h"
+#include "server/model_catalogue.h"
+#include "server/session_engine.h"
+#include "server/session_registry.h"
+#include "server/session_settings.h"
+#include "server/worker_pool.h"
+
+namespace orbit::server {
+
+// What every session of a server shares.
+struct SessionEnvironment {
+  ModelCatalogue& catalogue;
+  WorkerPool& pool;
+  SessionRegistry& registry;
+  const ServerLimits& limits;
+  const SessionSettings& defaults;
+};
+
+class SessionReactor final
+    : public grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>,
+      public RegisteredSession {
+ public:
+  // Registers with the registry (ending the stream at once with its refusal, if any) and
+  // reads the first request.
+  explicit SessionReactor(const SessionEnvironment& environment);
+
+  void OnReadDone(bool ok) override;
+  void OnWriteDone(bool ok) override;
+  void OnDone() override;
+
+  void Close(const grpc::Status& status) override;
+  std::chrono::steady_clock::time_point last_activity() const override;
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  // REQUIRES: mutex_ held. Each handles the request just read.
+  void HandleOpen(const v1::SessionOptions& options);
+  void HandleFrame(Clock::time_point received);
+  void ReadNext();
+  void FinishOnce(const grpc::Status& status);
+  bool TakeFrameAllowance(Clock::time_point now);
+
+  // Runs on the worker pool.
+  void Process(v1::Frame frame, Clock::time_point received);
+
+  const SessionEnvironment env_;
+  std::recursive_mutex mutex_;  // recursive: a reaction may run inside a Start* call
+  v1::SessionRequest request_;
+  v1::SessionUpdate update_;
+  std::unique_ptr<SessionEngine> engine_;  // set by the open request
+  bool registered_ = false;
+  bool busy_ = false;      // a frame is being processed or its update written
+  bool finished_ = false;  // Finish has been called
+  std::optional<grpc::Status> pending_close_;  // Close() while busy: applied when idle
+  // Frame-rate limit: a token bucket holding up to 2 s of frames.
+  double allowance_ = 0;
+  Clock::time_point allowance_time_;
+  std::atomic<Clock::rep> last_activity_;
+};
+
+}  // namespace orbit::server

@@ -1,0 +1,40 @@
+// What a recognition session runs with: the engine and its options, resolved from what the
+// device asked for (v1::SessionOptions), the server's defaults and its limits.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include "core/descriptor.h"
+#include "core/recognition_engine.h"
+#include "orbit/v1/recognition.pb.h"
+
+namespace orbit::server {
+
+// The server's limits, each refused with RESOURCE_EXHAUSTED when exceeded.
+struct ServerLimits {
+  int max_sessions = 256;              // concurrent Session streams
+  double max_frames_per_second = 60;   // per session, averaged over a 2-second burst allowance
+  int max_window = kMaxWindow;         // W a session may ask for (1..64)
+  int max_message_bytes = 4 << 20;     // any single request message
+  int idle_timeout_seconds = 120;      // a session without a frame for this long is closed
+};
+
+struct SessionSettings {
+  v1::Engine engine = v1::ENGINE_VCI;  // never ENGINE_UNSPECIFIED once resolved
+  EngineOptions options;
+};
+
+// `requested` over `defaults`: a field at 0 / unset keeps the default. INVALID_ARGUMENT for an
+// unknown engine, a variant other than the server's, or a value out of range (the message names
+// it); RESOURCE_EXHAUSTED for a window above limits.max_window.
+grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
+                                    const SessionSettings& defaults, DescriptorVariant variant,
+                                    const ServerLimits& limits, SessionSettings* out);
+
+// Every field filled in: what ServerInfo reports as the defaults.
+v1::SessionOptions DescribeSettings(const SessionSettings& settings, DescriptorVariant variant);
+
+// Engine names of core/recognition_engine.h behind a v1::Engine (two for ENGINE_VCI_HMM).
+std::vector<std::string_view> CoreEngineNames(v1::Engine engine);
+
+}  // namespace orbit::server

@@ -1,0 +1,41 @@
+// WorkerPool: a fixed set of threads running queued tasks in arrival order. The server runs
+// engine work, image decoding and store writes here, so gRPC's reactor threads never block.
+//
+// Thread-safe: Post() may be called from any thread, including from a task.
+#pragma once
+
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+namespace orbit::server {
+
+class WorkerPool {
+ public:
+  // REQUIRES: threads >= 1.
+  explicit WorkerPool(int threads);
+  // Runs every task already posted, then joins the threads.
+  ~WorkerPool();
+
+  WorkerPool(const WorkerPool&) = delete;
+  WorkerPool& operator=(const WorkerPool&) = delete;
+
+  // Queues `task`. A task must not throw (the pool terminates the process if one does).
+  void Post(std::function<void()> task);
+
+  int size() const { return static_cast<int>(threads_.size()); }
+
+ private:
+  void Run();
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::function<void()>> tasks_;
+  bool stopping_ = false;
+  std::vector<std::thread> threads_;
+};
+
+}  // namespace orbit::server
