@@ -1,0 +1,69 @@
+// ServerProcess: a real `orbit serve` process on a loopback port, for integration tests.
+//
+//   ServerProcess server;                      // temp database, free port, no tokens
+//   auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+//
+// The destructor stops the server (SIGTERM, then SIGKILL after 10 s) and removes the temporary
+// database it created.
+#pragma once
+
+#include <sys/types.h>
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace orbit::testing {
+
+struct ServerProcessOptions {
+  // The model store; a fresh file in a temporary folder when unset (removed afterwards).
+  std::optional<std::filesystem::path> database;
+  std::string listen = "127.0.0.1:0";  // port 0: the server picks a free one
+  std::optional<std::filesystem::path> tokens_file;
+  std::optional<std::filesystem::path> tls_cert, tls_key;
+  std::vector<std::string> extra_args;  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
+};
+
+class ServerProcess {
+ public:
+  // Starts the server and waits (up to 60 s) until it says it is listening.
+  // Throws std::runtime_error with the server's log when it exits or does not start in time.
+  explicit ServerProcess(ServerProcessOptions options = {});
+  ~ServerProcess();
+
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  // "127.0.0.1:PORT", the bound port.
+  const std::string& address() const { return address_; }
+  int port() const { return port_; }
+  const std::filesystem::path& database() const { return database_; }
+  pid_t pid() const { return pid_; }
+
+  // Sends `signal` and waits up to `timeout` for the process to exit. Returns its exit code, or
+  // 128 + signal number when a signal ended it, or -1 when it is still running at the timeout.
+  int Stop(int signal, std::chrono::seconds timeout = std::chrono::seconds(15));
+
+  // Everything the server printed on stderr so far.
+  std::string Log() const;
+
+ private:
+  std::filesystem::path temp_dir_;
+  std::filesystem::path database_;
+  std::filesystem::path log_file_;
+  std::string address_;
+  int port_ = 0;
+  pid_t pid_ = -1;
+  bool owns_database_ = false;
+};
+
+// Runs `orbit serve` with `args` expecting it to refuse to start; returns its exit code and log.
+struct RefusedStart {
+  int exit_code = 0;
+  std::string log;
+};
+RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args);
+
+}  // namespace orbit::testing
