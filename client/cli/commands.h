@@ -7,5 +7,9 @@
 namespace orbit::cli {
 
 void AddDescriptorCommand(CLI::App& app, int& exit_code);
+void AddEnrollCommand(CLI::App& app, int& exit_code);
+void AddRecognizeCommand(CLI::App& app, int& exit_code);
+void AddInfoCommand(CLI::App& app, int& exit_code);
+void AddDemoCommand(CLI::App& app, int& exit_code);
 
 }  // namespace orbit::cli

@@ -15,6 +15,10 @@ int main(int argc, char** argv) {
 
   int exit_code = 0;
   orbit::cli::AddDescriptorCommand(app, exit_code);
+  orbit::cli::AddEnrollCommand(app, exit_code);
+  orbit::cli::AddRecognizeCommand(app, exit_code);
+  orbit::cli::AddInfoCommand(app, exit_code);
+  orbit::cli::AddDemoCommand(app, exit_code);
 
   try {
     app.parse(argc, argv);

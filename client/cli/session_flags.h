@@ -1,0 +1,34 @@
+// The session options of `orbit recognize` and `orbit demo` as command-line flags
+// (--engine, --top-k, --window, --w, --list-length, --hmm-states, --threshold); a flag left out
+// takes the server's default.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "client/recognition_session.h"
+
+namespace orbit::cli {
+
+struct SessionFlags {
+  std::string engine;  // "" for the server's default
+  int top_k = 0;
+  int window = 0;
+  std::optional<double> orientation_weight;
+  int list_length = 0;
+  int hmm_states = 0;
+  std::optional<double> threshold;
+};
+
+void AddSessionFlags(CLI::App& command, SessionFlags& flags);
+
+// The engine for its command-line name: vci, hmm, vci-hmm, vci-bm, vci-w0, eis, siis, eiis
+// (core/recognition_engine.h's names, plus vci-hmm for the combination).
+// Throws std::invalid_argument for any other name.
+v1::Engine ParseEngine(const std::string& name);
+
+SessionOptions ToSessionOptions(const SessionFlags& flags);
+
+}  // namespace orbit::cli

@@ -1,0 +1,74 @@
+// Enroller: turns images of a new object, each with the azimuth it was taken at, into an
+// enrolled object on the server (Models.Enroll, proto/orbit/v1/models.proto).
+//
+// Everything heavy happens on the device: each view's CEDD (core/cedd.h, in the server's
+// descriptor variant) and its typical distance Ttyp, from the CEDDs of its distorted copies
+// (core/typical_distance.h; SPEC.md, "Recognition"), so the server receives 144 bytes and one
+// number per view and never an image. The object is committed atomically when the stream ends:
+// on any error nothing is stored.
+//
+// Errors: RpcError with the server's status (ALREADY_EXISTS for a name in use,
+// INVALID_ARGUMENT for a bad name or view, PERMISSION_DENIED without the `admin` role, ...);
+// std::invalid_argument for an empty image list, an empty image or a region outside its image.
+// Thread safety: one Enroller per thread (it caches the server's variant without locking).
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "client/connection.h"
+#include "core/descriptor.h"
+#include "orbit/v1/models.grpc.pb.h"
+
+namespace orbit {
+
+// One image of the object to enroll.
+struct EnrollmentImage {
+  cv::Mat image;                         // as ExtractCedd accepts (BGR, grey or BGRA, 8-bit)
+  double azimuth_deg = 0;                // where the camera stood, in degrees
+  std::optional<cv::Rect> region;        // the object's region; the whole image when unset
+  std::optional<double> elevation_deg;
+};
+
+// The view the server stores for `image`: the CEDD of the region (or whole image) and its
+// typical distance over the region's distorted copies, the Gaussian noise seeded with `seed`.
+// Throws std::invalid_argument as ExtractCedd and TypicalDistortions do.
+v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant, std::uint64_t seed);
+
+struct EnrollerOptions {
+  std::uint64_t seed = 1;  // view f's noisy copy is seeded with seed + f (reproducible)
+  unsigned threads = 1;    // threads computing the views
+};
+
+class Enroller {
+ public:
+  // `connection` must outlive the enroller.
+  explicit Enroller(const Connection& connection, EnrollerOptions options = {});
+
+  // Computes the views of `images` (view f from images[f]) in the server's variant, on
+  // options.threads threads.
+  std::vector<v1::View> ComputeViews(const std::vector<EnrollmentImage>& images);
+
+  // Computes the views and enrolls them as object `name`; returns the stored object.
+  v1::ObjectInfo Enroll(const std::string& name, const std::vector<EnrollmentImage>& images,
+                        const std::string& metadata_json = "{}");
+
+  // Enrolls views computed already (by ComputeViews, or descriptors from elsewhere).
+  v1::ObjectInfo EnrollViews(const std::string& name, const std::vector<v1::View>& views,
+                             const std::string& metadata_json = "{}");
+
+  // The server's descriptor variant, asked once (ServerInfo) and cached.
+  DescriptorVariant variant();
+
+ private:
+  const Connection& connection_;
+  const EnrollerOptions options_;
+  std::unique_ptr<v1::Models::Stub> stub_;
+  std::optional<DescriptorVariant> variant_;
+};
+
+}  // namespace orbit

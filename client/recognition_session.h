@@ -1,0 +1,167 @@
+// RecognitionSession: a device's live recognition session (Recognition.Session,
+// proto/orbit/v1/recognition.proto). The device pushes frames - an image and the azimuth its
+// orientation sensor read - and receives, for every frame and in order, an update with the
+// ranked candidates, the decision and the suggested move.
+//
+// The CEDD of each image is computed here, on the device (core/cedd.h), in the server's
+// descriptor variant (asked with ServerInfo when the session opens), so only 144 bytes and an
+// azimuth travel per frame.
+//
+// Reconnection: when the stream ends with UNAVAILABLE (the server restarted, the network
+// dropped) and the session was not closed by the device, a new stream is opened with the same
+// options and the session replays the frames still in the window - the last W answered frames,
+// whose updates are not delivered again - then every frame not yet answered. The server thus
+// rebuilds the same window and the updates continue in order, none lost and none repeated,
+// with the frame indices the device was given. Attempts continue for
+// SessionOptions::reconnect_timeout; after that the session ends with UNAVAILABLE. Frames sent
+// before a Reset() and still unanswered when the connection drops are not replayed: the device
+// had started over.
+//
+// Errors: Open() throws RpcError when the server is unreachable or refuses the token.
+// Problems the server finds later (bad options, bad frames, rate limits, idle timeout) end the
+// session: NextUpdate() then returns nullopt, Push*() throw RpcError with that status, and
+// Close() returns it. Bad arguments (empty image, region outside the image) throw
+// std::invalid_argument before anything is sent.
+//
+// Thread safety: Push*, Reset, NextUpdate and Close may be called from any threads; pushes from
+// several threads are numbered in the order they are sent. Push blocks while a reconnection
+// is in progress. The update callback runs on the session's reader thread: it must not call
+// Close() (it may push).
+#pragma once
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <opencv2/core.hpp>
+
+#include "client/connection.h"
+#include "core/descriptor.h"
+#include "orbit/v1/models.pb.h"
+#include "orbit/v1/recognition.grpc.pb.h"
+
+namespace orbit {
+
+// Options of a session. A field left at 0 / unset takes the server's default (ServerInfo's
+// session_defaults); the meaning and ranges are those of v1::SessionOptions.
+struct SessionOptions {
+  v1::Engine engine = v1::ENGINE_UNSPECIFIED;  // VCI, HMM, both, or a baseline
+  int top_k = 0;                               // candidates per update
+  int window = 0;                              // W: frames the session remembers
+  std::optional<double> orientation_weight;    // w of the Hough score, per radian
+  int list_length = 0;                         // N_L: views per retrieval list
+  int hmm_states = 0;                          // HMM sectors per object
+  std::optional<double> threshold;             // Th of the accept rule
+  // The descriptor variant of the frames; unset: the server's. Setting another variant than
+  // the server's ends the session with INVALID_ARGUMENT.
+  std::optional<DescriptorVariant> variant;
+
+  // How long to keep trying to reopen a session after the connection drops; 0 disables
+  // reconnection.
+  std::chrono::milliseconds reconnect_timeout{30000};
+  // When set, updates are delivered to this callback (on the session's reader thread) instead
+  // of to NextUpdate().
+  std::function<void(const v1::SessionUpdate&)> on_update;
+};
+
+class RecognitionSession {
+ public:
+  // Asks the server for its variant and defaults, then opens the stream. `connection` must
+  // outlive the session. Throws RpcError when ServerInfo fails or the stream cannot start.
+  static std::unique_ptr<RecognitionSession> Open(const Connection& connection,
+                                                  SessionOptions options);
+
+  // Cancels the stream if Close() was not called; updates not yet received are dropped.
+  ~RecognitionSession();
+
+  RecognitionSession(const RecognitionSession&) = delete;
+  RecognitionSession& operator=(const RecognitionSession&) = delete;
+
+  // Computes the CEDD of `image` (of `region` inside it when given) and sends it with the
+  // device azimuth in degrees (any finite value; only differences between frames matter).
+  // `timestamp_us` is echoed in the update. Returns the frame's index (0 for the first frame
+  // after Open or Reset), which its update carries as frame_index.
+  // Throws std::invalid_argument as ExtractCedd does; RpcError when the session has ended.
+  std::int64_t Push(const cv::Mat& image, double azimuth_deg,
+                    std::optional<cv::Rect> region = std::nullopt,
+                    std::optional<std::int64_t> timestamp_us = std::nullopt);
+
+  // Sends a descriptor computed elsewhere, in variant(). As Push otherwise.
+  std::int64_t PushDescriptor(const DescriptorValues& cedd, double azimuth_deg,
+                              std::optional<std::int64_t> timestamp_us = std::nullopt);
+
+  // Starts over on another object: the server forgets every frame and the next frame gets
+  // index 0. Updates of frames pushed before still arrive.
+  void Reset();
+
+  // Blocks until the next update (frame_index in the device's numbering) and returns it, or
+  // nullopt once the session has ended and every received update was returned.
+  std::optional<v1::SessionUpdate> NextUpdate();
+
+  // Tells the server no more frames come, waits until every frame pushed has its update (or
+  // the session fails) and returns the final status: OK when the server ended the session
+  // cleanly. Updates still queued remain readable with NextUpdate(). Idempotent.
+  grpc::Status Close();
+
+  DescriptorVariant variant() const { return variant_; }
+  int window() const { return window_size_; }
+  // How many times the stream was reopened after a dropped connection.
+  int reconnections() const;
+
+ private:
+  // A frame sent on the current stream and awaiting its update.
+  struct SentFrame {
+    std::int64_t index = 0;   // the device's numbering
+    std::uint64_t epoch = 0;  // Reset() count when it was pushed
+    bool deliver = true;      // false for a window frame replayed after a reconnection
+    v1::Frame frame;
+  };
+
+  RecognitionSession(const Connection& connection, SessionOptions options,
+                     const v1::ServerInfoResponse& info);
+  // REQUIRES: write_mu_ held. Starts a stream and sends the open message; false when the write
+  // failed (the stream's Finish() says why).
+  bool StartStream();
+  std::int64_t Send(v1::Frame frame);
+  void ReadUpdates();
+  void Deliver(v1::SessionUpdate update);
+  // REQUIRES: write_mu_ held. Opens a new stream and replays; OK on success, else the status to
+  // end the session with.
+  grpc::Status Reopen();
+  void End(const grpc::Status& status);
+
+  const Connection& connection_;
+  const SessionOptions options_;
+  const DescriptorVariant variant_;
+  const int window_size_;
+  const std::chrono::microseconds replay_interval_;  // paces replays to the server's frame limit
+  std::unique_ptr<v1::Recognition::Stub> stub_;
+
+  // Serialises writes to the stream and its replacement; taken before state_mu_.
+  std::mutex write_mu_;
+  std::unique_ptr<grpc::ClientContext> context_;
+  std::unique_ptr<grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>> stream_;
+  bool closing_ = false;  // WritesDone sent (or to send after a reconnection)
+
+  mutable std::mutex state_mu_;
+  std::condition_variable state_changed_;
+  std::deque<SentFrame> in_flight_;  // in the order the server answers them
+  std::deque<SentFrame> window_;     // the last window_size_ answered frames of this epoch
+  std::deque<v1::SessionUpdate> updates_;
+  std::int64_t next_index_ = 0;
+  std::uint64_t epoch_ = 0;
+  int reconnections_ = 0;
+  bool ended_ = false;
+  bool cancelled_ = false;
+  grpc::Status final_status_;
+
+  std::thread reader_;
+};
+
+}  // namespace orbit

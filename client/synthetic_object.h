@@ -1,0 +1,35 @@
+// SyntheticObject: textured shapes `orbit demo` renders itself, so a new user sees recognition
+// work without any dataset. Each object looks different from every side - a box whose four
+// faces carry different patterns, a cylinder wrapped in a label that changes around it - so
+// its appearance, like a real object's, depends on the azimuth it is seen from.
+//
+// Views are rendered like COIL-100's turntable images: the object centred on black, lit from
+// the camera, seen slightly from above, at any azimuth (degrees, the object turning
+// counter-clockwise seen from above as the azimuth grows). Pure and thread-safe.
+#pragma once
+
+#include <array>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+namespace orbit {
+
+struct SyntheticObject {
+  enum class Shape { kBox, kCylinder };
+  std::string name;
+  Shape shape = Shape::kBox;
+  // kBox: the four side faces in order around the box (square textures).
+  // kCylinder: faces[0] is the label wrapped once around it (twice as wide as tall).
+  std::array<cv::Mat, 4> faces;
+  cv::Scalar top_colour;  // BGR of the lid seen from above
+};
+
+// The demo's objects: "demo-box", "demo-can", "demo-crate", with fixed textures.
+std::vector<SyntheticObject> DemoObjects();
+
+// The object seen from `azimuth_deg`, as a `size` x `size` BGR image (CV_8UC3).
+cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size = 128);
+
+}  // namespace orbit
