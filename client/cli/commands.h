@@ -11,5 +11,6 @@ void AddEnrollCommand(CLI::App& app, int& exit_code);
 void AddRecognizeCommand(CLI::App& app, int& exit_code);
 void AddInfoCommand(CLI::App& app, int& exit_code);
 void AddDemoCommand(CLI::App& app, int& exit_code);
+void AddEvalCommand(CLI::App& app, int& exit_code);
 
 }  // namespace orbit::cli

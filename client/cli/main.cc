@@ -19,6 +19,7 @@ int main(int argc, char** argv) {
   orbit::cli::AddRecognizeCommand(app, exit_code);
   orbit::cli::AddInfoCommand(app, exit_code);
   orbit::cli::AddDemoCommand(app, exit_code);
+  orbit::cli::AddEvalCommand(app, exit_code);
 
   try {
     app.parse(argc, argv);
