@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Sets up, builds and runs the product's main job. For now: the CEDD descriptor of sample images
-# from the shared data (the server arrives with the service issue).
+# Sets up, builds and runs the product's main job: the recognition server on loopback, with its
+# embedded SQLite model store (var/models.db unless ORBIT_DB says otherwise). Extra arguments go
+# to `orbit serve` (see `build/orbit serve --help`). Stop it with Ctrl-C.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/build.sh
-data="${ORBIT_DATA:-../shared/data}"
-exec ./build/orbit descriptor --variant cedd-lire "$data"/coil-100/obj1__0.png "$data"/coil-100/obj42__90.png "$@"
+db="${ORBIT_DB:-var/models.db}"
+mkdir -p "$(dirname "$db")"
+exec ./build/orbit serve --db "$db" --listen "${ORBIT_LISTEN:-127.0.0.1:50051}" "$@"
