@@ -12,6 +12,8 @@
 #include <system_error>
 #include <tuple>
 
+#include "core/angles.h"
+
 namespace orbit {
 namespace {
 
@@ -24,13 +26,6 @@ std::string_view Trim(std::string_view text) {
   if (first == std::string_view::npos) return {};
   const auto last = text.find_last_not_of(" \t");
   return text.substr(first, last - first + 1);
-}
-
-// Azimuths are stored in [0, 360) so that datasets written as -90 or 450 agree with 270 and 90.
-double NormaliseAzimuth(double degrees) {
-  double a = std::fmod(degrees, 360.0);
-  if (a < 0) a += 360.0;
-  return a == 360.0 ? 0.0 : a;  // a tiny negative value can round up to 360
 }
 
 int ParsePositive(std::string_view digits, std::string_view item) {

@@ -1,0 +1,129 @@
+#include "core/evaluation_protocol.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "core/angles.h"
+#include "core/distortion.h"
+#include "core/seeded_random.h"
+
+namespace orbit {
+namespace {
+
+// Azimuths read from files (e.g. 12.3 in a manifest) may carry rounding; a view exactly 10
+// degrees away must still count as "within 10 degrees".
+constexpr double kAngleTolerance = 1e-9;
+
+}  // namespace
+
+std::string_view DistortionName(QueryDistortion distortion) {
+  switch (distortion) {
+    case QueryDistortion::kNone:
+      return "df";
+    case QueryDistortion::kMotionBlur:
+      return "mb";
+    case QueryDistortion::kGaussianNoise:
+      return "gn";
+  }
+  return "?";
+}
+
+std::optional<QueryDistortion> ParseDistortion(std::string_view name) {
+  for (const auto d : {QueryDistortion::kNone, QueryDistortion::kMotionBlur,
+                       QueryDistortion::kGaussianNoise}) {
+    if (name == DistortionName(d)) return d;
+  }
+  return std::nullopt;
+}
+
+cv::Mat ApplyQueryDistortion(const cv::Mat& view, QueryDistortion distortion,
+                             std::uint64_t seed) {
+  switch (distortion) {
+    case QueryDistortion::kMotionBlur:
+      return MotionBlur(view, kMotionBlurLength, kMotionBlurAngleDegrees);
+    case QueryDistortion::kGaussianNoise:
+      return AddGaussianNoise(view, kGaussianNoiseVariance, seed);
+    case QueryDistortion::kNone:
+      break;
+  }
+  return view;
+}
+
+std::uint64_t TrialSeed(std::uint64_t seed, int object, int n, int trial) {
+  std::uint64_t s = MixSeed(seed, static_cast<std::uint64_t>(object));
+  s = MixSeed(s, static_cast<std::uint64_t>(n));
+  return MixSeed(s, static_cast<std::uint64_t>(trial));
+}
+
+TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64_t trial_seed) {
+  const int count = static_cast<int>(view_azimuths.size());
+  if (n < 1 || n > count) {
+    throw std::invalid_argument("SampleTrial: cannot draw " + std::to_string(n) +
+                                " distinct views from " + std::to_string(count));
+  }
+  for (double a : view_azimuths) {
+    if (!std::isfinite(a)) throw std::invalid_argument("SampleTrial: azimuth not finite");
+  }
+  SeededRandom random(trial_seed);
+
+  // n distinct views: the first n steps of a Fisher-Yates shuffle.
+  std::vector<int> order(count);
+  std::iota(order.begin(), order.end(), 0);
+  for (int i = 0; i < n; ++i) {
+    const int j = i + static_cast<int>(random.UniformInt(static_cast<std::uint64_t>(count - i)));
+    std::swap(order[i], order[j]);
+  }
+  TrialQuery query;
+  query.views.assign(order.begin(), order.begin() + n);
+  std::sort(query.views.begin(), query.views.end(), [&](int a, int b) {
+    const double za = NormaliseAzimuth(view_azimuths[a]);
+    const double zb = NormaliseAzimuth(view_azimuths[b]);
+    return za != zb ? za < zb : a < b;
+  });
+
+  // Device azimuths: one unknown offset for the whole trial, independent noise per frame.
+  const double offset = 360.0 * random.Uniform();
+  for (int v : query.views) {
+    const double noise = kQueryAzimuthNoiseDegrees * random.Normal();
+    query.azimuths.push_back(NormaliseAzimuth(view_azimuths[v] + noise + offset));
+  }
+
+  for (int v = 0; v < count; ++v) {
+    const bool near_query = std::any_of(query.views.begin(), query.views.end(), [&](int q) {
+      return std::abs(AzimuthChange(view_azimuths[q], view_azimuths[v])) <=
+             kQueryExclusionDegrees + kAngleTolerance;
+    });
+    if (near_query) query.removed_views.push_back(v);
+  }
+  return query;
+}
+
+ObjectModel WithoutViews(const ObjectModel& model, std::span<const int> removed_views) {
+  ObjectModel result = model;
+  result.views.clear();
+  std::size_t next = 0;  // position in removed_views
+  const int count = static_cast<int>(model.views.size());
+  for (std::size_t i = 0; i < removed_views.size(); ++i) {
+    const int v = removed_views[i];
+    if (v < 0 || v >= count || (i > 0 && v <= removed_views[i - 1])) {
+      throw std::invalid_argument("WithoutViews: view indices must be ascending and in range");
+    }
+  }
+  for (int v = 0; v < count; ++v) {
+    if (next < removed_views.size() && removed_views[next] == v) {
+      ++next;
+      continue;
+    }
+    result.views.push_back(model.views[v]);
+  }
+  return result;
+}
+
+bool IsTopOneHit(std::span<const RankedObject> ranking, ObjectId expected) {
+  return !ranking.empty() && ranking.front().object == expected;
+}
+
+}  // namespace orbit

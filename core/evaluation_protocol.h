@@ -1,0 +1,80 @@
+// The evaluation protocol (SPEC.md, "Evaluation protocol", the thesis' protocol made exact):
+// what one trial asks of an engine and how its answer is scored. Pure: no images are read and
+// no engine is run here (client/evaluation_runner.h does both).
+//
+// One trial of object c with n query views:
+//   1. n distinct views of c drawn uniformly at random (SampleTrial);
+//   2. every view of c within kQueryExclusionDegrees of a query view, the query views
+//      themselves included, is removed from c's model for this trial;
+//   3. the query is ordered by increasing true azimuth (the camera sweeping round the object),
+//      and each frame's device azimuth is its true azimuth + N(0, kQueryAzimuthNoiseDegrees) +
+//      one offset, uniform in [0, 360), shared by the trial's frames;
+//   4. the query images are the chosen views, unchanged (DF), motion-blurred (MB) or with
+//      Gaussian noise (GN): ApplyQueryDistortion;
+//   5. a hit is a top-1 answer naming c (IsTopOneHit).
+// Every random draw comes from TrialSeed(seed, object, n, trial), so a trial is the same for
+// every method, distortion, descriptor variant, index mode and thread count.
+//
+// All functions are pure and thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "core/object_model.h"
+#include "core/recognition_engine.h"
+
+namespace orbit {
+
+inline constexpr double kQueryExclusionDegrees = 10;    // inclusive: |difference| <= 10
+inline constexpr double kQueryAzimuthNoiseDegrees = 3;  // standard deviation
+
+// The query image distortions, named as on the command line.
+enum class QueryDistortion {
+  kNone,           // "df": the view as captured
+  kMotionBlur,     // "mb": MotionBlur(view), fspecial('motion', 15, 20)
+  kGaussianNoise,  // "gn": AddGaussianNoise(view, 0.012, seed)
+};
+
+// "df", "mb", "gn".
+std::string_view DistortionName(QueryDistortion distortion);
+// Inverse of DistortionName (lower case only); nullopt for any other text.
+std::optional<QueryDistortion> ParseDistortion(std::string_view name);
+
+// The query image for `view` under `distortion` (core/distortion.h); `seed` only matters for
+// kGaussianNoise. Throws as MotionBlur / AddGaussianNoise.
+cv::Mat ApplyQueryDistortion(const cv::Mat& view, QueryDistortion distortion, std::uint64_t seed);
+
+// The seed of one trial: object is the object's position in the dataset, n the query length,
+// trial the trial's number (0-based).
+std::uint64_t TrialSeed(std::uint64_t seed, int object, int n, int trial);
+
+// One trial's query, for an object whose views have the given azimuths.
+struct TrialQuery {
+  // Indices into the object's views, ordered by increasing true azimuth (ties: lower index).
+  std::vector<int> views;
+  // The device azimuth of each query frame (same order), degrees in [0, 360).
+  std::vector<double> azimuths;
+  // Indices of the object's views to remove from its model, ascending: every view whose
+  // azimuth is within kQueryExclusionDegrees (circularly) of a query view's.
+  std::vector<int> removed_views;
+};
+
+// Draws a trial: n distinct views, their device azimuths and the views to remove (see above).
+// Throws std::invalid_argument when n < 1, when n exceeds the number of views, or when an
+// azimuth is not finite.
+TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64_t trial_seed);
+
+// `model` without the views listed in `removed_views` (ascending indices, as SampleTrial gives).
+// Throws std::invalid_argument when an index is out of range or the list is not ascending.
+ObjectModel WithoutViews(const ObjectModel& model, std::span<const int> removed_views);
+
+// True when the ranking's first object is `expected`; false for an empty ranking.
+bool IsTopOneHit(std::span<const RankedObject> ranking, ObjectId expected);
+
+}  // namespace orbit
