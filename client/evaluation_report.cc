@@ -65,6 +65,15 @@ std::string MarkdownReport(const EvaluationReport& report) {
       << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
       << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
       << Format("%.1f", report.trial_seconds) << " s.\n\n";
+  const EngineOptions& e = report.engine;
+  out << "Engines: window " << e.window << ", N_L " << e.list_length << ", w "
+      << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "
+      << Format("%g", e.threshold) << ".";
+  if (report.search == SearchMode::kKdTree) {
+    out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
+        << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
+  }
+  out << "\n\n";
   for (const ModelMemory& memory : report.memory) {
     out << "Model memory (" << VariantName(memory.variant) << "): " << memory.objects
         << " objects, " << memory.views << " views, descriptors "

@@ -247,6 +247,8 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
 
   EngineOptions engine_options = options.engine;
   engine_options.window = std::max(engine_options.window, max_n);
+  report.engine = engine_options;
+  report.index = options.index;
 
   const Clock::time_point trial_start = Clock::now();
   // One set of engines per thread, reused across tasks (ObserveSequence resets them).

@@ -96,6 +96,8 @@ struct EvaluationReport {
   std::uint64_t seed = 0;
   int threads = 0;                  // worker threads used
   SearchMode search = SearchMode::kExact;
+  ViewIndexOptions index;           // as used
+  EngineOptions engine;             // as used (window raised to the largest n)
   double descriptor_seconds = 0;    // wall-clock time of step 1
   double trial_seconds = 0;         // wall-clock time of step 3
 };

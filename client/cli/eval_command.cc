@@ -41,6 +41,9 @@ struct EvalOptions {
   int kd_checks = ViewIndexOptions{}.kd_checks;
   int kd_candidates = ViewIndexOptions{}.kd_candidates;
   double threshold = EngineOptions{}.threshold;
+  double orientation_weight = EngineOptions{}.orientation_weight;
+  int list_length = EngineOptions{}.list_length;
+  int hmm_states = EngineOptions{}.hmm_states;
   std::string csv;
   std::string plot;
   int threads = 0;
@@ -118,6 +121,9 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.index.kd_checks = o.kd_checks;
   options.index.kd_candidates = o.kd_candidates;
   options.engine.threshold = o.threshold;
+  options.engine.orientation_weight = o.orientation_weight;
+  options.engine.list_length = o.list_length;
+  options.engine.hmm_states = o.hmm_states;
   options.threads = o.threads;
   return options;
 }
@@ -211,6 +217,15 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--threshold", o->threshold, "Th of the accept / unknown rule")
       ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--orientation-weight", o->orientation_weight, "w of vci's orientation term, per radian")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--list-length", o->list_length, "N_L: views per VCI retrieval list")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--hmm-states", o->hmm_states, "HMM states (azimuth sectors) per object")
+      ->check(CLI::Range(1, 360))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
                       "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");
