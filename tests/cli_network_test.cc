@@ -1,0 +1,149 @@
+// The networked subcommands of `orbit` (enroll, recognize, info, demo) against a real
+// `orbit serve` process, as a user would type them.
+#include <csignal>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/client_test_support.h"
+#include "tests/server_process.h"
+#include "tests/test_data.h"
+
+namespace orbit {
+namespace {
+
+using testing::CoilFile;
+using testing::OrbitBinary;
+using testing::RunCommand;
+using testing::ServerProcess;
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// `--image F --azimuth A` for object `object` at the given azimuths, reported `offset` off.
+std::string Frames(int object, const std::vector<int>& azimuths, int offset = 0) {
+  std::string args;
+  for (int a : azimuths) {
+    args += " --image " + CoilFile(object, a) + " --azimuth " + std::to_string(a + offset);
+  }
+  return args;
+}
+
+std::vector<int> EveryTwentyDegrees() {
+  std::vector<int> azimuths;
+  for (int a = 0; a < 360; a += 20) azimuths.push_back(a);
+  return azimuths;
+}
+
+TEST(CliNetwork, EnrollsThenRecognisesWithJsonAndTextOutput) {
+  ServerProcess server;
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  for (int object = 1; object <= 3; ++object) {
+    const auto r = RunCommand(orbit + "enroll" + at + " --name obj" + std::to_string(object) +
+                              Frames(object, EveryTwentyDegrees()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "enrolled obj" + std::to_string(object) + " (id " + std::to_string(object) +
+                         ", 18 views)\n");
+  }
+  const auto again = RunCommand(orbit + "enroll" + at + " --name obj1" + Frames(1, {0, 20}));
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("ALREADY_EXISTS"), std::string::npos) << again.err;
+
+  const auto info = RunCommand(orbit + "info --json" + at);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto info_json = nlohmann::json::parse(info.out);
+  EXPECT_EQ(info_json["objects"], 3);
+  EXPECT_EQ(info_json["views"], 54);
+  EXPECT_EQ(info_json["variant"], "cedd-lire");
+
+  // Object 2 between its enrolled views, the compass 90 degrees off.
+  const std::string frames = Frames(2, {30, 50, 70, 90}, 90);
+  const auto json = RunCommand(orbit + "recognize --json --top-k 2" + at + frames);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const std::vector<std::string> lines = Lines(json.out);
+  ASSERT_EQ(lines.size(), 4u) << json.out;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const auto update = nlohmann::json::parse(lines[k]);
+    EXPECT_EQ(update["frame"], k);
+    EXPECT_TRUE(update["decision"] == "ACCEPT" || update["decision"] == "UNKNOWN" ||
+                update["decision"] == "UNDECIDED")
+        << lines[k];
+    EXPECT_TRUE(update["move"] == "LEFT" || update["move"] == "RIGHT" || update["move"] == "NONE")
+        << lines[k];
+    const auto& candidates = update["candidates"];
+    ASSERT_TRUE(candidates.is_array());
+    ASSERT_GE(candidates.size(), 1u);
+    ASSERT_LE(candidates.size(), 2u);
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+      EXPECT_GE(candidates[i - 1]["score"].get<double>(), candidates[i]["score"].get<double>());
+    }
+    EXPECT_TRUE(candidates[0].contains("id"));
+  }
+  const auto last = nlohmann::json::parse(lines.back());
+  EXPECT_EQ(last["candidates"][0]["name"], "obj2");
+  EXPECT_EQ(last["candidates"][0]["id"], 2);
+  EXPECT_EQ(last["decision"], "ACCEPT");
+
+  const auto text = RunCommand(orbit + "recognize" + at + frames);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::vector<std::string> text_lines = Lines(text.out);
+  ASSERT_EQ(text_lines.size(), 4u);
+  EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     move ", 0), 0u) << text_lines[3];
+  EXPECT_NE(text_lines[3].find(" obj2 (id 2) "), std::string::npos) << text_lines[3];
+}
+
+TEST(CliNetwork, ReportsUnreachableServersAndBadArguments) {
+  const std::string orbit = OrbitBinary() + " ";
+  ServerProcess server;
+  const std::string address = server.address();
+  ASSERT_EQ(server.Stop(SIGTERM), 0);
+  const auto down = RunCommand(orbit + "info --timeout 2 --server " + address);
+  EXPECT_EQ(down.exit_code, 1);
+  EXPECT_NE(down.err.find("ServerInfo: UNAVAILABLE"), std::string::npos) << down.err;
+
+  const auto unpaired = RunCommand(orbit + "recognize --server " + address + " --image " +
+                                   CoilFile(1, 0) + " --azimuth 0 --azimuth 5");
+  EXPECT_EQ(unpaired.exit_code, 1);
+  EXPECT_NE(unpaired.err.find("one --azimuth per --image (1 images, 2 azimuths)"),
+            std::string::npos)
+      << unpaired.err;
+}
+
+TEST(CliNetwork, DemoEnrollsItsObjectsOnceAndRecognisesTheOneItCircles) {
+  ServerProcess server;
+  const std::string demo = OrbitBinary() + " demo --json --server " + server.address();
+  const auto first = RunCommand(demo);
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_NE(first.out.find("demo-box: enrolled (id 1, 36 views"), std::string::npos) << first.out;
+  EXPECT_NE(first.out.find("demo-crate: enrolled (id 3, 36 views"), std::string::npos);
+  std::vector<nlohmann::json> updates;
+  for (const std::string& line : Lines(first.out)) {
+    if (!line.empty() && line[0] == '{') updates.push_back(nlohmann::json::parse(line));
+  }
+  ASSERT_EQ(updates.size(), 8u) << first.out;
+  EXPECT_EQ(updates.back()["frame"], 7);
+  EXPECT_EQ(updates.back()["candidates"][0]["name"], "demo-can");
+
+  const auto second = RunCommand(demo + " --object demo-crate --frames 3");
+  ASSERT_EQ(second.exit_code, 0) << second.err;
+  EXPECT_NE(second.out.find("demo-can: already enrolled (id 2, 36 views)"), std::string::npos)
+      << second.out;
+  const std::vector<std::string> lines = Lines(second.out);
+  std::string last_update;
+  for (const std::string& line : lines) {
+    if (!line.empty() && line[0] == '{') last_update = line;
+  }
+  ASSERT_FALSE(last_update.empty()) << second.out;
+  EXPECT_EQ(nlohmann::json::parse(last_update)["candidates"][0]["name"], "demo-crate");
+}
+
+}  // namespace
+}  // namespace orbit
