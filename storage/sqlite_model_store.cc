@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <chrono>
 #include <stdexcept>
 #include <string>
 #include <unordered_map>
@@ -23,6 +24,8 @@ namespace {
 
 constexpr int kMaxIdleReaders = 8;  // read connections kept open for reuse
 constexpr int kEscalateCheckpointFactor = 4;
+// How long an escalated checkpoint waits for readers in other processes.
+constexpr std::chrono::milliseconds kCheckpointReaderWait(200);
 
 constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
 
@@ -107,10 +110,12 @@ void SyncDirectory(const std::filesystem::path& directory) {
 
 }  // namespace
 
-// A read connection on loan from the store's pool.
+// A read connection on loan from the store's pool, for the span of one read (inside the
+// checkpoint gate).
 class SqliteModelStore::Reader {
  public:
   explicit Reader(SqliteModelStore& store) : store_(store) {
+    store_.checkpoint_gate_.EnterRead();
     {
       std::lock_guard lock(store_.readers_mutex_);
       if (!store_.idle_readers_.empty()) {
@@ -118,16 +123,25 @@ class SqliteModelStore::Reader {
         store_.idle_readers_.pop_back();
       }
     }
-    if (!connection_) {
-      connection_ = std::make_unique<SqliteConnection>(
-          store_.file_, SqliteConnection::Mode::kReadOnly, store_.options_.busy_timeout);
+    try {
+      if (!connection_) {
+        connection_ = std::make_unique<SqliteConnection>(
+            store_.file_, SqliteConnection::Mode::kReadOnly, store_.options_.busy_timeout);
+      }
+    } catch (...) {
+      store_.checkpoint_gate_.LeaveRead();
+      throw;
     }
   }
   ~Reader() {
-    std::lock_guard lock(store_.readers_mutex_);
-    if (store_.idle_readers_.size() < kMaxIdleReaders) {
-      store_.idle_readers_.push_back(std::move(connection_));
+    {
+      std::lock_guard lock(store_.readers_mutex_);
+      if (store_.idle_readers_.size() < kMaxIdleReaders) {
+        store_.idle_readers_.push_back(std::move(connection_));
+      }
     }
+    connection_.reset();  // closed outside the gate's lock, when not kept
+    store_.checkpoint_gate_.LeaveRead();
   }
   Reader(const Reader&) = delete;
   Reader& operator=(const Reader&) = delete;
@@ -314,10 +328,14 @@ void SqliteModelStore::CommitWrite(SqliteTransaction& transaction) {
                                            &log_pages, &copied_pages);
   if (rc == SQLITE_OK && copied_pages == log_pages) return;
   if (wal_pages_ < kEscalateCheckpointFactor * options_.checkpoint_pages) return;
-  // Readers kept the log from being recycled for too long: wait for them (busy timeout), copy
-  // everything and cut the log to zero bytes.
-  sqlite3_wal_checkpoint_v2(writer_->handle(), "main", SQLITE_CHECKPOINT_TRUNCATE, nullptr,
-                            nullptr);
+  // Readers kept the log from being recycled for too long: drain this store's readers, copy
+  // everything and cut the log to zero bytes (storage/checkpoint_gate.h has the why).
+  checkpoint_gate_.RunExclusive([this] {
+    sqlite3* db = writer_->handle();
+    sqlite3_busy_timeout(db, static_cast<int>(kCheckpointReaderWait.count()));
+    sqlite3_wal_checkpoint_v2(db, "main", SQLITE_CHECKPOINT_TRUNCATE, nullptr, nullptr);
+    sqlite3_busy_timeout(db, static_cast<int>(options_.busy_timeout.count()));
+  });
 }
 
 std::vector<ObjectSummary> SqliteModelStore::List(const ListRequest& request) {

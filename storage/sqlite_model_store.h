@@ -17,6 +17,7 @@
 #include <mutex>
 #include <vector>
 
+#include "storage/checkpoint_gate.h"
 #include "storage/model_store.h"
 
 namespace orbit {
@@ -30,8 +31,9 @@ struct SqliteModelStoreOptions {
   bool quick_check_on_open = true;               // PRAGMA quick_check before anything else
   // After a commit that leaves at least this many pages (4 KiB each) in the write-ahead log, the
   // log is checkpointed into the database without waiting for readers. At four times this many
-  // (readers kept those checkpoints from finishing) the writer waits for readers, up to
-  // `busy_timeout`, and truncates the log: the log cannot grow without bound.
+  // (readers kept those checkpoints from restarting the log) the writer holds this store's new
+  // reads back, lets the reads in flight finish, and truncates the log (storage/checkpoint_gate.h):
+  // the log cannot grow without bound. Readers in other processes are waited for 200 ms at most.
   int checkpoint_pages = 1000;
 };
 
@@ -78,7 +80,8 @@ class SqliteModelStore final : public ModelStore {
   std::unique_ptr<SqliteConnection> writer_;
   int wal_pages_ = 0;  // pages in the write-ahead log after the last commit (a WAL hook sets it)
 
-  std::mutex readers_mutex_;  // guards idle_readers_
+  CheckpointGate checkpoint_gate_;  // every read is inside it
+  std::mutex readers_mutex_;        // guards idle_readers_
   std::vector<std::unique_ptr<SqliteConnection>> idle_readers_;
 };
 

@@ -1,10 +1,20 @@
 #include "storage/sqlite_transaction.h"
 
+#include "storage/store_error.h"
+
 namespace orbit {
 
 SqliteTransaction::SqliteTransaction(SqliteConnection& connection, Mode mode)
     : connection_(connection) {
-  connection_.Prepare(mode == Mode::kWrite ? "BEGIN IMMEDIATE" : "BEGIN DEFERRED")->Run();
+  try {
+    connection_.Prepare(mode == Mode::kWrite ? "BEGIN IMMEDIATE" : "BEGIN DEFERRED")->Run();
+  } catch (const StoreError& e) {
+    if (e.code() != StoreError::Code::kBusy) throw;
+    throw StoreError(StoreError::Code::kBusy,
+                     connection_.file().string() +
+                         " is locked by another writer for longer than the busy timeout (" +
+                         e.what() + ")");
+  }
 }
 
 SqliteTransaction::~SqliteTransaction() {
