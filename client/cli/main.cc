@@ -20,6 +20,7 @@ int main(int argc, char** argv) {
   orbit::cli::AddInfoCommand(app, exit_code);
   orbit::cli::AddDemoCommand(app, exit_code);
   orbit::cli::AddEvalCommand(app, exit_code);
+  orbit::cli::AddServeCommand(app, exit_code);
 
   try {
     app.parse(argc, argv);
