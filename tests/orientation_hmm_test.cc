@@ -1,0 +1,114 @@
+#include "core/orientation_hmm.h"
+
+#include <cmath>
+#include <random>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace orbit {
+namespace {
+
+using Matrix = std::vector<std::vector<double>>;
+
+TEST(OrientationHmmTest, EqualSectorsAndInitialProbabilities) {
+  const std::vector<Arc> sectors = EqualSectors(8);
+  ASSERT_EQ(sectors.size(), 8u);
+  EXPECT_EQ(sectors[3].start, 135);
+  EXPECT_EQ(sectors[3].width, 45);
+  for (const double p : InitialProbabilities(sectors)) EXPECT_DOUBLE_EQ(p, 1.0 / 8);
+  EXPECT_THROW(EqualSectors(0), std::invalid_argument);
+}
+
+// Four 90-degree sectors, Delta = +30: L_j = [90j - 30, 90j + 60) overlaps R_j over 60 degrees
+// and R_{j-1} over 30, so a_jj = 2/3 and a_{j-1,j} = 1/3 (j - 1 taken circularly).
+TEST(OrientationHmmTest, TransitionMatrixForEqualSectorsByHand) {
+  const Matrix a = TransitionMatrix(EqualSectors(4), 30);
+  for (int j = 0; j < 4; ++j) {
+    for (int i = 0; i < 4; ++i) {
+      const double expected = i == j ? 2.0 / 3 : i == (j + 3) % 4 ? 1.0 / 3 : 0.0;
+      EXPECT_NEAR(a[i][j], expected, 1e-12) << i << "," << j;
+    }
+  }
+  // A turn the other way moves probability the other way; 390 is the same turn as 30.
+  const Matrix back = TransitionMatrix(EqualSectors(4), -30);
+  EXPECT_NEAR(back[1][0], 1.0 / 3, 1e-12);
+  EXPECT_NEAR(back[3][0], 0.0, 1e-12);
+  EXPECT_EQ(TransitionMatrix(EqualSectors(4), 390), a);
+  // No turn: the identity. Half a turn: a permutation.
+  EXPECT_EQ(TransitionMatrix(EqualSectors(4), 0)[2][2], 1.0);
+  EXPECT_EQ(TransitionMatrix(EqualSectors(4), 180)[0][2], 1.0);
+}
+
+// Sectors [0,180), [180,270), [270,360); Delta = 90.
+//   L_0 = [270, 90): half in R_0, half in R_2 -> a_00 = a_20 = 1/2.
+//   L_1 = [90, 180): all in R_0 -> a_01 = 1.      L_2 = [180, 270): all in R_1 -> a_12 = 1.
+// Columns sum to 1; rows do not (row 0 sums to 1.5) because the sectors differ in width.
+TEST(OrientationHmmTest, TransitionMatrixForUnequalSectorsByHand) {
+  const std::vector<Arc> sectors = {{0, 180}, {180, 90}, {270, 90}};
+  const Matrix a = TransitionMatrix(sectors, 90);
+  const Matrix expected = {{0.5, 1, 0}, {0, 0, 1}, {0.5, 0, 0}};
+  for (int i = 0; i < 3; ++i) {
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(a[i][j], expected[i][j], 1e-12) << i << "," << j;
+  }
+  const std::vector<double> pi = InitialProbabilities(sectors);
+  EXPECT_DOUBLE_EQ(pi[0], 0.5);
+  EXPECT_DOUBLE_EQ(pi[1], 0.25);
+}
+
+TEST(OrientationHmmTest, RowsAndColumnsSumToOneForEqualSectors) {
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> turn(-720, 720);
+  for (const int states : {1, 3, 8, 12}) {
+    for (int trial = 0; trial < 50; ++trial) {
+      const Matrix a = TransitionMatrix(EqualSectors(states), turn(random));
+      for (int i = 0; i < states; ++i) {
+        double row = 0, column = 0;
+        for (int j = 0; j < states; ++j) {
+          row += a[i][j];
+          column += a[j][i];
+        }
+        EXPECT_NEAR(row, 1, 1e-12);
+        EXPECT_NEAR(column, 1, 1e-12);
+      }
+    }
+  }
+}
+
+TEST(OrientationHmmTest, EmissionsNormaliseSimilarities) {
+  EXPECT_EQ(Emissions(std::vector<double>{1, 3}), (std::vector<double>{0.25, 0.75}));
+  EXPECT_EQ(Emissions(std::vector<double>{0, 0}), (std::vector<double>{0.5, 0.5}));
+}
+
+// The textbook example (Wikipedia, "Viterbi algorithm"): states Healthy, Fever; start 0.6/0.4;
+// transitions H->H 0.7, H->F 0.3, F->H 0.4, F->F 0.6; observations normal, cold, dizzy with
+// emissions H (0.5, 0.4, 0.1) and F (0.1, 0.3, 0.6). Best path H, H, F with probability
+// 0.6*0.5 * 0.7*0.4 * 0.3*0.6 = 0.01512.
+TEST(OrientationHmmTest, ViterbiOnATinyModel) {
+  const std::vector<double> initial = {0.6, 0.4};
+  const Matrix a = {{0.7, 0.3}, {0.4, 0.6}};
+  const std::vector<Matrix> transitions = {a, a};
+  const std::vector<std::vector<double>> emissions = {{0.5, 0.1}, {0.4, 0.3}, {0.1, 0.6}};
+  const ViterbiPath path = Viterbi(initial, transitions, emissions);
+  EXPECT_EQ(path.states, (std::vector<int>{0, 0, 1}));
+  EXPECT_NEAR(std::exp(path.log_probability), 0.01512, 1e-12);
+  // A forbidden transition forces the other path: with H->F impossible, F must start
+  // (0.4*0.1 * 0.6*0.3 * 0.6*0.6 = 0.002592) or stay H (0.6*0.5*0.7*0.4*0.7*0.1 = 0.00588).
+  const Matrix no_fever = {{1.0, 0.0}, {0.4, 0.6}};
+  const ViterbiPath stuck = Viterbi(initial, std::vector<Matrix>{no_fever, no_fever}, emissions);
+  EXPECT_EQ(stuck.states, (std::vector<int>{0, 0, 0}));
+  EXPECT_NEAR(std::exp(stuck.log_probability), 0.6 * 0.5 * 1.0 * 0.4 * 1.0 * 0.1, 1e-12);
+}
+
+TEST(OrientationHmmTest, ViterbiRejectsMismatchedSizes) {
+  const std::vector<double> initial = {0.5, 0.5};
+  EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, std::vector<std::vector<double>>{}),
+               std::invalid_argument);
+  using EmissionRows = std::vector<std::vector<double>>;
+  EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, EmissionRows{{0.5, 0.5}, {0.5, 0.5}}),
+               std::invalid_argument);
+  EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, EmissionRows{{1.0}}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace orbit
