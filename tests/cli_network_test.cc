@@ -1,7 +1,6 @@
 // The networked subcommands of `orbit` (enroll, recognize, info, demo) against a real
 // `orbit serve` process, as a user would type them.
 #include <csignal>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -17,15 +16,9 @@ namespace {
 
 using testing::CoilFile;
 using testing::OrbitBinary;
+using testing::OutputLines;
 using testing::RunCommand;
 using testing::ServerProcess;
-
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 // `--image F --azimuth A` for object `object` at the given azimuths, reported `offset` off.
 std::string Frames(int object, const std::vector<int>& azimuths, int offset = 0) {
@@ -68,7 +61,7 @@ TEST(CliNetwork, EnrollsThenRecognisesWithJsonAndTextOutput) {
   const std::string frames = Frames(2, {30, 50, 70, 90}, 90);
   const auto json = RunCommand(orbit + "recognize --json --top-k 2" + at + frames);
   ASSERT_EQ(json.exit_code, 0) << json.err;
-  const std::vector<std::string> lines = Lines(json.out);
+  const std::vector<std::string> lines = OutputLines(json.out);
   ASSERT_EQ(lines.size(), 4u) << json.out;
   for (std::size_t k = 0; k < lines.size(); ++k) {
     const auto update = nlohmann::json::parse(lines[k]);
@@ -94,7 +87,7 @@ TEST(CliNetwork, EnrollsThenRecognisesWithJsonAndTextOutput) {
 
   const auto text = RunCommand(orbit + "recognize" + at + frames);
   ASSERT_EQ(text.exit_code, 0) << text.err;
-  const std::vector<std::string> text_lines = Lines(text.out);
+  const std::vector<std::string> text_lines = OutputLines(text.out);
   ASSERT_EQ(text_lines.size(), 4u);
   EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     move ", 0), 0u) << text_lines[3];
   EXPECT_NE(text_lines[3].find(" obj2 (id 2) "), std::string::npos) << text_lines[3];
@@ -125,7 +118,7 @@ TEST(CliNetwork, DemoEnrollsItsObjectsOnceAndRecognisesTheOneItCircles) {
   EXPECT_NE(first.out.find("demo-box: enrolled (id 1, 36 views"), std::string::npos) << first.out;
   EXPECT_NE(first.out.find("demo-crate: enrolled (id 3, 36 views"), std::string::npos);
   std::vector<nlohmann::json> updates;
-  for (const std::string& line : Lines(first.out)) {
+  for (const std::string& line : OutputLines(first.out)) {
     if (!line.empty() && line[0] == '{') updates.push_back(nlohmann::json::parse(line));
   }
   ASSERT_EQ(updates.size(), 8u) << first.out;
@@ -136,7 +129,7 @@ TEST(CliNetwork, DemoEnrollsItsObjectsOnceAndRecognisesTheOneItCircles) {
   ASSERT_EQ(second.exit_code, 0) << second.err;
   EXPECT_NE(second.out.find("demo-can: already enrolled (id 2, 36 views)"), std::string::npos)
       << second.out;
-  const std::vector<std::string> lines = Lines(second.out);
+  const std::vector<std::string> lines = OutputLines(second.out);
   std::string last_update;
   for (const std::string& line : lines) {
     if (!line.empty() && line[0] == '{') last_update = line;

@@ -71,4 +71,11 @@ CommandResult RunCommand(const std::string& command) {
 
 std::string OrbitBinary() { return ORBIT_BINARY; }
 
+std::vector<std::string> OutputLines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
 }  // namespace orbit::testing

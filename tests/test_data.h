@@ -32,4 +32,7 @@ CommandResult RunCommand(const std::string& command);
 // Path of the built `orbit` binary.
 std::string OrbitBinary();
 
+// The lines of a command's output, without their "\n".
+std::vector<std::string> OutputLines(const std::string& text);
+
 }  // namespace orbit::testing
