@@ -19,6 +19,10 @@ int main(int argc, char** argv) {
   orbit::cli::AddRecognizeCommand(app, exit_code);
   orbit::cli::AddInfoCommand(app, exit_code);
   orbit::cli::AddDemoCommand(app, exit_code);
+  orbit::cli::AddImportCommand(app, exit_code);
+  orbit::cli::AddListCommand(app, exit_code);
+  orbit::cli::AddDeleteCommand(app, exit_code);
+  orbit::cli::AddBackupCommand(app, exit_code);
   orbit::cli::AddEvalCommand(app, exit_code);
   orbit::cli::AddServeCommand(app, exit_code);
 
