@@ -113,13 +113,7 @@ std::int64_t RecognitionSession::Send(v1::Frame frame) {
   std::int64_t index = 0;
   {
     std::lock_guard state_lock(state_mu_);
-    if (ended_) {
-      throw RpcError("Session", final_status_.ok()
-                                    ? grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
-                                                   "the session has ended")
-                                    : final_status_);
-    }
-    if (closing_) throw std::logic_error("RecognitionSession: Push after Close");
+    ThrowIfEnded("Push");
     index = next_index_++;
     *request.mutable_frame() = frame;
     in_flight_.push_back(SentFrame{index, epoch_, true, std::move(frame)});
@@ -134,8 +128,7 @@ void RecognitionSession::Reset() {
   std::lock_guard write_lock(write_mu_);
   {
     std::lock_guard state_lock(state_mu_);
-    if (ended_) throw RpcError("Session", final_status_);
-    if (closing_) throw std::logic_error("RecognitionSession: Reset after Close");
+    ThrowIfEnded("Reset");
     ++epoch_;
     next_index_ = 0;
     window_.clear();
@@ -272,6 +265,16 @@ grpc::Status RecognitionSession::Reopen() {
                       "connection lost and not restored within " +
                           std::to_string(options_.reconnect_timeout.count()) +
                           " ms: " + last.error_message());
+}
+
+void RecognitionSession::ThrowIfEnded(const char* call) const {
+  if (ended_) {
+    throw RpcError("Session", final_status_.ok()
+                                  ? grpc::Status(grpc::StatusCode::FAILED_PRECONDITION,
+                                                 "the session has ended")
+                                  : final_status_);
+  }
+  if (closing_) throw std::logic_error(std::string("RecognitionSession: ") + call + " after Close");
 }
 
 void RecognitionSession::End(const grpc::Status& status) {

@@ -135,6 +135,9 @@ class RecognitionSession {
   // end the session with.
   grpc::Status Reopen();
   void End(const grpc::Status& status);
+  // REQUIRES: write_mu_ and state_mu_ held. Throws RpcError when the session has ended,
+  // std::logic_error after Close().
+  void ThrowIfEnded(const char* call) const;
 
   const Connection& connection_;
   const SessionOptions options_;
