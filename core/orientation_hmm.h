@@ -11,8 +11,11 @@
 //                 the azimuths that land in sector j after turning by Delta which started in
 //                 sector i. Columns sum to 1; rows too when the sectors are equal.
 //   emissions     b_i(o) = TC(S_i, o) / sum_j TC(S_j, o) (uniform when every TC is 0).
-//   decoding      Viterbi per object over the window, in log space (emissions floored at 1e-12
-//                 so that a zero similarity never makes every path impossible).
+//   decoding      Viterbi per object over the window (emissions floored at 1e-12 so that a zero
+//                 similarity never makes every path impossible). The engine runs it in linear
+//                 space with per-frame rescaling and TC_i in place of b_i: b_i(o_t) differs from
+//                 TC_i by a factor common to all states at frame t, so every path's rank, and
+//                 so the decoded path, is the same.
 //   winner        argmax_k mean_t TC(o_t, state on object k's Viterbi path at t); this mean is
 //                 the reported score.
 // Matched views (rejection rule): at each frame, the model view of the path's sector most

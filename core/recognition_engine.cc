@@ -134,10 +134,13 @@ FrameUpdate RecognitionEngine::Answer() {
   update.frame_index = frames_seen_ - 1;
   std::vector<Assessment> assessments = Assess(*index_, window_);
   if (assessments.empty()) return update;
-  std::sort(assessments.begin(), assessments.end(), [](const Assessment& a, const Assessment& b) {
-    return a.score > b.score || (a.score == b.score && a.object->id() < b.object->id());
-  });
   const std::size_t shown = std::min<std::size_t>(assessments.size(), options_.top_k);
+  // Only the shown objects need ordering (an HMM session assesses every object per frame).
+  std::partial_sort(assessments.begin(), assessments.begin() + static_cast<std::ptrdiff_t>(shown),
+                    assessments.end(), [](const Assessment& a, const Assessment& b) {
+                      return a.score > b.score ||
+                             (a.score == b.score && a.object->id() < b.object->id());
+                    });
   for (std::size_t i = 0; i < shown; ++i) {
     update.ranking.push_back({assessments[i].object->id(), assessments[i].score});
   }

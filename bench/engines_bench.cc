@@ -1,0 +1,251 @@
+// Speed of the view index and the engines (issue 3, item 8), on synthetic model sets of 100 and
+// 1000 objects x 72 views, plus the kd-tree's recall against exact search on COIL-100.
+//
+//   exact-scan/<objects>             one brute-force Tanimoto pass over every view
+//                                    (ViewIndexSnapshot::SimilarityToEveryView)
+//   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
+//                                    kd-tree index, default options
+//   kd-search/coil100, exact-search/coil100
+//                                    one retrieval list (N_L = 4) over COIL-100's views at
+//                                    multiples of 10 degrees, queried with the views in between;
+//                                    the kd-tree reports recall@4 against exact search
+//
+// Synthetic objects resemble COIL-100's CEDDs (about 21 non-zero bins of 144, values mostly 1-2,
+// bins of unequal popularity): each object has three keyframe descriptors around the circle and
+// its view at azimuth a blends the two nearest keyframes, with +-1 jitter on some bins. Queries
+// are views 2.5 degrees off the model views. Everything is seeded: every run sees the same sets.
+//
+// Run: build/orbit_bench --benchmark_filter='exact-scan|session-frame|coil100'
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <memory>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "client/image_file.h"
+#include "core/cedd.h"
+#include "core/recognition_engine.h"
+#include "core/view_index.h"
+
+namespace orbit {
+namespace {
+
+constexpr int kViewsPerObject = 72;
+
+class SyntheticObjects {
+ public:
+  explicit SyntheticObjects(int objects) : random_(20240611) {
+    std::vector<double> popularity(kDescriptorSize);
+    for (int bin = 0; bin < kDescriptorSize; ++bin) popularity[bin] = std::exp(-bin / 30.0);
+    std::shuffle(popularity.begin(), popularity.end(), random_);
+    bins_ = std::discrete_distribution<int>(popularity.begin(), popularity.end());
+    for (int o = 0; o < objects; ++o) {
+      keyframes_.push_back({Keyframe(), Keyframe(), Keyframe()});
+    }
+  }
+
+  // View of object o at azimuth a (degrees), blended from the keyframes with jitter.
+  DescriptorValues View(int o, double azimuth) {
+    const double position = azimuth / 120.0;
+    const int first = static_cast<int>(std::floor(position)) % 3;
+    const double t = position - std::floor(position);
+    const auto& a = keyframes_[o][first];
+    const auto& b = keyframes_[o][(first + 1) % 3];
+    std::bernoulli_distribution jitter(0.1), up(0.5);
+    DescriptorValues view{};
+    for (int i = 0; i < kDescriptorSize; ++i) {
+      int value = static_cast<int>(std::lround((1 - t) * a[i] + t * b[i]));
+      if (value > 0 && jitter(random_)) value += up(random_) ? 1 : -1;
+      view[i] = static_cast<std::uint8_t>(std::clamp(value, 0, kDescriptorMaxValue));
+    }
+    return view;
+  }
+
+  std::vector<ObjectModel> Models() {
+    std::vector<ObjectModel> models;
+    for (int o = 0; o < static_cast<int>(keyframes_.size()); ++o) {
+      ObjectModel model;
+      model.id = o + 1;
+      model.name = "synthetic" + std::to_string(o + 1);
+      for (int v = 0; v < kViewsPerObject; ++v) {
+        ModelView view;
+        view.descriptor = View(o, v * 5.0);
+        view.azimuth = v * 5.0;
+        view.typical_distance = 0.2;
+        model.views.push_back(view);
+      }
+      models.push_back(std::move(model));
+    }
+    return models;
+  }
+
+  // A sequence of frames of one object, 10 degrees apart, starting between two model views.
+  std::vector<QueryFrame> Frames(int o, double start, int count) {
+    std::vector<QueryFrame> frames;
+    for (int k = 0; k < count; ++k) {
+      const double azimuth = std::fmod(start + 2.5 + 10.0 * k, 360.0);
+      frames.push_back({{DescriptorVariant::kCeddLire, View(o, azimuth)}, azimuth + 33.0});
+    }
+    return frames;
+  }
+
+ private:
+  DescriptorValues Keyframe() {
+    // Values 1..7 with COIL-100's proportions (53% ones, 20% twos, ...).
+    std::discrete_distribution<int> value({0, 53, 20, 10, 5, 4.5, 5, 2});
+    DescriptorValues keyframe{};
+    for (int n = 0; n < 21; ++n) keyframe[bins_(random_)] = static_cast<std::uint8_t>(value(random_));
+    return keyframe;
+  }
+
+  std::mt19937 random_;
+  std::discrete_distribution<int> bins_;
+  std::vector<std::array<DescriptorValues, 3>> keyframes_;
+};
+
+struct SyntheticSet {
+  std::unique_ptr<SyntheticObjects> objects;
+  std::unique_ptr<ViewIndex> index;
+};
+
+// Built once per size and mode, on first use.
+SyntheticSet& Synthetic(int objects, SearchMode mode) {
+  static std::map<std::pair<int, SearchMode>, SyntheticSet> sets;
+  SyntheticSet& set = sets[{objects, mode}];
+  if (!set.index) {
+    set.objects = std::make_unique<SyntheticObjects>(objects);
+    set.index = std::make_unique<ViewIndex>(set.objects->Models(), ViewIndexOptions{.search = mode});
+  }
+  return set;
+}
+
+void BM_ExactScan(benchmark::State& state, int objects) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kExact);
+  const auto snapshot = set.index->Snapshot();
+  const DescriptorValues query = set.objects->View(objects / 2, 102.5);
+  std::vector<float> similarities;
+  for (auto _ : state) {
+    snapshot->SimilarityToEveryView(query, similarities);
+    benchmark::DoNotOptimize(similarities.data());
+  }
+  state.counters["views"] = static_cast<double>(snapshot->view_count());
+}
+
+void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objects) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
+  const auto snapshot = set.index->Snapshot();
+  const auto engine = CreateEngine(engine_name);
+  const int window = engine->options().window;
+  // Frames of a few objects, cycled: the window is full before timing starts.
+  std::vector<QueryFrame> frames;
+  for (int o = 0; o < 4; ++o) {
+    for (const QueryFrame& f : set.objects->Frames(o * objects / 4, 40.0 * o, 2 * window)) {
+      frames.push_back(f);
+    }
+  }
+  for (int k = 0; k < window; ++k) engine->Observe(snapshot, frames[k]);
+  std::size_t next = window;
+  int correct = 0, answered = 0;
+  for (auto _ : state) {
+    const FrameUpdate update = engine->Observe(snapshot, frames[next]);
+    benchmark::DoNotOptimize(update.ranking.data());
+    state.PauseTiming();
+    const int truth = static_cast<int>(next / (2 * window)) * objects / 4 + 1;
+    correct += !update.ranking.empty() && update.ranking[0].object == truth;
+    ++answered;
+    next = (next + 1) % frames.size();
+    state.ResumeTiming();
+  }
+  state.counters["top1"] = answered > 0 ? static_cast<double>(correct) / answered : 0;
+}
+
+// COIL-100 descriptors (cedd-lire), extracted on first use: views at multiples of 10 degrees as
+// the model, the others as queries.
+struct CoilSplit {
+  std::vector<ObjectModel> models;
+  std::vector<DescriptorValues> queries;
+};
+
+const CoilSplit& Coil() {
+  static const CoilSplit split = [] {
+    const char* env = std::getenv("ORBIT_DATA");
+    const std::filesystem::path dir =
+        (env != nullptr ? std::filesystem::path(env)
+                        : std::filesystem::path(ORBIT_SOURCE_DIR) / ".." / "shared" / "data") /
+        "coil-100";
+    CoilSplit s;
+    for (int n = 1; n <= 100; ++n) {
+      ObjectModel model;
+      model.id = n;
+      model.name = "obj" + std::to_string(n);
+      for (int azimuth = 0; azimuth < 360; azimuth += 5) {
+        const std::string file =
+            (dir / ("obj" + std::to_string(n) + "__" + std::to_string(azimuth) + ".png")).string();
+        const DescriptorValues values =
+            ExtractCedd(ReadImageFile(file), DescriptorVariant::kCeddLire).values;
+        if (azimuth % 10 == 0) {
+          model.views.push_back({values, static_cast<double>(azimuth), {}, 0});
+        } else {
+          s.queries.push_back(values);
+        }
+      }
+      s.models.push_back(std::move(model));
+    }
+    return s;
+  }();
+  return split;
+}
+
+void BM_CoilSearch(benchmark::State& state, SearchMode mode) {
+  const CoilSplit& coil = Coil();
+  static std::map<SearchMode, std::unique_ptr<ViewIndex>> indexes;
+  auto& index = indexes[mode];
+  if (!index) index = std::make_unique<ViewIndex>(coil.models, ViewIndexOptions{.search = mode});
+  const auto snapshot = index->Snapshot();
+  // Recall@4 against exact search, over every query.
+  long found = 0;
+  for (const DescriptorValues& q : coil.queries) {
+    std::set<std::pair<ObjectId, int>> truth;
+    for (const ViewMatch& m : snapshot->SearchExact(q, 4)) truth.insert({m.object, m.view});
+    for (const ViewMatch& m : snapshot->Search(q, 4)) found += truth.count({m.object, m.view});
+  }
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(snapshot->Search(coil.queries[next], 4).data());
+    next = (next + 1) % coil.queries.size();
+  }
+  state.counters["recall@4"] = static_cast<double>(found) / (4.0 * coil.queries.size());
+}
+
+int RegisterEngineBenchmarks() {
+  for (const int objects : {100, 1000}) {
+    benchmark::RegisterBenchmark(("exact-scan/" + std::to_string(objects)).c_str(), BM_ExactScan,
+                                 objects)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  for (const char* engine : {"vci", "hmm"}) {
+    for (const int objects : {100, 1000}) {
+      benchmark::RegisterBenchmark(
+          ("session-frame/" + std::string(engine) + "/" + std::to_string(objects)).c_str(),
+          BM_SessionFrame, std::string(engine), objects)
+          ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  benchmark::RegisterBenchmark("exact-search/coil100", BM_CoilSearch, SearchMode::kExact)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("kd-search/coil100", BM_CoilSearch, SearchMode::kKdTree)
+      ->Unit(benchmark::kMicrosecond);
+  return 0;
+}
+
+const int registered = RegisterEngineBenchmarks();
+
+}  // namespace
+}  // namespace orbit
