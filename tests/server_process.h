@@ -19,11 +19,12 @@ namespace orbit::testing {
 
 struct ServerProcessOptions {
   // The model store; a fresh file in a temporary folder when unset (removed afterwards).
-  std::optional<std::filesystem::path> database;
+  std::optional<std::filesystem::path> database = std::nullopt;
   std::string listen = "127.0.0.1:0";  // port 0: the server picks a free one
-  std::optional<std::filesystem::path> tokens_file;
-  std::optional<std::filesystem::path> tls_cert, tls_key;
-  std::vector<std::string> extra_args;  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
+  std::optional<std::filesystem::path> tokens_file = std::nullopt;
+  std::optional<std::filesystem::path> tls_cert = std::nullopt;
+  std::optional<std::filesystem::path> tls_key = std::nullopt;
+  std::vector<std::string> extra_args = {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };
 
 class ServerProcess {
