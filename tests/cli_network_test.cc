@@ -1,12 +1,18 @@
 // The networked subcommands of `orbit` (enroll, recognize, info, demo) against a real
 // `orbit serve` process, as a user would type them.
+#include <unistd.h>
+
 #include <csignal>
+#include <filesystem>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include "client/connection.h"
+#include "client/models_client.h"
+#include "storage/sqlite_model_store.h"
 #include "tests/client_test_support.h"
 #include "tests/server_process.h"
 #include "tests/test_data.h"
@@ -136,6 +142,90 @@ TEST(CliNetwork, DemoEnrollsItsObjectsOnceAndRecognisesTheOneItCircles) {
   }
   ASSERT_FALSE(last_update.empty()) << second.out;
   EXPECT_EQ(nlohmann::json::parse(last_update)["candidates"][0]["name"], "demo-crate");
+}
+
+// Every line of `orbit list` without its last column (updated_at).
+std::vector<std::string> WithoutTimestamps(const std::string& listing) {
+  std::vector<std::string> lines = OutputLines(listing);
+  for (std::string& line : lines) line = line.substr(0, line.rfind(' '));
+  return lines;
+}
+
+TEST(CliNetwork, ImportListAndDeleteWorkOnAServerAsOnAFile) {
+  ServerProcess server;
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  const std::string coil = " --layout coil100 --data " + (testing::DataDir() / "coil-100").string();
+  const auto imported = RunCommand(orbit + "import" + at + coil + " --objects 1-2");
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_EQ(OutputLines(imported.out),
+            (std::vector<std::string>{"enrolled obj1 (id 1, 72 views)",
+                                      "enrolled obj2 (id 2, 72 views)"}));
+  EXPECT_NE(imported.err.find("2 objects enrolled, 0 already present, on " + server.address()),
+            std::string::npos)
+      << imported.err;
+  const auto resumed = RunCommand(orbit + "import" + at + coil + " --objects 1-3");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(OutputLines(resumed.out),
+            (std::vector<std::string>{"skipped obj1 (already on the server as id 1)",
+                                      "skipped obj2 (already on the server as id 2)",
+                                      "enrolled obj3 (id 3, 72 views)"}));
+
+  // The same import into a file stores the very same views (same descriptors, same seeded
+  // typical distances), and both list alike.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("orbit_cli_network_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string db = (dir / "models.db").string();
+  ASSERT_EQ(RunCommand(orbit + "import --db " + db + coil + " --objects 1-3").exit_code, 0);
+  {
+    SqliteModelStore store(db);
+    const std::optional<StoredObject> local = store.Get(2);
+    ASSERT_TRUE(local.has_value());
+    const Connection connection(testing::At(server.address()));
+    const v1::GetObjectResponse remote = ModelsClient(connection).GetObject(ObjectById(2), true);
+    ASSERT_EQ(remote.views_size(), static_cast<int>(local->views.size()));
+    for (int f = 0; f < remote.views_size(); ++f) {
+      const ModelView& view = local->views[f];
+      const std::string cedd(view.descriptor.begin(), view.descriptor.end());
+      EXPECT_EQ(remote.views(f).cedd(), cedd);
+      EXPECT_EQ(remote.views(f).azimuth_deg(), view.azimuth);
+      EXPECT_DOUBLE_EQ(remote.views(f).typical_distance(), view.typical_distance);
+    }
+  }
+  const auto listed_remote = RunCommand(orbit + "list" + at);
+  const auto listed_local = RunCommand(orbit + "list --db " + db);
+  ASSERT_EQ(listed_remote.exit_code, 0) << listed_remote.err;
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out), WithoutTimestamps(listed_local.out));
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-lire 72");
+  const auto json = RunCommand(orbit + "list --json" + at);
+  ASSERT_EQ(OutputLines(json.out).size(), 3u);
+  EXPECT_EQ(nlohmann::json::parse(OutputLines(json.out)[0])["name"], "obj1");
+
+  const auto deleted = RunCommand(orbit + "delete" + at + " obj2");
+  ASSERT_EQ(deleted.exit_code, 0) << deleted.err;
+  EXPECT_EQ(deleted.out, "deleted obj2 (id 2, 72 views)\n");
+  const auto missing = RunCommand(orbit + "delete" + at + " obj2");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("no object named \"obj2\" on " + server.address()),
+            std::string::npos)
+      << missing.err;
+  EXPECT_EQ(OutputLines(RunCommand(orbit + "list" + at).out).size(), 2u);
+
+  // One of --db and --server, and the server's variant.
+  const auto neither = RunCommand(orbit + "list");
+  EXPECT_EQ(neither.exit_code, 1);
+  EXPECT_NE(neither.err.find("give --db FILE (a local model store) or --server HOST:PORT"),
+            std::string::npos)
+      << neither.err;
+  EXPECT_NE(RunCommand(orbit + "list --db " + db + at).exit_code, 0);
+  const auto variant =
+      RunCommand(orbit + "import" + at + coil + " --objects 4 --variant cedd-full");
+  EXPECT_EQ(variant.exit_code, 1);
+  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-lire)"),
+            std::string::npos)
+      << variant.err;
+  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

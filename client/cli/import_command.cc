@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <functional>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -12,6 +13,10 @@
 #include <vector>
 
 #include "client/cli/commands.h"
+#include "client/cli/network_options.h"
+#include "client/enroller.h"
+#include "client/models_client.h"
+#include "client/rpc_error.h"
 #include "client/dataset.h"
 #include "client/image_file.h"
 #include "client/progress_bar.h"
@@ -25,11 +30,12 @@ namespace {
 
 struct ImportOptions {
   std::string db;
+  NetworkOptions network;
   std::string layout;
   std::string data;
   std::string objects;
   std::string manifest;
-  std::string variant = "cedd-lire";
+  std::string variant;  // "": cedd-lire for a file, the server's variant with --server
   std::uint64_t seed = 1;
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
 };
@@ -103,10 +109,74 @@ std::vector<ModelView> ComputeViews(const ObjectImages& object, DescriptorVarian
   return views;
 }
 
+// Where the objects go: a model store file (--db) or a server (--server), which enrolls each
+// object atomically too.
+struct ImportTarget {
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;
+  std::string where;        // "in the store" / "on the server", for skipped objects
+  std::string destination;  // "in FILE" / "on HOST:PORT", for the summary
+  std::function<std::optional<ObjectId>(const std::string& name)> find;
+  std::function<ObjectId(const Enrollment& enrollment)> enroll;
+};
+
+ImportTarget StoreTarget(const ImportOptions& options) {
+  SqliteModelStoreOptions store_options;
+  store_options.create_if_missing = true;
+  auto store = std::make_shared<SqliteModelStore>(options.db, store_options);
+  ImportTarget target;
+  target.variant = *ParseVariant(options.variant.empty() ? "cedd-lire" : options.variant);
+  target.where = "in the store";
+  target.destination = "in " + options.db;
+  target.find = [store](const std::string& name) -> std::optional<ObjectId> {
+    if (std::optional<ObjectSummary> existing = store->Find(name)) return existing->id;
+    return std::nullopt;
+  };
+  target.enroll = [store](const Enrollment& enrollment) { return store->Enroll(enrollment); };
+  return target;
+}
+
+v1::View ToApiView(const ModelView& view) {
+  v1::View api;
+  api.set_cedd(view.descriptor.data(), view.descriptor.size());
+  api.set_azimuth_deg(view.azimuth);
+  if (view.elevation) api.set_elevation_deg(*view.elevation);
+  api.set_typical_distance(view.typical_distance);
+  return api;
+}
+
+ImportTarget ServerTarget(const ImportOptions& options) {
+  auto connection = std::make_shared<Connection>(ToConnectionOptions(options.network));
+  auto enroller = std::make_shared<Enroller>(*connection);
+  ImportTarget target;
+  target.variant = enroller->variant();
+  if (!options.variant.empty() && *ParseVariant(options.variant) != target.variant) {
+    throw std::invalid_argument("--variant " + options.variant + " is not the server's (" +
+                                std::string(VariantName(target.variant)) + ")");
+  }
+  target.where = "on the server";
+  target.destination = "on " + options.network.server;
+  target.find = [connection](const std::string& name) -> std::optional<ObjectId> {
+    try {
+      return ModelsClient(*connection).GetObject(ObjectByName(name)).object().id();
+    } catch (const RpcError& e) {
+      if (e.code() == grpc::StatusCode::NOT_FOUND) return std::nullopt;
+      throw;
+    }
+  };
+  // `connection` is captured so that it outlives the enroller that refers to it.
+  target.enroll = [connection, enroller](const Enrollment& enrollment) {
+    std::vector<v1::View> views;
+    for (const ModelView& view : enrollment.views) views.push_back(ToApiView(view));
+    return enroller->EnrollViews(enrollment.name, views).id();
+  };
+  return target;
+}
+
 int RunImport(const ImportOptions& options) {
-  const DescriptorVariant variant = *ParseVariant(options.variant);
+  const bool remote = UsesServer(options.db, options.network);
   const std::vector<ObjectImages> objects = GroupByObject(ListImages(options));
-  SqliteModelStore store(options.db, {.create_if_missing = true});
+  const ImportTarget target = remote ? ServerTarget(options) : StoreTarget(options);
+  const DescriptorVariant variant = target.variant;
 
   const bool terminal = ::isatty(STDERR_FILENO) == 1;
   ProgressBar progress(std::cerr, terminal);
@@ -115,10 +185,10 @@ int RunImport(const ImportOptions& options) {
   for (std::size_t i = 0; i < objects.size(); ++i) {
     const ObjectImages& object = objects[i];
     progress.Update("import", i, objects.size());
-    if (std::optional<ObjectSummary> existing = store.Find(object.name)) {
+    if (std::optional<ObjectId> existing = target.find(object.name)) {
       // An import that was interrupted carries on where it stopped.
-      std::cout << "skipped " << object.name << " (already in the store as id " << existing->id
-                << ")\n";
+      std::cout << "skipped " << object.name << " (already " << target.where << " as id "
+                << *existing << ")\n";
       ++skipped;
       continue;
     }
@@ -126,7 +196,7 @@ int RunImport(const ImportOptions& options) {
     enrollment.name = object.name;
     enrollment.variant = variant;
     enrollment.views = ComputeViews(object, variant, options.seed, options.threads);
-    const ObjectId id = store.Enroll(enrollment);
+    const ObjectId id = target.enroll(enrollment);
     // Printed only once the object is durable: a line here is a promise.
     std::cout << "enrolled " << object.name << " (id " << id << ", " << enrollment.views.size()
               << " views)" << std::endl;
@@ -134,7 +204,7 @@ int RunImport(const ImportOptions& options) {
   }
   progress.Update("import", objects.size(), objects.size());
   std::cerr << "orbit import: " << enrolled << " objects enrolled, " << skipped
-            << " already present, in " << options.db << "\n";
+            << " already present, " << target.destination << "\n";
   return 0;
 }
 
@@ -145,10 +215,11 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "import",
       "Compute the descriptors of a dataset's images and enroll one object per name in a model\n"
-      "store (created if missing), each object in its own transaction. Prints one line per\n"
+      "store (--db, created if missing) or on a server (--server; admin token), each object in\n"
+      "its own transaction. Prints one line per\n"
       "object once it is durable; objects already in the store are skipped, so an interrupted\n"
       "import resumes when run again. Progress goes to stderr.");
-  command->add_option("--db", options->db, "model store file (SQLite)")->required();
+  AddDatabaseOrServerOptions(*command, options->db, options->network);
   command->add_option("--layout", options->layout, "coil100: objN__A.png files in --data;\n"
                                                    "manifest: a CSV file (--manifest)")
       ->required()
@@ -158,9 +229,9 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
                       "COIL-100 objects to import, e.g. 1-20 or 1-5,9 (default: all)");
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
-  command->add_option("--variant", options->variant, "descriptor variant")
-      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
-      ->capture_default_str();
+  command->add_option("--variant", options->variant,
+                      "descriptor variant (default: cedd-lire; with --server, the server's)")
+      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}));
   command->add_option("--seed", options->seed, "seed of the noisy copies for typical distances")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "threads computing descriptors")

@@ -6,6 +6,9 @@
 #include <nlohmann/json.hpp>
 
 #include "client/cli/commands.h"
+#include "client/cli/network_options.h"
+#include "client/cli/object_summary.h"
+#include "client/models_client.h"
 #include "storage/sqlite_model_store.h"
 
 namespace orbit::cli {
@@ -13,6 +16,7 @@ namespace {
 
 struct ListOptions {
   std::string db;
+  NetworkOptions network;
   bool json = false;
 };
 
@@ -38,14 +42,22 @@ std::string JsonLine(const ObjectSummary& object) {
 }
 
 int RunList(const ListOptions& options) {
+  auto print = [&](const ObjectSummary& object) {
+    std::cout << (options.json ? JsonLine(object) : PlainLine(object)) << "\n";
+  };
+  if (UsesServer(options.db, options.network)) {
+    const Connection connection(ToConnectionOptions(options.network));
+    for (const v1::ObjectInfo& object : ModelsClient(connection).ListAllObjects()) {
+      print(SummaryOf(object));
+    }
+    return 0;
+  }
   SqliteModelStore store(options.db);
   ListRequest request{.after_id = 0, .limit = 1000};
   for (;;) {
     const std::vector<ObjectSummary> page = store.List(request);
     if (page.empty()) return 0;
-    for (const ObjectSummary& object : page) {
-      std::cout << (options.json ? JsonLine(object) : PlainLine(object)) << "\n";
-    }
+    for (const ObjectSummary& object : page) print(object);
     request.after_id = page.back().id;
   }
 }
@@ -56,10 +68,11 @@ void AddListCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<ListOptions>();
   CLI::App* command = app.add_subcommand(
       "list",
-      "List the objects of a model store in id order, one per line:\n"
+      "List the objects of a model store (--db) or a server (--server) in id order, one per\n"
+      "line:\n"
       "`ID NAME VARIANT VIEWS UPDATED_AT`, or with --json one JSON object per line with\n"
       "id, name, variant, views, created_at, updated_at and metadata.");
-  command->add_option("--db", options->db, "model store file")->required();
+  AddDatabaseOrServerOptions(*command, options->db, options->network);
   command->add_flag("--json", options->json, "one JSON object per line");
   command->callback([options, &exit_code] { exit_code = RunList(*options); });
 }

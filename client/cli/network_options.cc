@@ -1,6 +1,7 @@
 #include "client/cli/network_options.h"
 
 #include <cmath>
+#include <stdexcept>
 
 namespace orbit::cli {
 
@@ -23,6 +24,19 @@ CLI::Option* AddNetworkOptions(CLI::App& command, NetworkOptions& options, bool 
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   return server;
+}
+
+void AddDatabaseOrServerOptions(CLI::App& command, std::string& db, NetworkOptions& network) {
+  CLI::Option* file = command.add_option("--db", db, "model store file (SQLite)");
+  CLI::Option* server = AddNetworkOptions(command, network, /*server_required=*/false);
+  file->excludes(server);
+}
+
+bool UsesServer(const std::string& db, const NetworkOptions& network) {
+  if (db.empty() && network.server.empty()) {
+    throw std::invalid_argument("give --db FILE (a local model store) or --server HOST:PORT");
+  }
+  return !network.server.empty();
 }
 
 ConnectionOptions ToConnectionOptions(const NetworkOptions& options) {

@@ -25,6 +25,14 @@ struct NetworkOptions {
 // `excludes` with --db.
 CLI::Option* AddNetworkOptions(CLI::App& command, NetworkOptions& options, bool server_required);
 
+// For subcommands that work on a model store file or on a server (`import`, `list`, `delete`):
+// adds --db FILE and the network options above, the two mutually exclusive.
+void AddDatabaseOrServerOptions(CLI::App& command, std::string& db, NetworkOptions& network);
+
+// True when the command is to use the server, false for the file. Throws
+// std::invalid_argument when neither --db nor --server was given.
+bool UsesServer(const std::string& db, const NetworkOptions& network);
+
 // The connection those options describe; reads the token file. Throws std::runtime_error when
 // the token file cannot be read.
 ConnectionOptions ToConnectionOptions(const NetworkOptions& options);
