@@ -13,6 +13,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// A stream end that a new stream may cure: the connection dropped or the server went away
+// (UNAVAILABLE), or the server cancelled the call as it shut down (CANCELLED; the device's own
+// cancellation is told apart by the caller).
+bool IsTransient(const grpc::Status& status) {
+  return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
+         status.error_code() == grpc::StatusCode::CANCELLED;
+}
+
 // The window the server will keep: the session's own, else the server's default, else the
 // largest the API allows (replaying more frames than the window changes nothing).
 int WindowSize(const SessionOptions& options, const v1::ServerInfoResponse& info) {
@@ -181,7 +189,7 @@ void RecognitionSession::ReadUpdates() {
                                [this](const SentFrame& f) { return f.epoch == epoch_; });
     }
     // A device that has closed its side only needs the stream back for frames still owed.
-    const bool reconnect = status.error_code() == grpc::StatusCode::UNAVAILABLE && !cancelled &&
+    const bool reconnect = IsTransient(status) && !cancelled &&
                            options_.reconnect_timeout.count() > 0 && (!closing_ || unanswered);
     if (reconnect) {
       status = Reopen();
@@ -258,7 +266,7 @@ grpc::Status RecognitionSession::Reopen() {
       return grpc::Status::OK;
     }
     last = stream_->Finish();
-    if (last.error_code() != grpc::StatusCode::UNAVAILABLE) return last;
+    if (!IsTransient(last)) return last;
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
   }
   return grpc::Status(grpc::StatusCode::UNAVAILABLE,

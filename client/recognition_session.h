@@ -8,7 +8,8 @@
 // azimuth travel per frame.
 //
 // Reconnection: when the stream ends with UNAVAILABLE (the server restarted, the network
-// dropped) and the session was not closed by the device, a new stream is opened with the same
+// dropped) or with a CANCELLED the device did not cause (a server cancelling its calls as it
+// shuts down), and the session was not closed by the device, a new stream is opened with the same
 // options and the session replays the frames still in the window - the last W answered frames,
 // whose updates are not delivered again - then every frame not yet answered. The server thus
 // rebuilds the same window and the updates continue in order, none lost and none repeated,
