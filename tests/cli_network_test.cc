@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <csignal>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -142,6 +144,61 @@ TEST(CliNetwork, DemoEnrollsItsObjectsOnceAndRecognisesTheOneItCircles) {
   }
   ASSERT_FALSE(last_update.empty()) << second.out;
   EXPECT_EQ(nlohmann::json::parse(last_update)["candidates"][0]["name"], "demo-crate");
+}
+
+TEST(CliNetwork, TokensAndTlsFromTheCommandLine) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("orbit_cli_tls_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream tokens(dir / "tokens");
+    tokens << "admin-token-0123456 admin\nreader-token-0123456 recognize\n";
+    std::ofstream reader(dir / "reader.token");
+    reader << "reader-token-0123456\n";
+  }
+  const std::string make_cert =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=edge.test "
+      "-addext subjectAltName=DNS:edge.test -keyout " + (dir / "key.pem").string() +
+      " -out " + (dir / "cert.pem").string() + " 2>/dev/null";
+  ASSERT_EQ(std::system(make_cert.c_str()), 0) << "openssl could not make a test certificate";
+  testing::ServerProcessOptions options;
+  options.tokens_file = dir / "tokens";
+  options.tls_cert = dir / "cert.pem";
+  options.tls_key = dir / "key.pem";
+  ServerProcess server(options);
+  const std::string net = " --server " + server.address() + " --tls-ca " +
+                          (dir / "cert.pem").string() + " --tls-server-name edge.test";
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string reader_file = " --token-file " + (dir / "reader.token").string();
+
+  const auto enrolled = RunCommand(orbit + "enroll" + net + " --token admin-token-0123456" +
+                                   " --name obj1" + Frames(1, EveryTwentyDegrees()));
+  ASSERT_EQ(enrolled.exit_code, 0) << enrolled.err;
+  const auto denied =
+      RunCommand(orbit + "enroll" + net + reader_file + " --name obj2" + Frames(2, {0, 20}));
+  EXPECT_EQ(denied.exit_code, 1);
+  EXPECT_NE(denied.err.find("PERMISSION_DENIED"), std::string::npos) << denied.err;
+  const auto anonymous = RunCommand("env -u ORBIT_TOKEN " + orbit + "info" + net);
+  EXPECT_EQ(anonymous.exit_code, 1);
+  EXPECT_NE(anonymous.err.find("UNAUTHENTICATED"), std::string::npos) << anonymous.err;
+
+  // The token from the environment; a token file on the command line wins over it.
+  EXPECT_EQ(RunCommand("ORBIT_TOKEN=reader-token-0123456 " + orbit + "info" + net).exit_code, 0);
+  const auto file_wins =
+      RunCommand("ORBIT_TOKEN=stale-token-000000000 " + orbit + "list" + net + reader_file);
+  ASSERT_EQ(file_wins.exit_code, 0) << file_wins.err;
+  EXPECT_EQ(file_wins.out.rfind("1 obj1 cedd-lire 18 ", 0), 0u) << file_wins.out;
+  const auto recognised = RunCommand(orbit + "recognize --json" + net + reader_file +
+                                     Frames(1, {30, 50}));
+  ASSERT_EQ(recognised.exit_code, 0) << recognised.err;
+  EXPECT_EQ(nlohmann::json::parse(OutputLines(recognised.out).back())["candidates"][0]["name"],
+            "obj1");
+
+  // Plaintext against the TLS port fails.
+  EXPECT_NE(RunCommand(orbit + "info --timeout 3 --server " + server.address() + reader_file)
+                .exit_code,
+            0);
+  std::filesystem::remove_all(dir);
 }
 
 // Every line of `orbit list` without its last column (updated_at).

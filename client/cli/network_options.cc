@@ -9,12 +9,13 @@ CLI::Option* AddNetworkOptions(CLI::App& command, NetworkOptions& options, bool 
   CLI::Option* server =
       command.add_option("--server", options.server, "the Orbit server, HOST:PORT");
   if (server_required) server->required();
-  CLI::Option* token = command.add_option("--token", options.token,
-                                          "bearer token (default: $ORBIT_TOKEN)")
-                           ->envname("ORBIT_TOKEN");
-  command.add_option("--token-file", options.token_file, "file whose first line is the token")
-      ->check(CLI::ExistingFile)
-      ->excludes(token);
+  command.add_option("--token", options.token, "bearer token (default: $ORBIT_TOKEN)")
+      ->envname("ORBIT_TOKEN");
+  // Not exclusive with --token: a token file named on the command line beats an $ORBIT_TOKEN
+  // left in the environment.
+  command.add_option("--token-file", options.token_file,
+                     "file whose first line is the token (wins over --token)")
+      ->check(CLI::ExistingFile);
   command.add_option("--tls-ca", options.tls_ca,
                      "PEM root certificate(s) of the server's certificate: use TLS")
       ->check(CLI::ExistingFile);

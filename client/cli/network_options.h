@@ -14,7 +14,7 @@ namespace orbit::cli {
 struct NetworkOptions {
   std::string server;           // HOST:PORT
   std::string token;            // --token or $ORBIT_TOKEN
-  std::string token_file;       // --token-file: the token on its first line
+  std::string token_file;       // --token-file: the token on its first line; wins over token
   std::string tls_ca;           // --tls-ca: root certificate(s), PEM; TLS when given
   std::string tls_server_name;  // --tls-server-name: the name the certificate carries
   double timeout_seconds = 10;  // deadline of each unary call
