@@ -1,8 +1,6 @@
 // `orbit descriptor` as a user runs it: output format, variants, errors, help.
 #include <gtest/gtest.h>
 
-#include <sstream>
-
 #include "tests/test_data.h"
 
 namespace orbit {
@@ -11,13 +9,6 @@ namespace {
 using testing::DataDir;
 using testing::OrbitBinary;
 using testing::RunCommand;
-
-std::vector<std::string> Lines(const std::string& text) {
-  std::vector<std::string> lines;
-  std::istringstream in(text);
-  for (std::string line; std::getline(in, line);) lines.push_back(line);
-  return lines;
-}
 
 // The reference line for a COIL-100 image, with its path as given on the command line.
 std::string ReferenceLine(const std::string& relative, const std::string& shown_path) {
@@ -40,7 +31,7 @@ TEST(CliDescriptor, PrintsOneLinePerImageAndReportsUnreadableFiles) {
   const auto result =
       RunCommand(OrbitBinary() + " descriptor " + a + " /nonexistent/missing.png " + b);
   EXPECT_EQ(result.exit_code, 1);
-  const auto lines = Lines(result.out);
+  const auto lines = testing::OutputLines(result.out);
   ASSERT_EQ(lines.size(), 2u) << result.out;
   EXPECT_EQ(lines[0], ReferenceLine("coil-100/obj1__0.png", a));
   EXPECT_EQ(lines[1], ReferenceLine("coil-100/obj42__90.png", b));
@@ -62,8 +53,8 @@ TEST(CliDescriptor, VariantsDifferWhereLireIgnoresPixels) {
   const auto full = RunCommand(OrbitBinary() + " descriptor --variant cedd-full " + file);
   EXPECT_EQ(lire.exit_code, 0);
   EXPECT_EQ(full.exit_code, 0);
-  EXPECT_EQ(Lines(lire.out).size(), 1u);
-  EXPECT_EQ(Lines(full.out).size(), 1u);
+  EXPECT_EQ(testing::OutputLines(lire.out).size(), 1u);
+  EXPECT_EQ(testing::OutputLines(full.out).size(), 1u);
   EXPECT_NE(lire.out, full.out);
 }
 
