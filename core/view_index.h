@@ -49,7 +49,7 @@ enum class SearchMode {
 struct ViewIndexOptions {
   SearchMode search = SearchMode::kExact;
   int kd_trees = 4;         // FLANN randomised kd-trees per segment
-  int kd_checks = 128;      // leaves FLANN visits per segment and query
+  int kd_checks = 256;      // leaves FLANN visits per segment and query (see docs/results/engines-speed.md)
   int kd_candidates = 32;   // views FLANN proposes for re-ranking (at least the count asked)
 };
 
