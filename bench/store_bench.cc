@@ -1,5 +1,6 @@
-// Model store speed: what a server start-up costs (open + LoadAll of 1000 objects x 72 views)
-// and what one durable enrollment costs (one transaction, synchronous=FULL).
+// Model store speed: what a server start-up costs (open + LoadAll of 1000 objects x 72 views,
+// and the view index built from it) and what one durable enrollment costs (one transaction,
+// synchronous=FULL).
 //
 // The store is built once per run in the system's temp folder (1000 enrollments, a few seconds),
 // and removed at exit. Loads run with the file in the OS page cache, as on a server restart.
@@ -13,7 +14,9 @@
 #include <random>
 #include <string>
 
+#include "core/view_index.h"
 #include "storage/sqlite_model_store.h"
+#include "storage/view_index_loading.h"
 
 namespace orbit {
 namespace {
@@ -86,6 +89,27 @@ void BM_StoreLoadAllOpen(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations() * objects * kViewsPerObject);
 }
 
+// Start-up up to a searchable index: open, LoadAll, one-pass ViewIndex build (LoadViewIndex).
+void BM_StoreLoadIndex(benchmark::State& state, SearchMode mode) {
+  const int objects = static_cast<int>(state.range(0));
+  const std::filesystem::path& file = StoreOf(objects);
+  for (auto _ : state) {
+    SqliteModelStore store(file);
+    benchmark::DoNotOptimize(LoadViewIndex(store, DescriptorVariant::kCeddLire, {.search = mode}));
+  }
+}
+
+// The alternative LoadViewIndex avoids: the same objects added to the index one by one.
+void BM_IndexAddLoop(benchmark::State& state, SearchMode mode) {
+  const int objects = static_cast<int>(state.range(0));
+  SqliteModelStore store(StoreOf(objects));
+  const std::vector<ObjectModel> models = store.LoadAll();
+  for (auto _ : state) {
+    ViewIndex index(DescriptorVariant::kCeddLire, {.search = mode});
+    for (const ObjectModel& model : models) index.Add(model);
+  }
+}
+
 // One durable enrollment of a 72-view object (and its deletion, untimed, to keep the store
 // small): the latency a client waits for OK.
 void BM_StoreEnroll(benchmark::State& state) {
@@ -103,6 +127,12 @@ void BM_StoreEnroll(benchmark::State& state) {
 
 BENCHMARK(BM_StoreLoad)->Name("store-load")->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StoreLoadAllOpen)->Name("store-loadall-open")->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StoreLoadIndex, exact, SearchMode::kExact)
+    ->Name("store-load-index-exact")->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_StoreLoadIndex, kdtree, SearchMode::kKdTree)
+    ->Name("store-load-index-kdtree")->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_IndexAddLoop, kdtree, SearchMode::kKdTree)
+    ->Name("index-add-loop-kdtree")->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StoreEnroll)->Name("store-enroll/72")->Unit(benchmark::kMillisecond);
 
 }  // namespace

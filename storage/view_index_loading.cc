@@ -1,0 +1,27 @@
+#include "storage/view_index_loading.h"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "storage/store_error.h"
+
+namespace orbit {
+
+std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
+                                         const ViewIndexOptions& options) {
+  std::vector<ObjectModel> models = store.LoadAll();
+  for (const ObjectModel& model : models) {
+    if (model.variant != variant) {
+      throw StoreError(StoreError::Code::kIncompatible,
+                       "the store holds object \"" + model.name + "\" (id " +
+                           std::to_string(model.id) + ") in variant " +
+                           std::string(VariantName(model.variant)) + ", not " +
+                           std::string(VariantName(variant)));
+    }
+  }
+  if (models.empty()) return std::make_unique<ViewIndex>(variant, options);
+  return std::make_unique<ViewIndex>(std::move(models), options);
+}
+
+}  // namespace orbit
