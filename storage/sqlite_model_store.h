@@ -76,9 +76,9 @@ class SqliteModelStore final : public ModelStore {
   const std::filesystem::path file_;
   const SqliteModelStoreOptions options_;
 
-  std::mutex write_mutex_;  // one writer: guards writer_ and wal_pages_
-  std::unique_ptr<SqliteConnection> writer_;
-  int wal_pages_ = 0;  // pages in the write-ahead log after the last commit (a WAL hook sets it)
+  std::mutex write_mutex_;  // one writer: guards wal_pages_ and writer_
+  int wal_pages_ = 0;  // pages in the write-ahead log after the last commit (writer_'s WAL hook)
+  std::unique_ptr<SqliteConnection> writer_;  // declared after wal_pages_: its hook points there
 
   CheckpointGate checkpoint_gate_;  // every read is inside it
   std::mutex readers_mutex_;        // guards idle_readers_
