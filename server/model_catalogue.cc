@@ -3,22 +3,13 @@
 #include <stdexcept>
 
 #include "storage/store_error.h"
+#include "storage/view_index_loading.h"
 
 namespace orbit::server {
 
 ModelCatalogue::ModelCatalogue(ModelStore& store, DescriptorVariant variant,
                                ViewIndexOptions index_options)
-    : store_(store), index_(variant, index_options) {
-  for (ObjectModel& model : store_.LoadAll()) {
-    if (model.variant != variant) {
-      throw std::runtime_error("the store holds object '" + model.name + "' in variant " +
-                               std::string(VariantName(model.variant)) + ", but the server runs " +
-                               std::string(VariantName(variant)) +
-                               " (start it with that variant, or use another database)");
-    }
-    index_.Add(std::move(model));
-  }
-}
+    : store_(store), index_(LoadViewIndex(store, variant, index_options)) {}
 
 ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
   if (enrollment.variant != variant()) {
@@ -35,7 +26,7 @@ ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>
                                        const std::vector<std::string>& thumbnails) {
   std::lock_guard lock(write_mutex_);
   store_.AddViews(id, views, thumbnails);
-  index_.Remove(id);
+  index_->Remove(id);
   Reindex(id);
   return store_.Get(id)->summary;
 }
@@ -45,7 +36,7 @@ ObjectSummary ModelCatalogue::Delete(ObjectId id) {
   std::optional<StoredObject> object = store_.Get(id);
   if (!object) throw StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
   store_.Delete(id);
-  index_.Remove(id);
+  index_->Remove(id);
   return object->summary;
 }
 
@@ -57,7 +48,7 @@ void ModelCatalogue::Reindex(ObjectId id) {
   model.name = stored->summary.name;
   model.variant = stored->summary.variant;
   model.views = std::move(stored->views);
-  index_.Add(std::move(model));
+  index_->Add(std::move(model));
 }
 
 }  // namespace orbit::server

@@ -20,8 +20,9 @@ namespace orbit::server {
 
 class ModelCatalogue {
  public:
-  // Indexes every object of `store`. Throws std::runtime_error when the store holds an object
-  // of another variant than `variant` (naming it), and as ModelStore::LoadAll.
+  // Indexes every object of `store` in one pass (storage/view_index_loading.h). Throws StoreError
+  // kIncompatible when the store holds an object of another variant than `variant` (naming it),
+  // and as ModelStore::LoadAll.
   ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options);
 
   // Each throws as the ModelStore method of the same name, and std::invalid_argument when the
@@ -31,16 +32,16 @@ class ModelCatalogue {
                          const std::vector<std::string>& thumbnails);
   ObjectSummary Delete(ObjectId id);
 
-  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_.Snapshot(); }
+  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_->Snapshot(); }
   ModelStore& store() { return store_; }
-  DescriptorVariant variant() const { return index_.variant(); }
+  DescriptorVariant variant() const { return index_->variant(); }
 
  private:
   // Re-reads one object from the store into the index.
   void Reindex(ObjectId id);
 
   ModelStore& store_;
-  ViewIndex index_;
+  std::unique_ptr<ViewIndex> index_;
   std::mutex write_mutex_;
 };
 
