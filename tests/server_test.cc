@@ -503,6 +503,22 @@ TEST(Server, LimitsSessionsAndFrameRateWithResourceExhausted) {
   EXPECT_TRUE(open[1]->Finish().ok());
 }
 
+TEST(Server, RefusesOversizedMessagesWithResourceExhausted) {
+  ServerProcess server({.extra_args = {"--max-message-bytes", "65536"}});
+  Client client(server.address());
+  v1::ObjectInfo info;
+  ASSERT_TRUE(client.Enroll("obj71", 71, &info, {0, 90}).ok());
+  v1::SessionRequest huge;
+  huge.mutable_frame()->set_image(std::string(100000, 'x'));
+  huge.mutable_frame()->set_azimuth_deg(0);
+  const auto result = client.Session(v1::SessionOptions(), {huge});
+  EXPECT_EQ(result.status.error_code(), grpc::RESOURCE_EXHAUSTED) << result.status.error_message();
+  // The server carries on.
+  const auto next = client.Session(v1::SessionOptions(), {CoilFrame(71, 0, 0)});
+  ASSERT_TRUE(next.status.ok()) << next.status.error_message();
+  EXPECT_EQ(next.updates.at(0).candidates(0).name(), "obj71");
+}
+
 TEST(Server, ClosesIdleSessionsWithDeadlineExceeded) {
   ServerProcess server({.extra_args = {"--idle-timeout", "1"}});
   Client client(server.address());
