@@ -150,6 +150,18 @@ class Client {
   }
 
   v1::Recognition::Stub& recognition() { return *recognition_; }
+
+  // A session stream, opened with `options` (the `open` request already sent).
+  using SessionStream = grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>;
+  std::unique_ptr<SessionStream> OpenSession(grpc::ClientContext& context,
+                                             const v1::SessionOptions& options = {}) {
+    Prepare(context);
+    auto stream = recognition_->Session(&context);
+    v1::SessionRequest open;
+    *open.mutable_open() = options;
+    EXPECT_TRUE(stream->Write(open));
+    return stream;
+  }
   std::unique_ptr<grpc::ClientWriter<v1::EnrollRequest>> models_for_test(grpc::ClientContext* context,
                                                                          v1::ObjectInfo* info) {
     return models_->Enroll(context, info);
@@ -305,11 +317,9 @@ TEST(Server, DeletedObjectDisappearsFromAnOpenSessionAtItsNextFrame) {
     ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info).ok());
   }
   grpc::ClientContext context;
-  client.Prepare(context);
-  auto stream = client.recognition().Session(&context);
-  v1::SessionRequest open;
-  open.mutable_open()->set_top_k(5);
-  ASSERT_TRUE(stream->Write(open));
+  v1::SessionOptions options;
+  options.set_top_k(5);
+  auto stream = client.OpenSession(context, options);
   v1::SessionUpdate update;
   ASSERT_TRUE(stream->Write(CoilFrame(20, 0, 0)));
   ASSERT_TRUE(stream->Read(&update));
@@ -372,11 +382,7 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
 
   // A healthy session runs beside every bad one.
   grpc::ClientContext context;
-  client.Prepare(context);
-  auto healthy = client.recognition().Session(&context);
-  v1::SessionRequest open;
-  open.mutable_open();
-  ASSERT_TRUE(healthy->Write(open));
+  auto healthy = client.OpenSession(context);
 
   std::string too_big = CoilCedd(60, 0);
   too_big[17] = 9;
@@ -469,14 +475,10 @@ TEST(Server, LimitsSessionsAndFrameRateWithResourceExhausted) {
 
   // Two sessions held open; the third is refused.
   std::vector<std::unique_ptr<grpc::ClientContext>> contexts;
-  std::vector<std::unique_ptr<grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>>> open;
+  std::vector<std::unique_ptr<Client::SessionStream>> open;
   for (int i = 0; i < 2; ++i) {
     contexts.push_back(std::make_unique<grpc::ClientContext>());
-    client.Prepare(*contexts.back());
-    open.push_back(client.recognition().Session(contexts.back().get()));
-    v1::SessionRequest r;
-    r.mutable_open();
-    ASSERT_TRUE(open.back()->Write(r));
+    open.push_back(client.OpenSession(*contexts.back()));
     ASSERT_TRUE(open.back()->Write(CoilFrame(70, 0, 0)));
     v1::SessionUpdate u;
     ASSERT_TRUE(open.back()->Read(&u));  // the session is certainly registered now
@@ -523,11 +525,7 @@ TEST(Server, ClosesIdleSessionsWithDeadlineExceeded) {
   ServerProcess server({.extra_args = {"--idle-timeout", "1"}});
   Client client(server.address());
   grpc::ClientContext context;
-  client.Prepare(context);
-  auto stream = client.recognition().Session(&context);
-  v1::SessionRequest r;
-  r.mutable_open();
-  ASSERT_TRUE(stream->Write(r));
+  auto stream = client.OpenSession(context);
   v1::SessionUpdate u;
   EXPECT_FALSE(stream->Read(&u));  // returns when the server ends the stream
   const grpc::Status s = stream->Finish();
@@ -657,11 +655,7 @@ TEST(Server, SigtermEndsOpenSessionsCleanlyAndExitsZero) {
   ServerProcess server;
   Client client(server.address());
   grpc::ClientContext context;
-  client.Prepare(context);
-  auto stream = client.recognition().Session(&context);
-  v1::SessionRequest r;
-  r.mutable_open();
-  ASSERT_TRUE(stream->Write(r));
+  auto stream = client.OpenSession(context);
   std::this_thread::sleep_for(std::chrono::milliseconds(200));  // the session is open
   auto exit_code = std::async(std::launch::async, [&server] { return server.Stop(SIGTERM); });
   v1::SessionUpdate u;
