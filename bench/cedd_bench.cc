@@ -13,21 +13,16 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "bench/bench_data.h"
 #include "client/image_file.h"
 #include "core/cedd.h"
 
 namespace orbit {
 namespace {
 
-std::filesystem::path DataDir() {
-  const char* env = std::getenv("ORBIT_DATA");
-  return env != nullptr ? std::filesystem::path(env)
-                        : std::filesystem::path(ORBIT_SOURCE_DIR) / ".." / "shared" / "data";
-}
-
 cv::Mat Frame(int width, int height) {
   static const cv::Mat photo = ReadImageFile(
-      (DataDir() / "cedd-conformance/photos/011_2828686873_2fa36f83d7_b.png").string());
+      (bench::DataDir() / "cedd-conformance/photos/011_2828686873_2fa36f83d7_b.png").string());
   cv::Mat frame;
   cv::resize(photo, frame, cv::Size(width, height), 0, 0, cv::INTER_AREA);
   return frame;

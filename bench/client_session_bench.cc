@@ -25,6 +25,7 @@
 #include "client/enroller.h"
 #include "client/image_file.h"
 #include "client/recognition_session.h"
+#include "bench/bench_data.h"
 #include "core/cedd.h"
 #include "server/orbit_server.h"
 
@@ -32,9 +33,7 @@ namespace orbit {
 namespace {
 
 std::filesystem::path CoilDir() {
-  const char* env = std::getenv("ORBIT_DATA");
-  return std::filesystem::path(env != nullptr ? env : ORBIT_SOURCE_DIR "/../shared/data") /
-         "coil-100";
+  return bench::DataDir() / "coil-100";
 }
 
 cv::Mat Coil(int object, int azimuth) {

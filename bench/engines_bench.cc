@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "bench/bench_data.h"
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/recognition_engine.h"
@@ -175,11 +176,7 @@ struct CoilSplit {
 
 const CoilSplit& Coil() {
   static const CoilSplit split = [] {
-    const char* env = std::getenv("ORBIT_DATA");
-    const std::filesystem::path dir =
-        (env != nullptr ? std::filesystem::path(env)
-                        : std::filesystem::path(ORBIT_SOURCE_DIR) / ".." / "shared" / "data") /
-        "coil-100";
+    const std::filesystem::path dir = bench::DataDir() / "coil-100";
     CoilSplit s;
     for (int n = 1; n <= 100; ++n) {
       ObjectModel model;

@@ -202,6 +202,17 @@ std::vector<int> AzimuthsAwayFrom(int from, int to) {
   return kept;
 }
 
+// Enrolls each COIL-100 object as "obj<N>" with the views at `azimuths` (all 72 when empty).
+void EnrollCoilObjects(const Client& client, const std::vector<int>& objects,
+                       const std::vector<int>& azimuths = {}, bool typical = false) {
+  for (int object : objects) {
+    v1::ObjectInfo info;
+    const grpc::Status s =
+        client.Enroll("obj" + std::to_string(object), object, &info, azimuths, typical);
+    ASSERT_TRUE(s.ok()) << "obj" << object << ": " << s.error_message();
+  }
+}
+
 TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
   ServerProcess server;
   Client client(server.address());
@@ -253,11 +264,7 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
 TEST(Server, RecognizeAnswersABatchLikeASession) {
   ServerProcess server;
   Client client(server.address());
-  for (int object : {7, 8, 9}) {
-    v1::ObjectInfo info;
-    ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info,
-                              AzimuthsAwayFrom(40, 70)).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {7, 8, 9}, AzimuthsAwayFrom(40, 70)));
   v1::RecognizeRequest request;
   request.mutable_options()->set_engine(v1::ENGINE_VCI);
   for (const auto& r : CoilSweep(8, 40, 10, 4, -55.0)) *request.add_frames() = r.frame();
@@ -286,11 +293,7 @@ TEST(Server, RecognizeAnswersABatchLikeASession) {
 TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
   ServerProcess server;
   Client client(server.address());
-  for (int object : {11, 12, 13}) {
-    v1::ObjectInfo info;
-    ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info,
-                              AzimuthsAwayFrom(60, 90), /*typical=*/true).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {11, 12, 13}, AzimuthsAwayFrom(60, 90), /*typical=*/true));
   v1::SessionOptions options;
   options.set_threshold(1.0);
   const auto known = client.Session(options, CoilSweep(12, 60, 10, 4, 0));
@@ -312,10 +315,7 @@ TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
 TEST(Server, DeletedObjectDisappearsFromAnOpenSessionAtItsNextFrame) {
   ServerProcess server;
   Client client(server.address());
-  for (int object : {20, 21}) {
-    v1::ObjectInfo info;
-    ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {20, 21}));
   grpc::ClientContext context;
   v1::SessionOptions options;
   options.set_top_k(5);
@@ -345,11 +345,7 @@ TEST(Server, SixteenConcurrentSessionsDoNotCrossTalk) {
   Client client(server.address());
   std::vector<int> objects;
   for (int i = 0; i < 16; ++i) objects.push_back(30 + i);
-  for (int object : objects) {
-    v1::ObjectInfo info;
-    ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info,
-                              AzimuthsAwayFrom(200, 230)).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, objects, AzimuthsAwayFrom(200, 230)));
   std::vector<std::future<Client::SessionResult>> sessions;
   for (int object : objects) {
     sessions.push_back(std::async(std::launch::async, [&client, object] {
