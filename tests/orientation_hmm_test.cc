@@ -2,9 +2,14 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
+
+#include "core/indexed_object.h"
+#include "core/recognition_engine.h"
+#include "core/view_index.h"
 
 namespace orbit {
 namespace {
@@ -108,6 +113,88 @@ TEST(OrientationHmmTest, ViterbiRejectsMismatchedSizes) {
   EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, EmissionRows{{0.5, 0.5}, {0.5, 0.5}}),
                std::invalid_argument);
   EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, EmissionRows{{1.0}}), std::invalid_argument);
+}
+
+
+// The engine decodes all objects at once in SIMD lanes, with floats (BatchViterbi). Here it must
+// agree, frame by frame as the window slides, with the textbook pipeline applied object by
+// object: sector means, Emissions(), TransitionMatrix() of the measured change, log-space
+// Viterbi(), then the mean TC along the path. Random objects with irregular azimuths (so some
+// sectors are empty and use stand-ins) and random turns (across 0/360, large jumps, standstill).
+TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
+  std::mt19937 random(77);
+  std::uniform_int_distribution<int> value(0, 7), bin(0, kDescriptorSize - 1);
+  auto sparse_descriptor = [&] {
+    DescriptorValues values{};
+    for (int k = 0; k < 20; ++k) values[bin(random)] = static_cast<std::uint8_t>(value(random));
+    return values;
+  };
+  std::vector<ObjectModel> models;
+  for (int id = 1; id <= 24; ++id) {
+    ObjectModel model;
+    model.id = id;
+    const int views = 3 + id % 7 * 5;
+    std::uniform_real_distribution<double> azimuth(0, 360);
+    for (int v = 0; v < views; ++v) {
+      ModelView view;
+      view.descriptor = sparse_descriptor();
+      view.azimuth = azimuth(random);
+      model.views.push_back(view);
+    }
+    models.push_back(model);
+  }
+  ViewIndex index(models, {.search = SearchMode::kExact});
+  const auto snapshot = index.Snapshot();
+  const int states = 8;
+  const int window = 6;
+  auto engine = CreateEngine("hmm", {.window = window, .hmm_states = states, .top_k = 24});
+
+  const std::vector<Arc> sectors = EqualSectors(states);
+  const std::vector<double> initial = InitialProbabilities(sectors);
+  const std::vector<double> turns = {0, 31, 350, -12, 0, 95, -170, 7, 180, 44, -3, 200};
+  std::vector<QueryFrame> frames;
+  double azimuth = 300;
+  for (std::size_t k = 0; k < turns.size(); ++k) {
+    azimuth += turns[k];
+    // Frames resemble object 5's views, with noise, so that rankings are not all near zero.
+    DescriptorValues values = models[4].views[k % models[4].views.size()].descriptor;
+    values[bin(random)] = static_cast<std::uint8_t>(value(random));
+    frames.push_back({{DescriptorVariant::kCeddLire, values}, azimuth});
+    const FrameUpdate update = engine->Observe(snapshot, frames.back());
+
+    const std::size_t first = frames.size() > window ? frames.size() - window : 0;
+    const std::span<const QueryFrame> kept(frames.begin() + first, frames.end());
+    std::vector<Matrix> transitions;
+    for (std::size_t t = 1; t < kept.size(); ++t) {
+      transitions.push_back(
+          TransitionMatrix(sectors, AzimuthChange(kept[t - 1].azimuth, kept[t].azimuth)));
+    }
+    std::map<ObjectId, double> expected;
+    for (const ObjectModel& model : models) {
+      const SectorViews means = ComputeSectorViews(model, states);
+      std::vector<std::vector<double>> emissions, similarities;
+      for (const QueryFrame& frame : kept) {
+        std::vector<double> tc;
+        for (int i = 0; i < states; ++i) {
+          tc.push_back(Tanimoto(frame.descriptor.values, means.descriptor[i]));
+        }
+        emissions.push_back(Emissions(tc));
+        similarities.push_back(tc);
+      }
+      const ViterbiPath path = Viterbi(initial, transitions, emissions);
+      double sum = 0;
+      for (std::size_t t = 0; t < kept.size(); ++t) sum += similarities[t][path.states[t]];
+      expected[model.id] = sum / static_cast<double>(kept.size());
+    }
+    ASSERT_EQ(update.ranking.size(), models.size()) << "frame " << k;
+    for (std::size_t r = 0; r < update.ranking.size(); ++r) {
+      EXPECT_NEAR(update.ranking[r].score, expected.at(update.ranking[r].object), 1e-6)
+          << "frame " << k << ", object " << update.ranking[r].object;
+      if (r > 0) {
+        EXPECT_GE(update.ranking[r - 1].score, update.ranking[r].score);
+      }
+    }
+  }
 }
 
 }  // namespace

@@ -1,0 +1,52 @@
+// SectorSimilarityTable: TC(S, o) between one query frame and every HMM state of every object
+// of a view index at once (SPEC.md, "Engines", HMM: the state descriptor S is the mean CEDD of
+// the model views in a sector, and the emissions are built from these similarities).
+//
+// Why a table: an HMM session scores every state of every object on every frame, 8000 states
+// for 1000 objects. A state's descriptor is a mean, so S.o = (sum of its views).o / count, an
+// exact integer dot product with the sector's sum. The sums are stored bin-major ([bin][state]),
+// so a frame costs one multiply-add pass over the states per NON-ZERO bin of the query (a
+// COIL-100 CEDD has about 21 of 144), vectorised across states.
+//
+// Layout of the result: similarity[state * object_count + object], state-major, the layout
+// BatchViterbi reads (objects in SIMD lanes). Objects are in the index snapshot's order.
+//
+// Thread safety: immutable after construction; Compute may be called from many threads.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "core/descriptor.h"
+#include "core/view_index.h"
+
+namespace orbit {
+
+class SectorSimilarityTable {
+ public:
+  // The states of every object of `index`, `states` equal sectors each (IndexedObject::Sectors).
+  // Throws std::invalid_argument when states < 1.
+  SectorSimilarityTable(const ViewIndexSnapshot& index, int states);
+
+  std::size_t object_count() const { return objects_; }
+  int states() const { return states_; }
+
+  // similarity[state * object_count() + object] = TC(S, query) with Tanimoto()'s conventions
+  // for zero vectors, rounded to float. `similarity` must hold states() * object_count() values.
+  void Compute(const DescriptorValues& query, std::span<float> similarity) const;
+
+ private:
+  std::size_t objects_ = 0;
+  int states_ = 0;
+  std::size_t stride_ = 0;                 // states * objects, rounded up for aligned rows
+  std::vector<std::int16_t> bin_sums_;     // [bin][state * objects + object]: sum of its views
+  std::vector<float> inverse_counts_;      // 1 / number of views in the state
+  std::vector<float> squared_norms_;       // S.S of the mean
+  // States whose sums could overflow 16 bits (over 4681 views in one sector): computed
+  // directly from their mean, (position in the result, mean).
+  std::vector<std::pair<std::size_t, const MeanDescriptor*>> wide_states_;
+};
+
+}  // namespace orbit
