@@ -14,12 +14,28 @@ constexpr std::size_t kMaxStates = 65536;  // back pointers are 16 bits
 // The vector kernels below are plain loops over objects that GCC vectorises; the AVX2 clones
 // handle 8 objects per instruction.
 
-// next[o] = pi * emission[o].
+// next[o] = pi * emission[o]; top[o] = max(top[o], next[o]).
 __attribute__((target_clones("avx2", "default"))) void Start(float pi,
                                                              const float* __restrict emission,
                                                              float* __restrict next,
+                                                             float* __restrict top,
                                                              std::size_t n) {
-  for (std::size_t o = 0; o < n; ++o) next[o] = pi * emission[o];
+  for (std::size_t o = 0; o < n; ++o) {
+    next[o] = pi * emission[o];
+    top[o] = std::max(top[o], next[o]);
+  }
+}
+
+// best[o], arg[o] = score_i[o] * a, i: the first transition into a state.
+__attribute__((target_clones("avx2", "default"))) void Enter(const float* __restrict score_i,
+                                                             float a, std::int32_t i,
+                                                             float* __restrict best,
+                                                             std::int32_t* __restrict arg,
+                                                             std::size_t n) {
+  for (std::size_t o = 0; o < n; ++o) {
+    best[o] = score_i[o] * a;
+    arg[o] = i;
+  }
 }
 
 // best[o], arg[o] = the larger of (best[o], arg[o]) and (score_i[o] * a, i); strict, so that
@@ -37,24 +53,19 @@ __attribute__((target_clones("avx2", "default"))) void Relax(const float* __rest
   }
 }
 
-// next[o] = best[o] * emission[o]; back[o] = arg[o].
+// next[o] = best[o] * emission[o]; back[o] = arg[o]; top[o] = max(top[o], next[o]).
 __attribute__((target_clones("avx2", "default"))) void Emit(const float* __restrict best,
                                                             const std::int32_t* __restrict arg,
                                                             const float* __restrict emission,
                                                             float* __restrict next,
                                                             std::uint16_t* __restrict back,
+                                                            float* __restrict top,
                                                             std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     next[o] = best[o] * emission[o];
     back[o] = static_cast<std::uint16_t>(arg[o]);
+    top[o] = std::max(top[o], next[o]);
   }
-}
-
-// top[o] = max(top[o], row[o]).
-__attribute__((target_clones("avx2", "default"))) void Maximum(const float* __restrict row,
-                                                               float* __restrict top,
-                                                               std::size_t n) {
-  for (std::size_t o = 0; o < n; ++o) top[o] = std::max(top[o], row[o]);
 }
 
 // row[o] *= scale[o], and values below FLT_MIN become 0 (see the header).
@@ -112,31 +123,33 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
   best_.resize(objects);
   arg_.resize(objects);
   back_.resize(frames_ * states * objects);
-  std::vector<float>& top = best_;  // reused: the per-object maximum, then its reciprocal
+  top_.resize(objects);
 
   for (std::size_t t = 0; t < frames_; ++t) {
     const float* emission = emissions[t];
+    std::fill(top_.begin(), top_.end(), 0.0f);
     if (t == 0) {
       for (std::size_t i = 0; i < states; ++i) {
-        Start(initial_[i], &emission[i * objects], &next_[i * objects], objects);
+        Start(initial_[i], &emission[i * objects], &next_[i * objects], top_.data(), objects);
       }
     } else {
       std::uint16_t* back = &back_[t * states * objects];
       for (std::size_t j = 0; j < states; ++j) {
         const auto& into = steps[t - 1]->into[j];
-        std::fill(best_.begin(), best_.end(), 0.0f);
-        std::fill(arg_.begin(), arg_.end(), into.empty() ? 0 : into.front().first);
-        for (const auto& [i, a] : into) {
-          Relax(&score_[i * objects], a, i, best_.data(), arg_.data(), objects);
+        if (into.empty()) {
+          std::fill(best_.begin(), best_.end(), 0.0f);
+          std::fill(arg_.begin(), arg_.end(), 0);
+        }
+        for (std::size_t k = 0; k < into.size(); ++k) {
+          const auto [i, a] = into[k];
+          (k == 0 ? Enter : Relax)(&score_[i * objects], a, i, best_.data(), arg_.data(), objects);
         }
         Emit(best_.data(), arg_.data(), &emission[j * objects], &next_[j * objects],
-             &back[j * objects], objects);
+             &back[j * objects], top_.data(), objects);
       }
     }
-    std::fill(top.begin(), top.end(), 0.0f);
-    for (std::size_t i = 0; i < states; ++i) Maximum(&next_[i * objects], top.data(), objects);
-    Reciprocal(top.data(), objects);
-    for (std::size_t i = 0; i < states; ++i) Rescale(&next_[i * objects], top.data(), objects);
+    Reciprocal(top_.data(), objects);
+    for (std::size_t i = 0; i < states; ++i) Rescale(&next_[i * objects], top_.data(), objects);
     score_.swap(next_);
   }
 

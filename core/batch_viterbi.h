@@ -51,7 +51,7 @@ class BatchViterbi {
   std::vector<float> initial_;
   std::size_t frames_ = 0;
   // Scratch, reused across calls: scores [state][object], back pointers [frame][state][object].
-  std::vector<float> score_, next_, best_;
+  std::vector<float> score_, next_, best_, top_;
   std::vector<std::int32_t> arg_;
   std::vector<std::uint16_t> back_;
   std::vector<std::uint16_t> paths_;  // [object][frame]

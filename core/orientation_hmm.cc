@@ -182,10 +182,11 @@ class OrientationHmm final : public RecognitionEngine {
                                  std::span<const QueryFrame> window) override {
     const std::size_t frames = window.size();
     const std::size_t objects = table_->object_count();
-    std::vector<const float*> emissions;
+    std::vector<const float*> emissions, similarities;
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
       emissions.push_back(frames_[t].emission.data());
+      similarities.push_back(frames_[t].similarity.data());
       if (t > 0) steps.push_back(&frames_[t].step);
     }
     viterbi_.Decode(emissions, steps, objects);
@@ -193,7 +194,7 @@ class OrientationHmm final : public RecognitionEngine {
     for (std::size_t o = 0; o < objects; ++o) {
       const std::span<const std::uint16_t> path = viterbi_.path(o);
       double sum = 0;
-      for (std::size_t t = 0; t < frames; ++t) sum += frames_[t].similarity[path[t] * objects + o];
+      for (std::size_t t = 0; t < frames; ++t) sum += similarities[t][path[t] * objects + o];
       assessments[o].object = index.objects()[o].object;
       assessments[o].score = sum / static_cast<double>(frames);
     }
