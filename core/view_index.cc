@@ -83,14 +83,6 @@ bool Better(const Scored& a, const Scored& b) {
   return a.first > b.first || (a.first == b.first && a.second < b.second);
 }
 
-// FLANN draws its random split dimensions from std::rand; seeding it before each build makes
-// the trees (and so the kd-tree results) reproducible. The mutex keeps concurrent builds in
-// different indexes from interleaving their draws.
-std::mutex& FlannBuildMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
 std::shared_ptr<const Segment> BuildSegment(std::vector<std::shared_ptr<const IndexedObject>> objects,
                                             const ViewIndexOptions& options) {
   auto segment = std::make_shared<Segment>();
@@ -114,8 +106,10 @@ std::shared_ptr<const Segment> BuildSegment(std::vector<std::shared_ptr<const In
     segment->points.assign(segment->descriptors.begin(), segment->descriptors.end());
     flann::Matrix<float> points(segment->points.data(), segment->view_count, kDescriptorSize);
     segment->kd_tree = std::make_unique<KdTree>(points, flann::KDTreeIndexParams(options.kd_trees));
-    std::lock_guard<std::mutex> lock(FlannBuildMutex());
-    flann::seed_random(0x0b17);
+    // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
+    // std::random_device, so two builds over the same views give different trees (and kd-tree
+    // searches can return slightly different lists; docs/results/coil100-reproduction.md
+    // measures the spread). Builds in different threads are independent.
     segment->kd_tree->buildIndex();
   }
   return segment;
