@@ -34,7 +34,7 @@ std::string ServerConfig::Describe() const {
               : std::string("exact"))
       << "\n"
       << "  session defaults    engine " << CoreEngineNames(d.engine).front()
-      << (d.engine == v1::ENGINE_VCI_HMM ? "+hmm" : "") << ", top-k " << d.options.top_k
+      << (d.engine == v1::ENGINE_VCI_HMM ? "-hmm" : "") << ", top-k " << d.options.top_k
       << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
       << d.options.list_length << ", HMM states " << d.options.hmm_states << ", Th "
       << d.options.threshold << "\n"

@@ -240,7 +240,7 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
   EXPECT_EQ(info.object_count(), 5);
   EXPECT_EQ(info.view_count(), 4 * 72 + static_cast<int>(AzimuthsAwayFrom(100, 130).size()));
   EXPECT_EQ(info.session_defaults().window(), 8);
-  EXPECT_EQ(info.session_defaults().engine(), v1::ENGINE_VCI);
+  EXPECT_EQ(info.session_defaults().engine(), v1::ENGINE_HMM);
 
   for (const v1::Engine engine : {v1::ENGINE_VCI, v1::ENGINE_HMM, v1::ENGINE_VCI_HMM}) {
     v1::SessionOptions options;

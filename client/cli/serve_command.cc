@@ -7,6 +7,7 @@
 #include <string>
 
 #include "client/cli/commands.h"
+#include "client/cli/session_flags.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {
@@ -18,7 +19,7 @@ struct ServeOptions {
   std::string tokens, tls_cert, tls_key;
   std::string variant = "cedd-lire";
   std::string index = "kdtree";
-  std::string engine = "vci";
+  std::string engine = "hmm";
 };
 
 int RunServe(ServeOptions& o) {
@@ -29,9 +30,7 @@ int RunServe(ServeOptions& o) {
   if (!o.tls_key.empty()) config.tls_key = o.tls_key;
   config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
-  config.session_defaults.engine = o.engine == "hmm"       ? v1::ENGINE_HMM
-                                   : o.engine == "vci+hmm" ? v1::ENGINE_VCI_HMM
-                                                           : v1::ENGINE_VCI;
+  config.session_defaults.engine = ParseEngine(o.engine);
 
   // SIGTERM and SIGINT are taken by sigwait below: block them before any server thread exists,
   // so that every thread inherits the mask.
@@ -92,8 +91,10 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--index", o->index, "view search: kdtree (FLANN) or exact (brute force)")
       ->check(CLI::IsMember({"kdtree", "exact"}))
       ->capture_default_str();
-  cmd->add_option("--engine", o->engine, "default engine of sessions that do not choose one")
-      ->check(CLI::IsMember({"vci", "hmm", "vci+hmm"}))
+  cmd->add_option("--engine", o->engine,
+                  "default engine of sessions that do not choose one (hmm: the most accurate fast "
+                  "engine on COIL-100, see docs/results/coil100-reproduction.md)")
+      ->check(CLI::IsMember(EngineFlagNames()))
       ->capture_default_str();
   cmd->add_option("--window", c.session_defaults.options.window, "default window W")
       ->check(CLI::Range(1, kMaxWindow))

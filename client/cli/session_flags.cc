@@ -20,10 +20,15 @@ constexpr std::array<std::pair<const char*, v1::Engine>, 8> kEngines = {{
 
 }  // namespace
 
-void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
+std::vector<std::string> EngineFlagNames() {
   std::vector<std::string> names;
   for (const auto& [name, engine] : kEngines) names.emplace_back(name);
-  command.add_option("--engine", flags.engine, "recognition method (default: the server's, vci)")
+  return names;
+}
+
+void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
+  const std::vector<std::string> names = EngineFlagNames();
+  command.add_option("--engine", flags.engine, "recognition method (default: the server's, hmm unless it was started otherwise)")
       ->check(CLI::IsMember(names));
   command.add_option("--top-k", flags.top_k, "candidates per update, 1..100");
   command.add_option("--window", flags.window, "W: frames the session remembers, 1..64");

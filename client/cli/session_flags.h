@@ -5,6 +5,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -28,6 +29,9 @@ void AddSessionFlags(CLI::App& command, SessionFlags& flags);
 // (core/recognition_engine.h's names, plus vci-hmm for the combination).
 // Throws std::invalid_argument for any other name.
 v1::Engine ParseEngine(const std::string& name);
+
+// The names ParseEngine accepts, in a fixed order.
+std::vector<std::string> EngineFlagNames();
 
 SessionOptions ToSessionOptions(const SessionFlags& flags);
 
