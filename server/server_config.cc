@@ -40,7 +40,8 @@ std::string ServerConfig::Describe() const {
       << d.options.threshold << "\n"
       << "  limits              " << limits.max_sessions << " sessions, "
       << limits.max_frames_per_second << " frames/s per session, window <= "
-      << limits.max_window << ", messages <= " << limits.max_message_bytes << " bytes, idle "
+      << limits.max_window << ", HMM window x states <= " << limits.max_hmm_cells
+      << ", messages <= " << limits.max_message_bytes << " bytes, idle "
       << limits.idle_timeout_seconds << " s\n"
       << "  workers             " << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
       << "\n"

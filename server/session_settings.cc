@@ -89,6 +89,15 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
     if (!std::isfinite(th) || th <= 0) return Invalid("options.threshold must be > 0");
     o.threshold = th;
   }
+  const bool runs_hmm =
+      settings.engine == v1::ENGINE_HMM || settings.engine == v1::ENGINE_VCI_HMM;
+  if (runs_hmm && o.window * o.hmm_states > limits.max_hmm_cells) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "options.window x options.hmm_states = " + std::to_string(o.window) + " x " +
+                std::to_string(o.hmm_states) + " is above this server's " +
+                std::to_string(limits.max_hmm_cells) +
+                " (the HMM keeps window x states values per object)"};
+  }
   try {
     ValidateEngineOptions(o);
   } catch (const std::exception& e) {

@@ -17,6 +17,10 @@ struct ServerLimits {
   int max_window = kMaxWindow;         // W a session may ask for (1..64)
   int max_message_bytes = 4 << 20;     // any single request message
   int idle_timeout_seconds = 120;      // a session without a frame for this long is closed
+  // window x hmm_states a session running the HMM may ask for: the HMM keeps about 10 bytes per
+  // (frame, state, object), so 1024 bounds a session at about 10 MB per 1000 enrolled objects
+  // (the defaults, 8 x 8, use 64; the unchecked extreme, 64 x 360, would be 230 MB).
+  int max_hmm_cells = 1024;
 };
 
 struct SessionSettings {
@@ -28,7 +32,8 @@ struct SessionSettings {
 
 // `requested` over `defaults`: a field at 0 / unset keeps the default. INVALID_ARGUMENT for an
 // unknown engine, a variant other than the server's, or a value out of range (the message names
-// it); RESOURCE_EXHAUSTED for a window above limits.max_window.
+// it); RESOURCE_EXHAUSTED for a window above limits.max_window, or for an HMM session whose
+// window x hmm_states is above limits.max_hmm_cells.
 grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
                                     const SessionSettings& defaults, DescriptorVariant variant,
                                     const ServerLimits& limits, SessionSettings* out);

@@ -409,6 +409,23 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
   v1::SessionOptions wide;
   wide.set_window(65);
   EXPECT_EQ(client.Session(wide, {}).status.error_code(), grpc::RESOURCE_EXHAUSTED);
+  // The HMM's state grows with window x states x objects: 64 x 360 is refused (default limit
+  // 1024), 64 x 16 = 1024 is not, and neither is 64 x 360 for an engine without an HMM.
+  v1::SessionOptions big_hmm;
+  big_hmm.set_engine(v1::ENGINE_HMM);
+  big_hmm.set_window(64);
+  big_hmm.set_hmm_states(360);
+  const auto refused = client.Session(big_hmm, {CoilFrame(60, 35, 35)});
+  EXPECT_EQ(refused.status.error_code(), grpc::RESOURCE_EXHAUSTED);
+  EXPECT_NE(refused.status.error_message().find("64 x 360"), std::string::npos)
+      << refused.status.error_message();
+  big_hmm.set_hmm_states(16);
+  const auto allowed = client.Session(big_hmm, {CoilFrame(60, 35, 35)});
+  EXPECT_TRUE(allowed.status.ok()) << allowed.status.error_message();
+  EXPECT_EQ(allowed.updates.size(), 1u);
+  big_hmm.set_engine(v1::ENGINE_EIS);
+  big_hmm.set_hmm_states(360);
+  EXPECT_TRUE(client.Session(big_hmm, {CoilFrame(60, 35, 35)}).status.ok());
 
   // A frame before `open`.
   {

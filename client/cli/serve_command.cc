@@ -4,6 +4,7 @@
 
 #include <iostream>
 #include <memory>
+#include <stdexcept>
 #include <string>
 
 #include "client/cli/commands.h"
@@ -31,6 +32,15 @@ int RunServe(ServeOptions& o) {
   config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
   config.session_defaults.engine = ParseEngine(o.engine);
+  const EngineOptions& defaults = config.session_defaults.options;
+  const bool runs_hmm = config.session_defaults.engine == v1::ENGINE_HMM ||
+                        config.session_defaults.engine == v1::ENGINE_VCI_HMM;
+  if (runs_hmm && defaults.window * defaults.hmm_states > config.limits.max_hmm_cells) {
+    throw std::invalid_argument(
+        "the default session (window " + std::to_string(defaults.window) + " x " +
+        std::to_string(defaults.hmm_states) + " HMM states) is above --max-hmm-cells " +
+        std::to_string(config.limits.max_hmm_cells));
+  }
 
   // SIGTERM and SIGINT are taken by sigwait below: block them before any server thread exists,
   // so that every thread inherits the mask.
@@ -112,6 +122,11 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--max-window", c.limits.max_window, "largest window a session may ask for")
       ->check(CLI::Range(1, kMaxWindow))
+      ->capture_default_str();
+  cmd->add_option("--max-hmm-cells", c.limits.max_hmm_cells,
+                  "largest window x HMM states a session may ask for (about 10 bytes per cell "
+                  "and enrolled object)")
+      ->check(CLI::Range(1, 64 * 360))
       ->capture_default_str();
   cmd->add_option("--max-message-bytes", c.limits.max_message_bytes, "largest request message")
       ->check(CLI::Range(1024, 64 << 20))
