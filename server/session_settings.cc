@@ -40,6 +40,10 @@ std::vector<std::string_view> CoreEngineNames(v1::Engine engine) {
   }
 }
 
+bool RunsHmm(v1::Engine engine) {
+  return engine == v1::ENGINE_HMM || engine == v1::ENGINE_VCI_HMM;
+}
+
 grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
                                     const SessionSettings& defaults, DescriptorVariant variant,
                                     const ServerLimits& limits, SessionSettings* out) {
@@ -89,9 +93,7 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
     if (!std::isfinite(th) || th <= 0) return Invalid("options.threshold must be > 0");
     o.threshold = th;
   }
-  const bool runs_hmm =
-      settings.engine == v1::ENGINE_HMM || settings.engine == v1::ENGINE_VCI_HMM;
-  if (runs_hmm && o.window * o.hmm_states > limits.max_hmm_cells) {
+  if (RunsHmm(settings.engine) && o.window * o.hmm_states > limits.max_hmm_cells) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,
             "options.window x options.hmm_states = " + std::to_string(o.window) + " x " +
                 std::to_string(o.hmm_states) + " is above this server's " +

@@ -33,9 +33,7 @@ int RunServe(ServeOptions& o) {
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
   config.session_defaults.engine = ParseEngine(o.engine);
   const EngineOptions& defaults = config.session_defaults.options;
-  const bool runs_hmm = config.session_defaults.engine == v1::ENGINE_HMM ||
-                        config.session_defaults.engine == v1::ENGINE_VCI_HMM;
-  if (runs_hmm && defaults.window * defaults.hmm_states > config.limits.max_hmm_cells) {
+  if (server::RunsHmm(config.session_defaults.engine) && defaults.window * defaults.hmm_states > config.limits.max_hmm_cells) {
     throw std::invalid_argument(
         "the default session (window " + std::to_string(defaults.window) + " x " +
         std::to_string(defaults.hmm_states) + " HMM states) is above --max-hmm-cells " +
