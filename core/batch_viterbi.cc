@@ -4,8 +4,6 @@
 #include <cfloat>
 #include <stdexcept>
 
-#include "core/orientation_hmm.h"
-
 namespace orbit {
 namespace {
 
@@ -85,18 +83,6 @@ __attribute__((target_clones("avx2", "default"))) void Reciprocal(float* __restr
 }
 
 }  // namespace
-
-SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta) {
-  const auto a = TransitionMatrix(sectors, delta);
-  SparseTransitions step;
-  step.into.resize(sectors.size());
-  for (std::size_t j = 0; j < sectors.size(); ++j) {
-    for (std::size_t i = 0; i < sectors.size(); ++i) {
-      if (a[i][j] > 0) step.into[j].emplace_back(static_cast<int>(i), static_cast<float>(a[i][j]));
-    }
-  }
-  return step;
-}
 
 BatchViterbi::BatchViterbi(std::vector<double> initial) {
   if (initial.empty() || initial.size() > kMaxStates) {

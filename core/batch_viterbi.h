@@ -17,17 +17,12 @@
 #include <utility>
 #include <vector>
 
-#include "core/angles.h"
-
 namespace orbit {
 
 // One frame step's transitions, sparse: into[j] lists (i, a_ij) for every a_ij > 0, i ascending.
 struct SparseTransitions {
   std::vector<std::vector<std::pair<int, float>>> into;
 };
-
-// The transitions of TransitionMatrix(sectors, delta), kept sparse.
-SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta);
 
 class BatchViterbi {
  public:

@@ -1,7 +1,6 @@
 #include "core/orientation_hmm.h"
 
 #include <algorithm>
-#include <array>
 #include <cstdint>
 #include <cmath>
 #include <deque>
@@ -10,7 +9,6 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "core/batch_viterbi.h"
 #include "core/sector_similarity_table.h"
 #include "core/similarity.h"
 
@@ -49,6 +47,18 @@ std::vector<std::vector<double>> TransitionMatrix(std::span<const Arc> sectors, 
     }
   }
   return a;
+}
+
+SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta) {
+  const auto a = TransitionMatrix(sectors, delta);
+  SparseTransitions step;
+  step.into.resize(sectors.size());
+  for (std::size_t j = 0; j < sectors.size(); ++j) {
+    for (std::size_t i = 0; i < sectors.size(); ++i) {
+      if (a[i][j] > 0) step.into[j].emplace_back(static_cast<int>(i), static_cast<float>(a[i][j]));
+    }
+  }
+  return step;
 }
 
 std::vector<double> Emissions(std::span<const double> state_similarities) {

@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "core/angles.h"
+#include "core/batch_viterbi.h"
 #include "core/recognition_engine.h"
 
 namespace orbit {
@@ -41,6 +42,9 @@ std::vector<double> InitialProbabilities(std::span<const Arc> sectors);
 // a[i][j] as above, for measured change `delta` (degrees, any finite value).
 // Throws std::invalid_argument when a sector is empty or invalid (ArcOverlap's rules).
 std::vector<std::vector<double>> TransitionMatrix(std::span<const Arc> sectors, double delta);
+
+// The same transitions kept sparse, for BatchViterbi: into[j] lists (i, a_ij) for a_ij > 0.
+SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta);
 
 // b_i = similarity_i / sum_j similarity_j; uniform when the sum is 0.
 std::vector<double> Emissions(std::span<const double> state_similarities);

@@ -2,7 +2,7 @@
 
 #include <cmath>
 #include <random>
-#include <set>
+#include <map>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
