@@ -1,6 +1,6 @@
 // The evaluation protocol (SPEC.md, "Evaluation protocol", the thesis' protocol made exact):
 // what one trial asks of an engine and how its answer is scored. Pure: no images are read and
-// no engine is run here (client/evaluation_runner.h does both).
+// no engine is run here (evaluation/evaluation_runner.h does both).
 //
 // One trial of object c with n query views:
 //   1. n distinct views of c drawn uniformly at random (SampleTrial);

@@ -1,4 +1,4 @@
-// Everything `orbit serve` can be told (flags, environment, config file: client/cli/
+// Everything `orbit serve` can be told (flags, environment, config file: cli/
 // serve_command.cc), with the defaults a single edge server should start with.
 #pragma once
 

@@ -1,0 +1,239 @@
+// orbit eval: the evaluation protocol of SPEC.md on a dataset (evaluation/evaluation_runner.h):
+// a Markdown table of hit rates on stdout, optionally a CSV file and a PNG plot.
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "cli/commands.h"
+#include "evaluation/dataset.h"
+#include "evaluation/evaluation_plot.h"
+#include "evaluation/evaluation_report.h"
+#include "evaluation/evaluation_runner.h"
+#include "cli/progress_bar.h"
+
+namespace orbit::cli {
+namespace {
+
+struct EvalOptions {
+  std::string layout = "coil100";
+  std::string data;
+  std::string manifest;
+  std::vector<std::string> methods{"eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm"};
+  std::vector<std::string> variants{"cedd-lire"};
+  std::vector<std::string> distortions{"df", "mb", "gn"};
+  std::vector<int> ns{1, 2, 4, 6, 8};
+  int trials = 10;
+  std::uint64_t seed = 1;
+  std::string objects;
+  std::string unknown_objects;
+  std::string index = "exact";
+  int kd_trees = ViewIndexOptions{}.kd_trees;
+  int kd_checks = ViewIndexOptions{}.kd_checks;
+  int kd_candidates = ViewIndexOptions{}.kd_candidates;
+  double threshold = EngineOptions{}.threshold;
+  double orientation_weight = EngineOptions{}.orientation_weight;
+  int list_length = EngineOptions{}.list_length;
+  int hmm_states = EngineOptions{}.hmm_states;
+  std::string csv;
+  std::string plot;
+  int threads = 0;
+  bool no_progress = false;
+};
+
+// Manifest objects are numbered 1, 2, ... in order of first appearance; keeps those selected.
+std::vector<DatasetImage> SelectByNumber(const std::vector<DatasetImage>& images,
+                                         const std::vector<int>& numbers, bool keep) {
+  std::map<std::string, int> number_of;
+  for (const DatasetImage& image : images) {
+    number_of.emplace(image.object, static_cast<int>(number_of.size()) + 1);
+  }
+  const int object_count = static_cast<int>(number_of.size());
+  if (keep && !numbers.empty() && numbers.back() > object_count) {
+    throw std::invalid_argument("object " + std::to_string(numbers.back()) +
+                                " selected, but the manifest has " + std::to_string(object_count) +
+                                " objects");
+  }
+  std::vector<DatasetImage> selected;
+  for (const DatasetImage& image : images) {
+    const bool listed = std::binary_search(numbers.begin(), numbers.end(), number_of[image.object]);
+    if (listed == keep) selected.push_back(image);
+  }
+  return selected;
+}
+
+// Known and unknown images as the options select them.
+std::pair<std::vector<DatasetImage>, std::vector<DatasetImage>> LoadDataset(const EvalOptions& o) {
+  const std::optional<std::vector<int>> objects =
+      o.objects.empty() ? std::nullopt : std::optional(ParseObjectRange(o.objects));
+  const std::optional<std::vector<int>> unknown =
+      o.unknown_objects.empty() ? std::nullopt : std::optional(ParseObjectRange(o.unknown_objects));
+  if (objects && unknown) {
+    std::vector<int> both;
+    std::set_intersection(objects->begin(), objects->end(), unknown->begin(), unknown->end(),
+                          std::back_inserter(both));
+    if (!both.empty()) {
+      throw std::invalid_argument("object " + std::to_string(both.front()) +
+                                  " is in both --objects and --unknown-objects");
+    }
+  }
+  std::vector<DatasetImage> known, untrained;
+  if (o.layout == "coil100") {
+    if (o.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
+    known = ListCoil100(o.data, objects);
+    if (unknown) {
+      untrained = ListCoil100(o.data, unknown);
+      std::set<std::string> names;
+      for (const DatasetImage& image : untrained) names.insert(image.object);
+      std::erase_if(known, [&](const DatasetImage& image) { return names.contains(image.object); });
+    }
+  } else {
+    if (o.manifest.empty()) throw std::invalid_argument("--layout manifest needs --manifest FILE");
+    const std::vector<DatasetImage> all = ReadManifest(o.manifest);
+    if (unknown) untrained = SelectByNumber(all, *unknown, true);
+    known = objects ? SelectByNumber(all, *objects, true)
+                    : (unknown ? SelectByNumber(all, *unknown, false) : all);
+  }
+  return {std::move(known), std::move(untrained)};
+}
+
+EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
+  EvaluationOptions options;
+  options.variants.clear();
+  for (const std::string& name : o.variants) options.variants.push_back(*ParseVariant(name));
+  options.methods = o.methods;
+  options.distortions.clear();
+  for (const std::string& name : o.distortions) options.distortions.push_back(*ParseDistortion(name));
+  options.query_lengths = o.ns;
+  options.trials = o.trials;
+  options.seed = o.seed;
+  options.index.search = o.index == "kdtree" ? SearchMode::kKdTree : SearchMode::kExact;
+  options.index.kd_trees = o.kd_trees;
+  options.index.kd_checks = o.kd_checks;
+  options.index.kd_candidates = o.kd_candidates;
+  options.engine.threshold = o.threshold;
+  options.engine.orientation_weight = o.orientation_weight;
+  options.engine.list_length = o.list_length;
+  options.engine.hmm_states = o.hmm_states;
+  options.threads = o.threads;
+  return options;
+}
+
+int RunEval(const EvalOptions& o) {
+  try {
+    const auto [known, unknown] = LoadDataset(o);
+    EvaluationOptions options = ToEvaluationOptions(o);
+    std::unique_ptr<ProgressBar> progress;
+    if (!o.no_progress) {
+      progress = std::make_unique<ProgressBar>(std::cerr, ::isatty(STDERR_FILENO) == 1);
+      options.progress = [&progress](std::string_view stage, std::size_t done, std::size_t total) {
+        progress->Update(stage, done, total);
+      };
+    }
+    std::cerr << "orbit eval: seed " << options.seed << ", " << known.size() << " known images"
+              << (unknown.empty() ? "" : ", " + std::to_string(unknown.size()) + " unknown images")
+              << ", " << (options.threads > 0 ? options.threads : AvailableCpus()) << " threads\n";
+    const EvaluationReport report = RunEvaluation(known, unknown, options);
+    progress.reset();
+
+    std::cout << MarkdownReport(report) << std::flush;
+    if (!o.csv.empty()) {
+      std::ofstream csv(o.csv);
+      if (csv) WriteCsv(report, csv);
+      if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
+    }
+    if (!o.plot.empty()) WriteHitRatePlot(report, o.plot);
+    return 0;
+  } catch (const std::exception& e) {
+    std::cerr << "orbit eval: " << e.what() << "\n";
+    return 1;
+  }
+}
+
+}  // namespace
+
+void AddEvalCommand(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<EvalOptions>();
+  CLI::App* command = app.add_subcommand(
+      "eval",
+      "Run the evaluation protocol (SPEC.md) on a dataset: for every object, n random views\n"
+      "are the query (their neighbours within 10 degrees leave the model), unchanged (df),\n"
+      "motion-blurred (mb) or noisy (gn), with noisy azimuths; prints the top-1 hit rate per\n"
+      "method x distortion x n as Markdown, plus time per query and model memory.");
+  command->add_option("--layout", o->layout, "coil100: a folder of objN__A.png; manifest: a CSV file")
+      ->check(CLI::IsMember({"coil100", "manifest"}))
+      ->capture_default_str();
+  command->add_option("--data", o->data, "the COIL-100 folder (--layout coil100)");
+  command->add_option("--manifest", o->manifest,
+                      "CSV with columns path,object,azimuth[,elevation]; relative paths resolve "
+                      "against its folder (--layout manifest)");
+  const std::vector<std::string> engine_names(EngineNames().begin(), EngineNames().end());
+  command->add_option("--methods", o->methods, "comma-separated engines")
+      ->delimiter(',')
+      ->check(CLI::IsMember(engine_names))
+      ->capture_default_str();
+  command->add_option("--variant", o->variants, "descriptor variant(s): cedd-lire, cedd-full")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
+      ->capture_default_str();
+  command->add_option("--distortions", o->distortions, "query distortions: df, mb, gn")
+      ->delimiter(',')
+      ->check(CLI::IsMember({"df", "mb", "gn"}))
+      ->capture_default_str();
+  command->add_option("--n", o->ns, "query lengths (frames per query)")
+      ->delimiter(',')
+      ->check(CLI::Range(1, kMaxWindow))
+      ->capture_default_str();
+  command->add_option("--trials", o->trials, "trials per object and n")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--seed", o->seed, "seed of every random draw")->capture_default_str();
+  command->add_option("--objects", o->objects,
+                      "objects in the model set, e.g. 1-20 or 1-5,9 (coil100: object numbers; "
+                      "manifest: order of first appearance); default all");
+  command->add_option("--unknown-objects", o->unknown_objects,
+                      "objects left out of the model set and queried as unknown (recognition: "
+                      "reports accept / reject rates), e.g. 91-100");
+  command->add_option("--index", o->index, "exact: brute force; kdtree: FLANN + exact re-ranking")
+      ->check(CLI::IsMember({"exact", "kdtree"}))
+      ->capture_default_str();
+  command->add_option("--kd-trees", o->kd_trees, "FLANN randomised kd-trees")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--kd-checks", o->kd_checks, "leaves FLANN visits per query")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--kd-candidates", o->kd_candidates, "views FLANN proposes for re-ranking")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--threshold", o->threshold, "Th of the accept / unknown rule")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--orientation-weight", o->orientation_weight, "w of vci's orientation term, per radian")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  command->add_option("--list-length", o->list_length, "N_L: views per VCI retrieval list")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  command->add_option("--hmm-states", o->hmm_states, "HMM states (azimuth sectors) per object")
+      ->check(CLI::Range(1, 360))
+      ->capture_default_str();
+  command->add_option("--csv", o->csv,
+                      "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");
+  command->add_option("--plot", o->plot, "also draw hit rate against n as a PNG file");
+  command->add_option("--threads", o->threads, "worker threads (default: every available core)")
+      ->check(CLI::NonNegativeNumber);
+  command->add_flag("--no-progress", o->no_progress, "no progress bar on stderr");
+  command->callback([o, &exit_code] { exit_code = RunEval(*o); });
+}
+
+}  // namespace orbit::cli

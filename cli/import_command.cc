@@ -1,0 +1,243 @@
+// orbit import: turns a dataset of object views into a model store, one object per name, each
+// enrolled in its own transaction (SPEC.md, "Users and their jobs": import a dataset as a model
+// set).
+#include <unistd.h>
+
+#include <algorithm>
+#include <functional>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cli/commands.h"
+#include "cli/network_options.h"
+#include "client/enroller.h"
+#include "client/models_client.h"
+#include "client/rpc_error.h"
+#include "evaluation/dataset.h"
+#include "client/image_file.h"
+#include "cli/progress_bar.h"
+#include "core/cedd.h"
+#include "core/typical_distance.h"
+#include "storage/model_validation.h"
+#include "storage/sqlite_model_store.h"
+
+namespace orbit::cli {
+namespace {
+
+struct ImportOptions {
+  std::string db;
+  NetworkOptions network;
+  std::string layout;
+  std::string data;
+  std::string objects;
+  std::string manifest;
+  std::string variant;  // "": cedd-lire for a file, the server's variant with --server
+  std::uint64_t seed = 1;
+  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+};
+
+// The images of one object, in dataset order; `first_image` is the position of the first one in
+// the whole dataset listing (it seeds each view's noisy copy).
+struct ObjectImages {
+  std::string name;
+  std::vector<DatasetImage> images;
+  std::size_t first_image = 0;
+};
+
+std::vector<DatasetImage> ListImages(const ImportOptions& options) {
+  if (options.layout == "coil100") {
+    if (options.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
+    std::optional<std::vector<int>> objects;
+    if (!options.objects.empty()) objects = ParseObjectRange(options.objects);
+    return ListCoil100(options.data, objects);
+  }
+  if (options.manifest.empty()) throw std::invalid_argument("--layout manifest needs --manifest");
+  if (!options.objects.empty()) {
+    throw std::invalid_argument("--objects applies to --layout coil100 only");
+  }
+  return ReadManifest(options.manifest);
+}
+
+// Groups the images by object name, objects in order of first appearance. Every name is checked
+// before anything is computed or written.
+std::vector<ObjectImages> GroupByObject(const std::vector<DatasetImage>& images) {
+  std::vector<ObjectImages> objects;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    auto same_name = [&](const ObjectImages& o) { return o.name == images[i].object; };
+    auto found = std::find_if(objects.begin(), objects.end(), same_name);
+    if (found == objects.end()) {
+      ValidateObjectName(images[i].object);
+      found = objects.insert(objects.end(), ObjectImages{images[i].object, {}, i});
+    }
+    found->images.push_back(images[i]);
+  }
+  return objects;
+}
+
+// The model views of one object: CEDD and typical distance (SPEC.md, "Recognition") of each
+// image, computed on `threads` threads. View f's noisy copy is seeded with seed + its position
+// in the dataset, so an import is reproducible whatever the thread count.
+std::vector<ModelView> ComputeViews(const ObjectImages& object, DescriptorVariant variant,
+                                    std::uint64_t seed, unsigned threads) {
+  std::vector<ModelView> views(object.images.size());
+  std::vector<std::string> errors(threads);
+  auto work = [&](unsigned worker) {
+    try {
+      for (std::size_t f = worker; f < views.size(); f += threads) {
+        const DatasetImage& image = object.images[f];
+        const cv::Mat pixels = ReadImageFile(image.path);
+        views[f].descriptor = ExtractCedd(pixels, variant).values;
+        views[f].azimuth = image.azimuth;
+        views[f].elevation = image.elevation;
+        views[f].typical_distance = TypicalDistance(pixels, variant, seed + object.first_image + f);
+      }
+    } catch (const std::exception& e) {
+      errors[worker] = e.what();
+    }
+  };
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
+  work(0);
+  for (std::thread& thread : pool) thread.join();
+  for (const std::string& error : errors) {
+    if (!error.empty()) throw std::runtime_error(error);
+  }
+  return views;
+}
+
+// Where the objects go: a model store file (--db) or a server (--server), which enrolls each
+// object atomically too.
+struct ImportTarget {
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;
+  std::string where;        // "in the store" / "on the server", for skipped objects
+  std::string destination;  // "in FILE" / "on HOST:PORT", for the summary
+  std::function<std::optional<ObjectId>(const std::string& name)> find;
+  std::function<ObjectId(const Enrollment& enrollment)> enroll;
+};
+
+ImportTarget StoreTarget(const ImportOptions& options) {
+  SqliteModelStoreOptions store_options;
+  store_options.create_if_missing = true;
+  auto store = std::make_shared<SqliteModelStore>(options.db, store_options);
+  ImportTarget target;
+  target.variant = *ParseVariant(options.variant.empty() ? "cedd-lire" : options.variant);
+  target.where = "in the store";
+  target.destination = "in " + options.db;
+  target.find = [store](const std::string& name) -> std::optional<ObjectId> {
+    if (std::optional<ObjectSummary> existing = store->Find(name)) return existing->id;
+    return std::nullopt;
+  };
+  target.enroll = [store](const Enrollment& enrollment) { return store->Enroll(enrollment); };
+  return target;
+}
+
+v1::View ToApiView(const ModelView& view) {
+  v1::View api;
+  api.set_cedd(view.descriptor.data(), view.descriptor.size());
+  api.set_azimuth_deg(view.azimuth);
+  if (view.elevation) api.set_elevation_deg(*view.elevation);
+  api.set_typical_distance(view.typical_distance);
+  return api;
+}
+
+ImportTarget ServerTarget(const ImportOptions& options) {
+  auto connection = std::make_shared<Connection>(ToConnectionOptions(options.network));
+  auto enroller = std::make_shared<Enroller>(*connection);
+  ImportTarget target;
+  target.variant = enroller->variant();
+  if (!options.variant.empty() && *ParseVariant(options.variant) != target.variant) {
+    throw std::invalid_argument("--variant " + options.variant + " is not the server's (" +
+                                std::string(VariantName(target.variant)) + ")");
+  }
+  target.where = "on the server";
+  target.destination = "on " + options.network.server;
+  target.find = [connection](const std::string& name) -> std::optional<ObjectId> {
+    try {
+      return ModelsClient(*connection).GetObject(ObjectByName(name)).object().id();
+    } catch (const RpcError& e) {
+      if (e.code() == grpc::StatusCode::NOT_FOUND) return std::nullopt;
+      throw;
+    }
+  };
+  // `connection` is captured so that it outlives the enroller that refers to it.
+  target.enroll = [connection, enroller](const Enrollment& enrollment) {
+    std::vector<v1::View> views;
+    for (const ModelView& view : enrollment.views) views.push_back(ToApiView(view));
+    return enroller->EnrollViews(enrollment.name, views).id();
+  };
+  return target;
+}
+
+int RunImport(const ImportOptions& options) {
+  const bool remote = UsesServer(options.db, options.network);
+  const std::vector<ObjectImages> objects = GroupByObject(ListImages(options));
+  const ImportTarget target = remote ? ServerTarget(options) : StoreTarget(options);
+  const DescriptorVariant variant = target.variant;
+
+  const bool terminal = ::isatty(STDERR_FILENO) == 1;
+  ProgressBar progress(std::cerr, terminal);
+  std::size_t enrolled = 0;
+  std::size_t skipped = 0;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const ObjectImages& object = objects[i];
+    progress.Update("import", i, objects.size());
+    if (std::optional<ObjectId> existing = target.find(object.name)) {
+      // An import that was interrupted carries on where it stopped.
+      std::cout << "skipped " << object.name << " (already " << target.where << " as id "
+                << *existing << ")\n";
+      ++skipped;
+      continue;
+    }
+    Enrollment enrollment;
+    enrollment.name = object.name;
+    enrollment.variant = variant;
+    enrollment.views = ComputeViews(object, variant, options.seed, options.threads);
+    const ObjectId id = target.enroll(enrollment);
+    // Printed only once the object is durable: a line here is a promise.
+    std::cout << "enrolled " << object.name << " (id " << id << ", " << enrollment.views.size()
+              << " views)" << std::endl;
+    ++enrolled;
+  }
+  progress.Update("import", objects.size(), objects.size());
+  std::cerr << "orbit import: " << enrolled << " objects enrolled, " << skipped
+            << " already present, " << target.destination << "\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddImportCommand(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<ImportOptions>();
+  CLI::App* command = app.add_subcommand(
+      "import",
+      "Compute the descriptors of a dataset's images and enroll one object per name in a model\n"
+      "store (--db, created if missing) or on a server (--server; admin token), each object in\n"
+      "its own transaction. Prints one line per\n"
+      "object once it is durable; objects already in the store are skipped, so an interrupted\n"
+      "import resumes when run again. Progress goes to stderr.");
+  AddDatabaseOrServerOptions(*command, options->db, options->network);
+  command->add_option("--layout", options->layout, "coil100: objN__A.png files in --data;\n"
+                                                   "manifest: a CSV file (--manifest)")
+      ->required()
+      ->check(CLI::IsMember({"coil100", "manifest"}));
+  command->add_option("--data", options->data, "folder of COIL-100 images (--layout coil100)");
+  command->add_option("--objects", options->objects,
+                      "COIL-100 objects to import, e.g. 1-20 or 1-5,9 (default: all)");
+  command->add_option("--manifest", options->manifest,
+                      "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
+  command->add_option("--variant", options->variant,
+                      "descriptor variant (default: cedd-lire; with --server, the server's)")
+      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}));
+  command->add_option("--seed", options->seed, "seed of the noisy copies for typical distances")
+      ->capture_default_str();
+  command->add_option("--threads", options->threads, "threads computing descriptors")
+      ->check(CLI::Range(1u, 256u))
+      ->capture_default_str();
+  command->callback([options, &exit_code] { exit_code = RunImport(*options); });
+}
+
+}  // namespace orbit::cli

@@ -1,0 +1,91 @@
+// orbit info --server: what a server is and holds (Models.ServerInfo). Also the Docker image's
+// health check: exit status 0 only when the server answered.
+#include <cctype>
+#include <iostream>
+#include <memory>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/commands.h"
+#include "cli/network_options.h"
+#include "cli/session_flags.h"
+#include "client/models_client.h"
+
+namespace orbit::cli {
+namespace {
+
+struct InfoOptions {
+  NetworkOptions network;
+  bool json = false;
+};
+
+std::string EngineText(v1::Engine engine) {
+  std::string name = v1::Engine_Name(engine);  // ENGINE_VCI_HMM
+  name = name.substr(name.find('_') + 1);
+  for (char& c : name) c = c == '_' ? '-' : static_cast<char>(std::tolower(c));
+  return name;  // vci-hmm, as --engine spells it
+}
+
+nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
+  const v1::SessionOptions& d = info.session_defaults();
+  const v1::Limits& l = info.limits();
+  return {
+      {"version", info.version()},
+      {"variant", VariantName(FromProtoVariant(info.variant()))},
+      {"objects", info.object_count()},
+      {"views", info.view_count()},
+      {"session_defaults",
+       {{"engine", EngineText(d.engine())},
+        {"top_k", d.top_k()},
+        {"window", d.window()},
+        {"w", d.orientation_weight()},
+        {"list_length", d.list_length()},
+        {"hmm_states", d.hmm_states()},
+        {"threshold", d.threshold()}}},
+      {"limits",
+       {{"max_sessions", l.max_sessions()},
+        {"max_frames_per_second", l.max_frames_per_second()},
+        {"max_window", l.max_window()},
+        {"max_message_bytes", l.max_message_bytes()},
+        {"max_views_per_object", l.max_views_per_object()},
+        {"idle_timeout_seconds", l.idle_timeout_seconds()}}},
+  };
+}
+
+int RunInfo(const InfoOptions& options) {
+  const Connection connection(ToConnectionOptions(options.network));
+  const nlohmann::ordered_json info = InfoJson(ModelsClient(connection).ServerInfo());
+  if (options.json) {
+    std::cout << info.dump() << "\n";
+    return 0;
+  }
+  const auto& d = info["session_defaults"];
+  const auto& l = info["limits"];
+  std::cout << "server    " << options.network.server << "\n"
+            << "version   " << info["version"].get<std::string>() << "\n"
+            << "variant   " << info["variant"].get<std::string>() << "\n"
+            << "objects   " << info["objects"] << " (" << info["views"] << " views)\n"
+            << "defaults  engine " << d["engine"].get<std::string>() << ", top-k " << d["top_k"]
+            << ", window " << d["window"] << ", w " << d["w"] << ", N_L " << d["list_length"]
+            << ", HMM states " << d["hmm_states"] << ", threshold " << d["threshold"] << "\n"
+            << "limits    " << l["max_sessions"] << " sessions, " << l["max_frames_per_second"]
+            << " frames/s per session, window <= " << l["max_window"] << ", messages <= "
+            << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
+            << " views per object, idle timeout " << l["idle_timeout_seconds"] << " s\n";
+  return 0;
+}
+
+}  // namespace
+
+void AddInfoCommand(CLI::App& app, int& exit_code) {
+  auto options = std::make_shared<InfoOptions>();
+  CLI::App* command = app.add_subcommand(
+      "info",
+      "Ask a server what it is and holds: version, descriptor variant, object and view counts,\n"
+      "session defaults and limits. Exit status 0 when it answered (a health check).");
+  AddNetworkOptions(*command, options->network, /*server_required=*/true);
+  command->add_flag("--json", options->json, "one JSON object");
+  command->callback([options, &exit_code] { exit_code = RunInfo(*options); });
+}
+
+}  // namespace orbit::cli

@@ -1,0 +1,38 @@
+// orbit: one binary, one subcommand per job. `orbit --help` lists them.
+#include <exception>
+#include <iostream>
+
+#include <CLI/CLI.hpp>
+
+#include "cli/commands.h"
+
+int main(int argc, char** argv) {
+  CLI::App app{
+      "Orbit: lightweight 3D object recognition from a moving camera.\n"
+      "Each subcommand has its own help: orbit SUBCOMMAND --help"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("orbit 0.1.0"));
+
+  int exit_code = 0;
+  orbit::cli::AddDescriptorCommand(app, exit_code);
+  orbit::cli::AddEnrollCommand(app, exit_code);
+  orbit::cli::AddRecognizeCommand(app, exit_code);
+  orbit::cli::AddInfoCommand(app, exit_code);
+  orbit::cli::AddDemoCommand(app, exit_code);
+  orbit::cli::AddImportCommand(app, exit_code);
+  orbit::cli::AddListCommand(app, exit_code);
+  orbit::cli::AddDeleteCommand(app, exit_code);
+  orbit::cli::AddBackupCommand(app, exit_code);
+  orbit::cli::AddEvalCommand(app, exit_code);
+  orbit::cli::AddServeCommand(app, exit_code);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  } catch (const std::exception& e) {
+    std::cerr << "orbit: " << e.what() << "\n";
+    return 1;
+  }
+  return exit_code;
+}

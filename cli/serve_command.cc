@@ -1,0 +1,146 @@
+// orbit serve: runs the recognition server on its embedded SQLite store until SIGTERM or SIGINT.
+#include <pthread.h>
+#include <signal.h>
+
+#include <iostream>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/session_flags.h"
+#include "server/orbit_server.h"
+
+namespace orbit::cli {
+namespace {
+
+struct ServeOptions {
+  server::ServerConfig config;
+  std::string database;
+  std::string tokens, tls_cert, tls_key;
+  std::string variant = "cedd-lire";
+  std::string index = "kdtree";
+  std::string engine = "hmm";
+};
+
+int RunServe(ServeOptions& o) {
+  server::ServerConfig& config = o.config;
+  config.database = o.database;
+  if (!o.tokens.empty()) config.tokens_file = o.tokens;
+  if (!o.tls_cert.empty()) config.tls_cert = o.tls_cert;
+  if (!o.tls_key.empty()) config.tls_key = o.tls_key;
+  config.variant = *ParseVariant(o.variant);
+  config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
+  config.session_defaults.engine = ParseEngine(o.engine);
+  const EngineOptions& defaults = config.session_defaults.options;
+  if (server::RunsHmm(config.session_defaults.engine) && defaults.window * defaults.hmm_states > config.limits.max_hmm_cells) {
+    throw std::invalid_argument(
+        "the default session (window " + std::to_string(defaults.window) + " x " +
+        std::to_string(defaults.hmm_states) + " HMM states) is above --max-hmm-cells " +
+        std::to_string(config.limits.max_hmm_cells));
+  }
+
+  // SIGTERM and SIGINT are taken by sigwait below: block them before any server thread exists,
+  // so that every thread inherits the mask.
+  sigset_t signals;
+  sigemptyset(&signals);
+  sigaddset(&signals, SIGTERM);
+  sigaddset(&signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+
+  std::cerr << config.Describe();
+  server::OrbitServer server(config);
+  std::cerr << "orbit serve: listening on " << server.address() << std::endl;
+
+  int received = 0;
+  sigwait(&signals, &received);
+  std::cerr << "orbit serve: " << (received == SIGTERM ? "SIGTERM" : "SIGINT")
+            << ": shutting down (up to " << config.shutdown_grace_seconds << " s)" << std::endl;
+  server.Shutdown();
+  std::cerr << "orbit serve: stopped" << std::endl;
+  return 0;
+}
+
+}  // namespace
+
+void AddServeCommand(CLI::App& app, int& exit_code) {
+  auto o = std::make_shared<ServeOptions>();
+  server::ServerConfig& c = o->config;
+  CLI::App* cmd = app.add_subcommand(
+      "serve",
+      "Run the recognition server (gRPC) on an embedded SQLite model store, until SIGTERM or\n"
+      "SIGINT. Every option can also come from the environment (ORBIT_...) or from a config\n"
+      "file (--config FILE, `option = value` lines). Without --tokens the server accepts\n"
+      "anyone, so it listens on loopback only unless --allow-remote-without-tokens is given.");
+  cmd->set_config("--config", "", "read options from this TOML/INI file");
+  cmd->add_option("--db", o->database, "the model store (SQLite file; created when missing)")
+      ->required()
+      ->envname("ORBIT_DB");
+  cmd->add_option("--listen", c.listen, "HOST:PORT to serve on (port 0: any free port)")
+      ->capture_default_str()
+      ->envname("ORBIT_LISTEN");
+  cmd->add_option("--tokens", o->tokens,
+                  "token file: lines `<token> recognize|admin`; clients send\n"
+                  "`authorization: Bearer <token>`")
+      ->check(CLI::ExistingFile)
+      ->envname("ORBIT_TOKENS");
+  cmd->add_option("--tls-cert", o->tls_cert, "PEM certificate chain: serve TLS (with --tls-key)")
+      ->check(CLI::ExistingFile)
+      ->envname("ORBIT_TLS_CERT");
+  cmd->add_option("--tls-key", o->tls_key, "PEM private key of --tls-cert")
+      ->check(CLI::ExistingFile)
+      ->envname("ORBIT_TLS_KEY");
+  cmd->add_flag("--allow-remote-without-tokens", c.allow_remote_without_tokens,
+                "serve a non-loopback address with no access control (unsafe)");
+  cmd->add_option("--variant", o->variant, "descriptor variant of the models and sessions")
+      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
+      ->capture_default_str()
+      ->envname("ORBIT_VARIANT");
+  cmd->add_option("--index", o->index, "view search: kdtree (FLANN) or exact (brute force)")
+      ->check(CLI::IsMember({"kdtree", "exact"}))
+      ->capture_default_str();
+  cmd->add_option("--engine", o->engine,
+                  "default engine of sessions that do not choose one (hmm: the most accurate fast "
+                  "engine on COIL-100, see docs/results/coil100-reproduction.md)")
+      ->check(CLI::IsMember(EngineFlagNames()))
+      ->capture_default_str();
+  cmd->add_option("--window", c.session_defaults.options.window, "default window W")
+      ->check(CLI::Range(1, kMaxWindow))
+      ->capture_default_str();
+  cmd->add_option("--threshold", c.session_defaults.options.threshold,
+                  "default rejection threshold Th")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-sessions", c.limits.max_sessions, "concurrent sessions")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str()
+      ->envname("ORBIT_MAX_SESSIONS");
+  cmd->add_option("--max-fps", c.limits.max_frames_per_second, "frames per second per session")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  cmd->add_option("--max-window", c.limits.max_window, "largest window a session may ask for")
+      ->check(CLI::Range(1, kMaxWindow))
+      ->capture_default_str();
+  cmd->add_option("--max-hmm-cells", c.limits.max_hmm_cells,
+                  "largest window x HMM states a session may ask for (about 10 bytes per cell "
+                  "and enrolled object)")
+      ->check(CLI::Range(1, 64 * 360))
+      ->capture_default_str();
+  cmd->add_option("--max-message-bytes", c.limits.max_message_bytes, "largest request message")
+      ->check(CLI::Range(1024, 64 << 20))
+      ->capture_default_str();
+  cmd->add_option("--idle-timeout", c.limits.idle_timeout_seconds,
+                  "seconds without a frame before a session is closed")
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
+  cmd->add_option("--workers", c.worker_threads, "worker threads (0: one per core)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  cmd->add_option("--shutdown-grace", c.shutdown_grace_seconds,
+                  "seconds open calls get to finish on SIGTERM")
+      ->check(CLI::Range(0, 600))
+      ->capture_default_str();
+  cmd->callback([o, &exit_code] { exit_code = RunServe(*o); });
+}
+
+}  // namespace orbit::cli

@@ -1,0 +1,139 @@
+#include "evaluation/evaluation_report.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstdio>
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+namespace orbit {
+namespace {
+
+std::string Format(const char* format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof buffer, format, value);
+  return buffer;
+}
+
+std::string Mebibytes(std::size_t bytes) { return Format("%.2f MiB", bytes / 1048576.0); }
+
+// The report's cells of one variant, in the report's order (distortion, method, n).
+std::vector<const EvaluationCell*> CellsOf(const EvaluationReport& report,
+                                           DescriptorVariant variant) {
+  std::vector<const EvaluationCell*> cells;
+  for (const EvaluationCell& cell : report.cells) {
+    if (cell.variant == variant) cells.push_back(&cell);
+  }
+  return cells;
+}
+
+// The distinct n values in the report, in the order they first appear.
+std::vector<int> QueryLengths(const EvaluationReport& report) {
+  std::vector<int> ns;
+  for (const EvaluationCell& cell : report.cells) {
+    if (std::find(ns.begin(), ns.end(), cell.n) == ns.end()) ns.push_back(cell.n);
+  }
+  return ns;
+}
+
+// Rows of a table: consecutive cells sharing distortion and method (one cell per n).
+template <typename WriteRow>
+void ForEachRow(const std::vector<const EvaluationCell*>& cells, std::size_t n_count,
+                WriteRow write_row) {
+  for (std::size_t first = 0; first + n_count <= cells.size(); first += n_count) {
+    write_row(std::vector<const EvaluationCell*>(cells.begin() + first,
+                                                 cells.begin() + first + n_count));
+  }
+}
+
+}  // namespace
+
+std::string DistortionLabel(QueryDistortion distortion) {
+  std::string label(DistortionName(distortion));
+  for (char& c : label) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+  return label;
+}
+
+std::string MarkdownReport(const EvaluationReport& report) {
+  std::ostringstream out;
+  const std::vector<int> ns = QueryLengths(report);
+  const bool recognition = report.unknown_objects > 0;
+  out << "Seed " << report.seed << "; " << report.known_objects << " known objects";
+  if (recognition) out << ", " << report.unknown_objects << " unknown objects";
+  out << ", " << report.images << " images; index "
+      << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
+      << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
+      << Format("%.1f", report.trial_seconds) << " s.\n\n";
+  const EngineOptions& e = report.engine;
+  out << "Engines: window " << e.window << ", N_L " << e.list_length << ", w "
+      << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "
+      << Format("%g", e.threshold) << ".";
+  if (report.search == SearchMode::kKdTree) {
+    out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
+        << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
+  }
+  out << "\n\n";
+  for (const ModelMemory& memory : report.memory) {
+    out << "Model memory (" << VariantName(memory.variant) << "): " << memory.objects
+        << " objects, " << memory.views << " views, descriptors "
+        << Mebibytes(memory.descriptor_bytes) << ", index " << Mebibytes(memory.index_bytes)
+        << " (heap held by the built index).\n";
+  }
+
+  for (const ModelMemory& memory : report.memory) {
+    const auto cells = CellsOf(report, memory.variant);
+    if (cells.empty()) continue;
+    const int trials_per_cell = cells.front()->trials;
+    out << "\n### " << VariantName(memory.variant) << ": hit rate (%), top-1, "
+        << trials_per_cell << " queries per cell\n\n| distortion | method |";
+    for (int n : ns) out << " n=" << n << " |";
+    out << " ms/query (n=" << ns.back() << ") |\n|---|---|";
+    for (std::size_t i = 0; i <= ns.size(); ++i) out << "---:|";
+    out << "\n";
+    ForEachRow(cells, ns.size(), [&](const std::vector<const EvaluationCell*>& row) {
+      out << "| " << DistortionLabel(row.front()->distortion) << " | "
+          << row.front()->method << " |";
+      for (const EvaluationCell* cell : row) out << " " << Format("%.1f", 100 * cell->hit_rate()) << " |";
+      out << " " << Format("%.3f", row.back()->ms_per_query()) << " |\n";
+    });
+
+    if (!recognition) continue;
+    out << "\n### " << VariantName(memory.variant)
+        << ": recognition (%), known objects right and accepted / unknown objects rejected\n\n"
+           "| distortion | method |";
+    for (int n : ns) out << " n=" << n << " |";
+    out << "\n|---|---|";
+    for (std::size_t i = 0; i < ns.size(); ++i) out << "---:|";
+    out << "\n";
+    ForEachRow(cells, ns.size(), [&](const std::vector<const EvaluationCell*>& row) {
+      out << "| " << DistortionLabel(row.front()->distortion) << " | "
+          << row.front()->method << " |";
+      for (const EvaluationCell* cell : row) {
+        out << " " << Format("%.1f", 100 * cell->accept_rate()) << " / "
+            << Format("%.1f", 100 * cell->reject_rate()) << " |";
+      }
+      out << "\n";
+    });
+  }
+  return out.str();
+}
+
+void WriteCsv(const EvaluationReport& report, std::ostream& out) {
+  const bool recognition = report.unknown_objects > 0;
+  out << "method,variant,distortion,n,trials,hits,hit_rate,ms_per_query";
+  if (recognition) out << ",accepted,accept_rate,unknown_trials,rejected,reject_rate";
+  out << "\n";
+  for (const EvaluationCell& cell : report.cells) {
+    out << cell.method << ',' << VariantName(cell.variant) << ',' << DistortionName(cell.distortion)
+        << ',' << cell.n << ',' << cell.trials << ',' << cell.hits << ','
+        << Format("%.4f", cell.hit_rate()) << ',' << Format("%.4f", cell.ms_per_query());
+    if (recognition) {
+      out << ',' << cell.accepted << ',' << Format("%.4f", cell.accept_rate()) << ','
+          << cell.unknown_trials << ',' << cell.rejected << ',' << Format("%.4f", cell.reject_rate());
+    }
+    out << "\n";
+  }
+}
+
+}  // namespace orbit

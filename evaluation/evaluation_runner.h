@@ -1,0 +1,124 @@
+// EvaluationRunner: runs the evaluation protocol (core/evaluation_protocol.h, SPEC.md
+// "Evaluation protocol") on a dataset of images and counts hits per method x descriptor variant
+// x distortion x query length n. The engine of `orbit eval`.
+//
+// What it does, in order:
+//   1. reads every image once and computes its CEDD unchanged (DF), motion-blurred (MB) and
+//      with Gaussian noise (GN), for each variant, on all threads. The GN copy of image i uses
+//      the seed ImageNoiseSeed(seed, i), so reruns see the same noise;
+//   2. builds each known object's model: every image is a view at its azimuth, with its typical
+//      distance Ttyp = mean(T(DF, MB), T(DF, GN)) of those same descriptors (core/typical_distance.h);
+//   3. runs the trials, one task per (variant, object, n, trial), spread over the threads: each
+//      task draws its query (SampleTrial), builds a ViewIndex of all known objects with the
+//      query object's excluded views removed, and asks every method, for every distortion, for
+//      its answer to the whole query (RecognitionEngine::ObserveSequence). Unknown objects (not
+//      in any model) are queried against the full index: the right answer is Decision::kUnknown.
+// The counts are exact and the same for any thread count (each task's draws come from its own
+// seed, core/evaluation_protocol.h); times are wall-clock and vary from run to run.
+//
+// Thread safety: RunEvaluation may be called from any thread; it starts and joins its own.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "evaluation/dataset.h"
+#include "core/descriptor.h"
+#include "core/evaluation_protocol.h"
+#include "core/recognition_engine.h"
+#include "core/view_index.h"
+
+namespace orbit {
+
+struct EvaluationOptions {
+  std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
+  std::vector<std::string> methods{"eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm"};
+  std::vector<QueryDistortion> distortions{QueryDistortion::kNone, QueryDistortion::kMotionBlur,
+                                           QueryDistortion::kGaussianNoise};
+  std::vector<int> query_lengths{1, 2, 4, 6, 8};  // n: frames per query (1..kMaxWindow)
+  int trials = 10;                                // trials per object and n (>= 1)
+  std::uint64_t seed = 1;                         // every random draw derives from it
+  ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
+  EngineOptions engine;     // the engines' options; the window is raised to the largest n
+  int threads = 0;          // worker threads; 0: every CPU this process may run on
+  // Called from the worker threads (never concurrently) as work completes: the stage
+  // ("descriptors" or "trials"), tasks done and tasks in the stage. May be empty.
+  std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;
+};
+
+// Counts for one method, variant, distortion and n.
+struct EvaluationCell {
+  std::string method;
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;
+  QueryDistortion distortion = QueryDistortion::kNone;
+  int n = 0;
+  int trials = 0;           // queries of known objects
+  int hits = 0;             // ... whose top-1 object was right
+  int accepted = 0;         // ... whose top-1 object was right and was accepted (kAccept)
+  int unknown_trials = 0;   // queries of unknown objects
+  int rejected = 0;         // ... answered kUnknown
+  double seconds = 0;       // wall-clock time in ObserveSequence over all queries counted here
+
+  double hit_rate() const { return trials > 0 ? double(hits) / trials : 0; }
+  double accept_rate() const { return trials > 0 ? double(accepted) / trials : 0; }
+  double reject_rate() const { return unknown_trials > 0 ? double(rejected) / unknown_trials : 0; }
+  // Mean time of one query (all n frames), milliseconds.
+  double ms_per_query() const {
+    const int queries = trials + unknown_trials;
+    return queries > 0 ? 1000 * seconds / queries : 0;
+  }
+};
+
+// The size of the full model set of one variant.
+struct ModelMemory {
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;
+  std::size_t objects = 0;
+  std::size_t views = 0;
+  std::size_t descriptor_bytes = 0;  // views x 144: the descriptors alone
+  // Heap memory held by the ViewIndex of all known objects right after it was built, measured
+  // by the allocator's statistics (glibc mallinfo2): descriptors, azimuths, typical distances,
+  // the index's tables and, in kd-tree mode, FLANN's trees. Caches the engines fill later (e.g.
+  // sector views) are not included.
+  std::size_t index_bytes = 0;
+};
+
+struct EvaluationReport {
+  // One cell per variant x distortion x method x n, in that nesting order (the options' orders).
+  std::vector<EvaluationCell> cells;
+  std::vector<ModelMemory> memory;  // one per variant
+  std::size_t known_objects = 0;
+  std::size_t unknown_objects = 0;
+  std::size_t images = 0;
+  std::uint64_t seed = 0;
+  int threads = 0;                  // worker threads used
+  SearchMode search = SearchMode::kExact;
+  ViewIndexOptions index;           // as used
+  EngineOptions engine;             // as used (window raised to the largest n)
+  double descriptor_seconds = 0;    // wall-clock time of step 1
+  double trial_seconds = 0;         // wall-clock time of step 3
+};
+
+// The seed of image i's Gaussian noise (its GN query and its typical distance).
+std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
+
+// The number of CPUs this process may run on (its affinity mask), at least 1.
+int AvailableCpus();
+
+// Runs the protocol. `known` holds the images of the objects in the model set, `unknown` those
+// of objects left out of it (may be empty); an object is the set of images sharing a name, and
+// objects are numbered in order of first appearance.
+//
+// Throws std::invalid_argument for options out of range (no variant, method, distortion or n;
+// an unknown method; n outside 1..kMaxWindow; trials < 1; threads < 0; engine or index options
+// out of range), when `known` is empty, when an object appears in both lists, or when an object
+// has fewer views than the largest n; std::runtime_error naming the file when an image cannot be
+// read.
+EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
+                               const std::vector<DatasetImage>& unknown,
+                               const EvaluationOptions& options);
+
+}  // namespace orbit

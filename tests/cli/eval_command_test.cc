@@ -1,0 +1,172 @@
+// Smoke tests of `orbit eval` on a few COIL-100 objects: the table, the CSV and the plot a user
+// gets, and the errors for bad options. Small on purpose (seconds); the full protocol is a
+// command (docs/results/coil100-reproduction.md).
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+
+struct CsvRow {
+  std::map<std::string, std::string> field;
+  double number(const std::string& name) const { return std::stod(field.at(name)); }
+};
+
+std::vector<std::string> SplitComma(const std::string& line) {
+  std::vector<std::string> fields;
+  std::stringstream in(line);
+  std::string field;
+  while (std::getline(in, field, ',')) fields.push_back(field);
+  return fields;
+}
+
+// Reads a CSV with a header; returns the header and the rows.
+std::pair<std::string, std::vector<CsvRow>> ReadCsv(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  std::string header, line;
+  std::getline(in, header);
+  const std::vector<std::string> names = SplitComma(header);
+  std::vector<CsvRow> rows;
+  while (std::getline(in, line)) {
+    const std::vector<std::string> values = SplitComma(line);
+    EXPECT_EQ(values.size(), names.size()) << line;
+    CsvRow row;
+    for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) row.field[names[i]] = values[i];
+    rows.push_back(row);
+  }
+  return {header, rows};
+}
+
+class EvalCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = std::filesystem::temp_directory_path() /
+           ("orbit_eval_test_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    std::filesystem::create_directories(dir_);
+    coil_ = (testing::DataDir() / "coil-100").string();
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+
+  std::filesystem::path dir_;
+  std::string coil_;
+};
+
+TEST_F(EvalCommandTest, PrintsTableCsvAndPlotForTheChosenMethods) {
+  const auto csv = dir_ / "result.csv", plot = dir_ / "result.png";
+  const testing::CommandResult result = testing::RunCommand(
+      testing::OrbitBinary() + " eval --layout coil100 --data " + coil_ +
+      " --objects 1-4 --unknown-objects 5 --methods eis,vci,hmm --distortions df,mb --n 1,2"
+      " --trials 2 --seed 7 --index exact --threads 2 --csv " + csv.string() +
+      " --plot " + plot.string());
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+
+  // The Markdown table: one row per distortion x method, one column per n.
+  EXPECT_THAT(result.out, HasSubstr("| distortion | method | n=1 | n=2 | ms/query (n=2) |"));
+  EXPECT_THAT(result.out, HasSubstr("| DF | eis |"));
+  EXPECT_THAT(result.out, HasSubstr("| MB | hmm |"));
+  EXPECT_THAT(result.out, HasSubstr("Seed 7"));
+  EXPECT_THAT(result.out, HasSubstr("4 known objects, 1 unknown objects"));
+  EXPECT_THAT(result.out, HasSubstr("Model memory (cedd-lire): 4 objects, 288 views"));
+  EXPECT_THAT(result.out, HasSubstr("recognition (%)"));
+  EXPECT_THAT(result.out, Not(HasSubstr("siis")));   // not asked for
+  EXPECT_THAT(result.out, Not(HasSubstr("| GN |")));
+
+  const auto [header, rows] = ReadCsv(csv);
+  EXPECT_EQ(header,
+            "method,variant,distortion,n,trials,hits,hit_rate,ms_per_query,"
+            "accepted,accept_rate,unknown_trials,rejected,reject_rate");
+  ASSERT_EQ(rows.size(), 3u * 2 * 2);  // methods x distortions x n
+  for (const CsvRow& row : rows) {
+    EXPECT_THAT((std::vector<std::string>{"eis", "vci", "hmm"}),
+                ::testing::Contains(row.field.at("method")));
+    EXPECT_EQ(row.field.at("variant"), "cedd-lire");
+    EXPECT_EQ(row.number("trials"), 8);          // 4 objects x 2 trials
+    EXPECT_EQ(row.number("unknown_trials"), 2);  // 1 object x 2 trials
+    EXPECT_LE(row.number("hits"), 8);
+    EXPECT_NEAR(row.number("hit_rate"), row.number("hits") / 8, 1e-4);
+    EXPECT_LE(row.number("accepted"), row.number("hits"));
+    EXPECT_GT(row.number("ms_per_query"), 0);
+    // Four very different objects, unchanged views 5 degrees from the removed ones' neighbours:
+    // every method finds nearly all of them.
+    if (row.field.at("distortion") == "df") {
+      EXPECT_GE(row.number("hit_rate"), 0.75) << row.field.at("method") << " n=" << row.field.at("n");
+    }
+  }
+
+  const cv::Mat image = cv::imread(plot.string());
+  ASSERT_FALSE(image.empty());
+  EXPECT_EQ(image.cols, 2 * 460);  // one panel per distortion
+  EXPECT_GT(image.rows, 340);
+  cv::Mat grey;
+  cv::cvtColor(image, grey, cv::COLOR_BGR2GRAY);
+  EXPECT_GT(cv::countNonZero(grey < 128), 1000);  // axes, text and lines were drawn
+}
+
+TEST_F(EvalCommandTest, CountsDoNotDependOnThreadsOrLayout) {
+  // The same objects as a manifest (object order and image order as in the folder) and as a
+  // COIL-100 folder, with 1 and 2 threads: the same trials and the same noise, so the same hits.
+  std::ofstream manifest(dir_ / "set.csv");
+  manifest << "path,object,azimuth\n";
+  for (int object : {1, 2, 3, 4, 5, 6}) {
+    for (int azimuth = 0; azimuth < 360; azimuth += 5) {
+      manifest << coil_ << "/obj" << object << "__" << azimuth << ".png,obj" << object << ","
+               << azimuth << "\n";
+    }
+  }
+  manifest.close();
+  const std::string common =
+      " --methods eis,vci-bm,hmm --distortions gn --n 1,2 --trials 3 --seed 3 --no-progress --csv ";
+  const auto coil = testing::RunCommand(testing::OrbitBinary() + " eval --layout coil100 --data " +
+                                        coil_ + " --objects 1-6 --threads 2" + common +
+                                        (dir_ / "a.csv").string());
+  ASSERT_EQ(coil.exit_code, 0) << coil.err;
+  const auto listed = testing::RunCommand(
+      testing::OrbitBinary() + " eval --layout manifest --manifest " + (dir_ / "set.csv").string() +
+      " --threads 1" + common + (dir_ / "b.csv").string());
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  const auto a = ReadCsv(dir_ / "a.csv").second, b = ReadCsv(dir_ / "b.csv").second;
+  ASSERT_EQ(a.size(), 6u);
+  ASSERT_EQ(b.size(), 6u);
+  // GN queries are hit about half the time: six equal counts of 18 by chance are unlikely.
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    EXPECT_EQ(a[i].field.at("method"), b[i].field.at("method"));
+    EXPECT_EQ(a[i].field.at("trials"), "18");
+    EXPECT_EQ(a[i].field.at("hits"), b[i].field.at("hits")) << a[i].field.at("method");
+  }
+}
+
+TEST_F(EvalCommandTest, ExplainsBadOptions) {
+  const std::string eval = testing::OrbitBinary() + " eval ";
+  auto r = testing::RunCommand(eval + "--layout manifest --objects 1-2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--layout manifest needs --manifest FILE"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --methods eis,magic");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.err, HasSubstr("magic"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --objects 1-3 --unknown-objects 3");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("object 3 is in both --objects and --unknown-objects"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --objects 101");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("no image of object 101"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --n 0");
+  EXPECT_NE(r.exit_code, 0);
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,224 @@
+// RecognitionSession against a real `orbit serve` process: streaming COIL-100 frames, updates by
+// blocking read and by callback, errors that end a session, and reconnection across a server
+// restart without losing or repeating a frame.
+#include <csignal>
+#include <future>
+#include <mutex>
+#include <thread>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "client/connection.h"
+#include "client/recognition_session.h"
+#include "client/rpc_error.h"
+#include "core/cedd.h"
+#include "tests/support/client_test_support.h"
+#include "tests/support/server_process.h"
+
+namespace orbit {
+namespace {
+
+using testing::CoilImage;
+using testing::EnrollCoilObjects;
+using testing::ServerProcess;
+
+// Frame k of a sweep around `object`: true azimuth 105 + 10k (never an enrolled view), as a
+// device whose compass reads 200 degrees off.
+constexpr int kSweepStart = 105;
+constexpr double kCompassOffset = 200;
+double TrueAzimuth(int k) { return kSweepStart + 10 * k; }
+
+std::int64_t PushSweepFrame(RecognitionSession& session, int object, int k) {
+  return session.Push(CoilImage(object, static_cast<int>(TrueAzimuth(k))),
+                      TrueAzimuth(k) + kCompassOffset);
+}
+
+std::vector<v1::SessionUpdate> ReadUpdates(RecognitionSession& session, int count) {
+  std::vector<v1::SessionUpdate> updates;
+  for (int i = 0; i < count; ++i) {
+    std::optional<v1::SessionUpdate> update = session.NextUpdate();
+    if (!update) break;
+    updates.push_back(*update);
+  }
+  return updates;
+}
+
+// Everything a user sees in an update except the server's timing.
+void ExpectSameAnswer(const v1::SessionUpdate& a, const v1::SessionUpdate& b) {
+  EXPECT_EQ(a.frame_index(), b.frame_index());
+  EXPECT_EQ(a.decision(), b.decision()) << "frame " << a.frame_index();
+  EXPECT_EQ(a.move(), b.move()) << "frame " << a.frame_index();
+  ASSERT_EQ(a.candidates_size(), b.candidates_size()) << "frame " << a.frame_index();
+  for (int i = 0; i < a.candidates_size(); ++i) {
+    EXPECT_EQ(a.candidates(i).id(), b.candidates(i).id()) << "frame " << a.frame_index();
+    EXPECT_DOUBLE_EQ(a.candidates(i).score(), b.candidates(i).score())
+        << "frame " << a.frame_index();
+  }
+}
+
+TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 5);
+
+  for (const int object : {3, 5}) {
+    auto session = RecognitionSession::Open(connection, testing::TopK(3));
+    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddLire);  // asked from the server
+    EXPECT_EQ(session->window(), 8);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(PushSweepFrame(*session, object, k), k);
+    }
+    const std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 6);
+    EXPECT_TRUE(session->Close().ok());
+    EXPECT_FALSE(session->NextUpdate().has_value());  // ended, nothing left
+    ASSERT_EQ(updates.size(), 6u);
+    for (int k = 0; k < 6; ++k) {
+      EXPECT_EQ(updates[k].frame_index(), k);
+      ASSERT_GT(updates[k].candidates_size(), 0);
+      EXPECT_LE(updates[k].candidates_size(), 3);
+      for (int i = 1; i < updates[k].candidates_size(); ++i) {
+        EXPECT_GE(updates[k].candidates(i - 1).score(), updates[k].candidates(i).score());
+      }
+    }
+    EXPECT_EQ(updates.back().candidates(0).name(), "obj" + std::to_string(object));
+    EXPECT_EQ(updates.back().decision(), v1::DECISION_ACCEPT);
+  }
+}
+
+TEST(RecognitionSession, DeliversUpdatesToACallbackInOrderAndResetsNumbering) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 3);
+
+  std::mutex mutex;
+  std::vector<v1::SessionUpdate> received;
+  SessionOptions options;
+  options.on_update = [&](const v1::SessionUpdate& update) {
+    std::lock_guard lock(mutex);
+    received.push_back(update);
+  };
+  auto session = RecognitionSession::Open(connection, options);
+  for (int k = 0; k < 4; ++k) PushSweepFrame(*session, 2, k);
+  session->Reset();
+  for (int k = 0; k < 3; ++k) {
+    // PushDescriptor: a descriptor computed elsewhere, with a timestamp echoed back.
+    const DescriptorValues cedd = ExtractCedd(CoilImage(1, 15 + 10 * k), session->variant()).values;
+    EXPECT_EQ(session->PushDescriptor(cedd, 15 + 10 * k, 1000 + k), k);
+  }
+  ASSERT_TRUE(session->Close().ok());
+
+  ASSERT_EQ(received.size(), 7u);
+  const std::vector<std::int64_t> expected_index = {0, 1, 2, 3, 0, 1, 2};
+  for (std::size_t i = 0; i < received.size(); ++i) {
+    EXPECT_EQ(received[i].frame_index(), expected_index[i]) << i;
+  }
+  EXPECT_EQ(received[3].candidates(0).name(), "obj2");
+  EXPECT_EQ(received[6].candidates(0).name(), "obj1");  // the reset forgot obj2's frames
+  EXPECT_EQ(received[6].timestamp_us(), 1002);
+}
+
+TEST(RecognitionSession, AServerRefusalEndsTheSessionWithItsStatus) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 1);
+
+  // Another variant than the server's: INVALID_ARGUMENT, reported by Close and by later pushes.
+  SessionOptions full;
+  full.variant = DescriptorVariant::kCeddFull;
+  auto session = RecognitionSession::Open(connection, full);
+  EXPECT_FALSE(session->NextUpdate().has_value());
+  EXPECT_THROW(session->Push(CoilImage(1, 5), 5), RpcError);
+  const grpc::Status status = session->Close();
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+
+  // top-k beyond the API's 1..100, likewise; a window beyond the server's limit is
+  // RESOURCE_EXHAUSTED; and the server still serves others.
+  auto too_many = RecognitionSession::Open(connection, testing::TopK(101));
+  EXPECT_EQ(too_many->Close().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  SessionOptions wide;
+  wide.window = 65;
+  auto too_wide = RecognitionSession::Open(connection, wide);
+  EXPECT_EQ(too_wide->Close().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  auto good = RecognitionSession::Open(connection, {});
+  good->Push(CoilImage(1, 5), 5);
+  EXPECT_TRUE(good->NextUpdate().has_value());
+  EXPECT_TRUE(good->Close().ok());
+
+  // Bad arguments are refused on the device, before anything is sent.
+  auto local = RecognitionSession::Open(connection, {});
+  EXPECT_THROW(local->Push(cv::Mat(), 0), std::invalid_argument);
+  EXPECT_THROW(local->Push(CoilImage(1, 5), 0, cv::Rect(120, 120, 20, 20)), std::invalid_argument);
+  EXPECT_EQ(local->Push(CoilImage(1, 5), 0, cv::Rect(10, 10, 100, 100)), 0);
+  EXPECT_TRUE(local->Close().ok());
+}
+
+TEST(RecognitionSession, ReconnectsAfterAServerRestartWithoutLosingFrames) {
+  constexpr int kObject = 3;
+  constexpr int kFrames = 10;
+  ServerProcess first;
+  const Connection connection(testing::At(first.address()));
+  EnrollCoilObjects(connection, 1, 5);
+
+  auto session = RecognitionSession::Open(connection, testing::TopK(3));
+  for (int k = 0; k < 5; ++k) PushSweepFrame(*session, kObject, k);
+  std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 5);
+  ASSERT_EQ(updates.size(), 5u);
+
+  ASSERT_EQ(first.Stop(SIGTERM), 0) << first.Log();
+  // Frames pushed while the server is down wait for the reconnection.
+  auto pushed_while_down = std::async(std::launch::async, [&] {
+    for (int k = 5; k < 7; ++k) PushSweepFrame(*session, kObject, k);
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  testing::ServerProcessOptions same_place;
+  same_place.database = first.database();
+  same_place.listen = first.address();
+  ServerProcess second(same_place);
+  pushed_while_down.get();
+  for (int k = 7; k < kFrames; ++k) PushSweepFrame(*session, kObject, k);
+  const std::vector<v1::SessionUpdate> after = ReadUpdates(*session, kFrames - 5);
+  ASSERT_TRUE(session->Close().ok());
+  EXPECT_GE(session->reconnections(), 1);
+  updates.insert(updates.end(), after.begin(), after.end());
+
+  // Every frame answered once, in order, with the device's numbering.
+  ASSERT_EQ(updates.size(), static_cast<std::size_t>(kFrames));
+  for (int k = 0; k < kFrames; ++k) EXPECT_EQ(updates[k].frame_index(), k);
+  EXPECT_FALSE(session->NextUpdate().has_value());
+
+  // The replayed window gave the new server the same state: its answers equal those of an
+  // uninterrupted session over the same frames on the same server.
+  auto reference = RecognitionSession::Open(connection, testing::TopK(3));
+  for (int k = 0; k < kFrames; ++k) PushSweepFrame(*reference, kObject, k);
+  const std::vector<v1::SessionUpdate> expected = ReadUpdates(*reference, kFrames);
+  ASSERT_TRUE(reference->Close().ok());
+  ASSERT_EQ(expected.size(), static_cast<std::size_t>(kFrames));
+  for (int k = 5; k < kFrames; ++k) ExpectSameAnswer(updates[k], expected[k]);
+  EXPECT_EQ(updates.back().candidates(0).name(), "obj3");
+}
+
+TEST(RecognitionSession, GivesUpWithUnavailableWhenTheServerStaysDown) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 1);
+  SessionOptions impatient;
+  impatient.reconnect_timeout = std::chrono::milliseconds(1500);
+  auto session = RecognitionSession::Open(connection, impatient);
+  session->Push(CoilImage(1, 5), 5);
+  ASSERT_TRUE(session->NextUpdate().has_value());
+  server.Stop(SIGKILL);
+  // Accepted if the drop is not noticed yet, else it waits for the reconnection and is refused
+  // when that gives up.
+  try {
+    session->Push(CoilImage(1, 15), 15);
+  } catch (const RpcError& e) {
+    EXPECT_EQ(e.code(), grpc::StatusCode::UNAVAILABLE);
+  }
+  EXPECT_FALSE(session->NextUpdate().has_value());
+  EXPECT_EQ(session->Close().error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_THROW(session->Push(CoilImage(1, 25), 25), RpcError);
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,177 @@
+#include "evaluation/dataset.h"
+
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+
+// A fresh folder under the system's temp dir, removed with everything in it at the end.
+class TempDir {
+ public:
+  TempDir() {
+    path_ = std::filesystem::temp_directory_path() /
+            ("orbit_dataset_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() { std::filesystem::remove_all(path_); }
+  const std::filesystem::path& path() const { return path_; }
+
+  std::filesystem::path Write(const std::string& name, const std::string& text) const {
+    const auto file = path_ / name;
+    std::filesystem::create_directories(file.parent_path());
+    std::ofstream(file) << text;
+    return file;
+  }
+
+ private:
+  static inline int counter_ = 0;
+  std::filesystem::path path_;
+};
+
+// The message of the exception `call` throws, or "" when it throws none.
+template <typename Exception, typename Call>
+std::string ErrorOf(Call call) {
+  try {
+    call();
+  } catch (const Exception& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
+  EXPECT_THAT(ParseObjectRange("7"), ElementsAre(7));
+  EXPECT_THAT(ParseObjectRange("1-5,9"), ElementsAre(1, 2, 3, 4, 5, 9));
+  EXPECT_EQ(ParseObjectRange("1-20").size(), 20u);
+  EXPECT_EQ(ParseObjectRange("1-20").back(), 20);
+  // Sorted, overlaps merged, spaces tolerated.
+  EXPECT_THAT(ParseObjectRange(" 9, 3-4 ,4,2 - 3"), ElementsAre(2, 3, 4, 9));
+}
+
+TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange(""); }), HasSubstr("empty"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1,,3"); }),
+              HasSubstr("empty item"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-5,x"); }),
+              HasSubstr("\"x\""));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("0-3"); }),
+              HasSubstr("numbered from 1"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("5-1"); }),
+              HasSubstr("\"5-1\" ends before it starts"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-"); }), HasSubstr("\"1-\""));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("99999999999"); }),
+              HasSubstr("too large"));
+  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-1000000000"); }),
+              HasSubstr("too large"));
+}
+
+TEST(ListCoil100Test, ListsTheSharedDataSortedByObjectThenAzimuth) {
+  const auto dir = testing::DataDir() / "coil-100";
+  const std::vector<DatasetImage> all = ListCoil100(dir);
+  ASSERT_EQ(all.size(), 7200u);
+  EXPECT_EQ(all[0].object, "obj1");
+  EXPECT_EQ(all[0].azimuth, 0);
+  EXPECT_EQ(all[1].azimuth, 5);     // numeric order: 5 before 10, 100, ...
+  EXPECT_EQ(all[71].azimuth, 355);
+  EXPECT_EQ(all[72].object, "obj2");  // obj2 before obj10
+  EXPECT_EQ(all.back().object, "obj100");
+  EXPECT_EQ(std::filesystem::path(all[1].path), dir / "obj1__5.png");
+  EXPECT_FALSE(all[0].elevation.has_value());
+
+  const std::vector<DatasetImage> some = ListCoil100(dir, ParseObjectRange("3,10"));
+  ASSERT_EQ(some.size(), 144u);
+  EXPECT_EQ(some[0].object, "obj3");
+  EXPECT_EQ(some[72].object, "obj10");
+  EXPECT_EQ(std::filesystem::path(some[143].path), dir / "obj10__355.png");
+}
+
+TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
+  TempDir dir;
+  dir.Write("obj2__10.png", "");
+  dir.Write("obj2__5.png", "");
+  dir.Write("obj10__0.png", "");
+  dir.Write("README.md", "");
+  dir.Write("obj3__0.jpg", "");
+  dir.Write("obj4_0.png", "");
+  const std::vector<DatasetImage> images = ListCoil100(dir.path());
+  ASSERT_EQ(images.size(), 3u);
+  EXPECT_EQ(images[0], (DatasetImage{(dir.path() / "obj2__5.png").string(), "obj2", 5, {}}));
+  EXPECT_EQ(images[1].azimuth, 10);
+  EXPECT_EQ(images[2].object, "obj10");
+
+  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(dir.path(), std::vector<int>{2, 3}); }),
+              HasSubstr("no image of object 3"));
+  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(dir.path() / "missing"); }),
+              HasSubstr("not a directory"));
+  TempDir empty;
+  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(empty.path()); }),
+              HasSubstr("no COIL-100 images"));
+}
+
+TEST(ReadManifestTest, ResolvesRelativePathsAgainstTheCsvFolder) {
+  TempDir dir;
+  const auto csv = dir.Write("sets/cups.csv",
+                             "object,azimuth,path,elevation\r\n"
+                             "cup, 90 ,views/a.png,10\r\n"
+                             "\r\n"
+                             "\"mug, blue\",-30,/abs/b.png,\r\n"
+                             "cup,450,\"views/c \"\"x\"\".png\",-5.5\r\n");
+  const std::vector<DatasetImage> images = ReadManifest(csv);
+  ASSERT_EQ(images.size(), 3u);
+  EXPECT_EQ(images[0], (DatasetImage{(dir.path() / "sets" / "views" / "a.png").string(), "cup",
+                                     90, 10.0}));
+  EXPECT_EQ(images[1], (DatasetImage{"/abs/b.png", "mug, blue", 330, std::nullopt}));
+  EXPECT_EQ(images[2].path, (dir.path() / "sets" / "views" / "c \"x\".png").string());
+  EXPECT_EQ(images[2].azimuth, 90);
+  EXPECT_EQ(images[2].elevation, -5.5);
+}
+
+TEST(ReadManifestTest, ElevationColumnIsOptional) {
+  TempDir dir;
+  const auto csv = dir.Write("m.csv", "path,object,azimuth\na.png,box,12.5\n");
+  const std::vector<DatasetImage> images = ReadManifest(csv);
+  ASSERT_EQ(images.size(), 1u);
+  EXPECT_EQ(images[0].azimuth, 12.5);
+  EXPECT_FALSE(images[0].elevation.has_value());
+}
+
+TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
+  TempDir dir;
+  const auto error = [&](const std::string& text) {
+    const auto csv = dir.Write("bad.csv", text);
+    return ErrorOf<std::runtime_error>([&] { ReadManifest(csv); });
+  };
+  const std::string name = (dir.path() / "bad.csv").string();
+  EXPECT_THAT(error("path,object\na.png,x\n"), HasSubstr(name + ":1: header lacks the column \"azimuth\""));
+  EXPECT_THAT(error("a.png,x,5\n"), HasSubstr(":1: unknown column \"a.png\""));
+  EXPECT_THAT(error("path,object,azimuth,azimuth\n"), HasSubstr(":1: column \"azimuth\" appears twice"));
+  EXPECT_THAT(error("path,object,azimuth\na.png,x,5\nb.png,x\n"),
+              HasSubstr(name + ":3: expected 3 fields, found 2"));
+  EXPECT_THAT(error("path,object,azimuth\na.png,x,north\n"),
+              HasSubstr(":2: azimuth \"north\" is not a finite number"));
+  EXPECT_THAT(error("path,object,azimuth\na.png,x,nan\n"), HasSubstr(":2: azimuth \"nan\""));
+  EXPECT_THAT(error("path,object,azimuth,elevation\na.png,x,1,up\n"),
+              HasSubstr(":2: elevation \"up\" is not a finite number"));
+  EXPECT_THAT(error("path,object,azimuth\n\n,x,1\n"), HasSubstr(":3: empty path"));
+  EXPECT_THAT(error("path,object,azimuth\na.png,,1\n"), HasSubstr(":2: empty object name"));
+  EXPECT_THAT(error("path,object,azimuth\n\"a.png,x,1\n"), HasSubstr(":2: malformed quotes"));
+  EXPECT_THAT(error("path,object,azimuth\n"), HasSubstr(name + ": no images"));
+  EXPECT_THAT(error(""), HasSubstr("no header row"));
+  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ReadManifest(dir.path() / "none.csv"); }),
+              HasSubstr("cannot read"));
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,63 @@
+// COIL-100 images as the client library's tests enroll and stream them: objects enrolled from
+// every 10th degree (views 0, 10, ..., 350), queried between them (5, 15, ...), so no query
+// image is in the model.
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include <opencv2/core.hpp>
+
+#include "client/connection.h"
+#include "client/enroller.h"
+#include "client/recognition_session.h"
+#include "client/image_file.h"
+#include "tests/support/test_data.h"
+
+namespace orbit::testing {
+
+inline std::string CoilFile(int object, int azimuth) {
+  return (DataDir() / "coil-100" /
+          ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+      .string();
+}
+
+inline cv::Mat CoilImage(int object, int azimuth) {
+  return ReadImageFile(CoilFile(object, azimuth));
+}
+
+// A plaintext connection to `address` with no token.
+inline ConnectionOptions At(const std::string& address,
+                            std::chrono::milliseconds deadline = std::chrono::seconds(10)) {
+  ConnectionOptions options;
+  options.address = address;
+  options.unary_deadline = deadline;
+  return options;
+}
+
+// Session options with the server's defaults but `top_k` candidates.
+inline SessionOptions TopK(int top_k) {
+  SessionOptions options;
+  options.top_k = top_k;
+  return options;
+}
+
+// Object `object`'s views at 0, 10, ..., 350 degrees.
+inline std::vector<EnrollmentImage> CoilEnrollmentImages(int object) {
+  std::vector<EnrollmentImage> images;
+  for (int azimuth = 0; azimuth < 360; azimuth += 10) {
+    images.push_back({CoilImage(object, azimuth), static_cast<double>(azimuth), {}, {}});
+  }
+  return images;
+}
+
+// Enrolls objects first..last as "objN" through the client library.
+inline void EnrollCoilObjects(const Connection& connection, int first, int last) {
+  Enroller enroller(connection, {.seed = 1, .threads = 2});
+  for (int object = first; object <= last; ++object) {
+    enroller.Enroll("obj" + std::to_string(object), CoilEnrollmentImages(object));
+  }
+}
+
+}  // namespace orbit::testing

@@ -1,0 +1,62 @@
+// COIL-100 objects as ObjectModels for the engine and index tests: the CEDD (cedd-lire) of every
+// view objN__A.png, extracted once per test binary and cached.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "client/image_file.h"
+#include "core/cedd.h"
+#include "core/object_model.h"
+#include "tests/support/test_data.h"
+
+namespace orbit::testing {
+
+// Object N of COIL-100 (1..100) with its 72 views (azimuths 0, 5, ..., 355); id = N, name objN.
+inline const ObjectModel& CoilObject(int number) {
+  static std::mutex mutex;
+  static std::map<int, ObjectModel> cache;
+  std::lock_guard<std::mutex> lock(mutex);
+  auto [it, inserted] = cache.try_emplace(number);
+  if (inserted) {
+    ObjectModel& model = it->second;
+    model.id = number;
+    model.name = "obj" + std::to_string(number);
+    model.variant = DescriptorVariant::kCeddLire;
+    for (int azimuth = 0; azimuth < 360; azimuth += 5) {
+      const std::string file = (DataDir() / "coil-100" /
+                                ("obj" + std::to_string(number) + "__" + std::to_string(azimuth) +
+                                 ".png")).string();
+      ModelView view;
+      view.descriptor = ExtractCedd(ReadImageFile(file), DescriptorVariant::kCeddLire).values;
+      view.azimuth = azimuth;
+      model.views.push_back(view);
+    }
+  }
+  return it->second;
+}
+
+// Objects first..last, keeping only the views whose azimuth satisfies `keep`.
+inline std::vector<ObjectModel> CoilObjects(int first, int last,
+                                            const std::function<bool(int azimuth)>& keep) {
+  std::vector<ObjectModel> models;
+  for (int n = first; n <= last; ++n) {
+    ObjectModel model = CoilObject(n);
+    std::erase_if(model.views, [&](const ModelView& v) { return !keep(static_cast<int>(v.azimuth)); });
+    models.push_back(std::move(model));
+  }
+  return models;
+}
+
+// Views at multiples of 10 degrees: the model half of the tests' even/odd split.
+inline bool EvenView(int azimuth) { return azimuth % 10 == 0; }
+
+// The view of object `number` at `azimuth` (a multiple of 5).
+inline const DescriptorValues& CoilView(int number, int azimuth) {
+  return CoilObject(number).views[azimuth / 5].descriptor;
+}
+
+}  // namespace orbit::testing
