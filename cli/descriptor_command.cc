@@ -58,7 +58,7 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
       ->add_option("--variant", options->variant,
                    "cedd-lire: bit-exact with LIRE (reads only LIRE's block grid);\n"
                    "cedd-full: a 40x40 grid covering every pixel")
-      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
+      ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();
   command->callback([options, &exit_code] { exit_code = RunDescriptor(*options); });

@@ -3,13 +3,13 @@
 #include <iostream>
 #include <memory>
 #include <string>
-#include <thread>
 #include <vector>
 
 #include "cli/commands.h"
 #include "cli/image_arguments.h"
 #include "cli/network_options.h"
 #include "client/enroller.h"
+#include "core/parallel_for.h"
 
 namespace orbit::cli {
 namespace {
@@ -20,8 +20,8 @@ struct EnrollOptions {
   std::vector<std::string> images;
   std::vector<double> azimuths;
   std::string metadata = "{}";
-  std::uint64_t seed = 1;
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::uint64_t seed = EnrollerOptions{}.seed;
+  unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
 int RunEnroll(const EnrollOptions& options) {
@@ -56,7 +56,9 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
       ->required();
   command->add_option("--metadata", options->metadata, "a JSON object stored with the object")
       ->capture_default_str();
-  command->add_option("--seed", options->seed, "seed of the noisy copies for typical distances")
+  command->add_option("--seed", options->seed,
+                      "base seed of the noisy copies for typical distances (the default stores\n"
+                      "what a server computes from the same images)")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "threads computing descriptors")
       ->check(CLI::Range(1u, 256u));

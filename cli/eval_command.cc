@@ -24,16 +24,26 @@
 namespace orbit::cli {
 namespace {
 
+// Names of `values` as the command line writes them.
+template <typename T, typename NameOf>
+std::vector<std::string> Names(const std::vector<T>& values, NameOf name_of) {
+  std::vector<std::string> names;
+  for (const T& value : values) names.emplace_back(name_of(value));
+  return names;
+}
+
+// The command's options; every default is the harness's own (EvaluationOptions,
+// ViewIndexOptions, EngineOptions), never typed again here.
 struct EvalOptions {
   std::string layout = "coil100";
   std::string data;
   std::string manifest;
-  std::vector<std::string> methods{"eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm"};
-  std::vector<std::string> variants{"cedd-lire"};
-  std::vector<std::string> distortions{"df", "mb", "gn"};
-  std::vector<int> ns{1, 2, 4, 6, 8};
-  int trials = 10;
-  std::uint64_t seed = 1;
+  std::vector<std::string> methods = EvaluationOptions{}.methods;
+  std::vector<std::string> variants = Names(EvaluationOptions{}.variants, VariantName);
+  std::vector<std::string> distortions = Names(EvaluationOptions{}.distortions, DistortionName);
+  std::vector<int> ns = EvaluationOptions{}.query_lengths;
+  int trials = EvaluationOptions{}.trials;
+  std::uint64_t seed = EvaluationOptions{}.seed;
   std::string objects;
   std::string unknown_objects;
   std::string index = "exact";
@@ -46,7 +56,7 @@ struct EvalOptions {
   int hmm_states = EngineOptions{}.hmm_states;
   std::string csv;
   std::string plot;
-  int threads = 0;
+  int threads = EvaluationOptions{}.threads;
   bool no_progress = false;
 };
 
@@ -183,11 +193,11 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--variant", o->variants, "descriptor variant(s): cedd-lire, cedd-full")
       ->delimiter(',')
-      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
+      ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("--distortions", o->distortions, "query distortions: df, mb, gn")
       ->delimiter(',')
-      ->check(CLI::IsMember({"df", "mb", "gn"}))
+      ->check(CLI::IsMember(DistortionNames()))
       ->capture_default_str();
   command->add_option("--n", o->ns, "query lengths (frames per query)")
       ->delimiter(',')

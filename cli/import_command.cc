@@ -14,14 +14,15 @@
 
 #include "cli/commands.h"
 #include "cli/network_options.h"
+#include "api/conversion.h"
 #include "client/enroller.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
 #include "evaluation/dataset.h"
 #include "client/image_file.h"
 #include "cli/progress_bar.h"
-#include "core/cedd.h"
-#include "core/typical_distance.h"
+#include "core/parallel_for.h"
+#include "core/view_description.h"
 #include "storage/model_validation.h"
 #include "storage/sqlite_model_store.h"
 
@@ -36,16 +37,14 @@ struct ImportOptions {
   std::string objects;
   std::string manifest;
   std::string variant;  // "": cedd-lire for a file, the server's variant with --server
-  std::uint64_t seed = 1;
-  unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+  std::uint64_t seed = kDefaultViewNoiseSeed;
+  unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
-// The images of one object, in dataset order; `first_image` is the position of the first one in
-// the whole dataset listing (it seeds each view's noisy copy).
+// The images of one object, in dataset order.
 struct ObjectImages {
   std::string name;
   std::vector<DatasetImage> images;
-  std::size_t first_image = 0;
 };
 
 std::vector<DatasetImage> ListImages(const ImportOptions& options) {
@@ -71,41 +70,24 @@ std::vector<ObjectImages> GroupByObject(const std::vector<DatasetImage>& images)
     auto found = std::find_if(objects.begin(), objects.end(), same_name);
     if (found == objects.end()) {
       ValidateObjectName(images[i].object);
-      found = objects.insert(objects.end(), ObjectImages{images[i].object, {}, i});
+      found = objects.insert(objects.end(), ObjectImages{images[i].object, {}});
     }
     found->images.push_back(images[i]);
   }
   return objects;
 }
 
-// The model views of one object: CEDD and typical distance (SPEC.md, "Recognition") of each
-// image, computed on `threads` threads. View f's noisy copy is seeded with seed + its position
-// in the dataset, so an import is reproducible whatever the thread count.
+// The model views of one object, each image described as every enrollment path describes it
+// (core/view_description.h: CEDD and typical distance, `seed` the base of the seed rule), on
+// `threads` threads. The numbers depend on the images alone, whatever the thread count.
 std::vector<ModelView> ComputeViews(const ObjectImages& object, DescriptorVariant variant,
                                     std::uint64_t seed, unsigned threads) {
   std::vector<ModelView> views(object.images.size());
-  std::vector<std::string> errors(threads);
-  auto work = [&](unsigned worker) {
-    try {
-      for (std::size_t f = worker; f < views.size(); f += threads) {
-        const DatasetImage& image = object.images[f];
-        const cv::Mat pixels = ReadImageFile(image.path);
-        views[f].descriptor = ExtractCedd(pixels, variant).values;
-        views[f].azimuth = image.azimuth;
-        views[f].elevation = image.elevation;
-        views[f].typical_distance = TypicalDistance(pixels, variant, seed + object.first_image + f);
-      }
-    } catch (const std::exception& e) {
-      errors[worker] = e.what();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& thread : pool) thread.join();
-  for (const std::string& error : errors) {
-    if (!error.empty()) throw std::runtime_error(error);
-  }
+  ParallelFor(views.size(), static_cast<int>(threads), [&](std::size_t f) {
+    const DatasetImage& image = object.images[f];
+    const ViewDescription described = DescribeView(ReadImageFile(image.path), variant, seed);
+    views[f] = {described.descriptor, image.azimuth, image.elevation, described.typical_distance};
+  });
   return views;
 }
 
@@ -135,15 +117,6 @@ ImportTarget StoreTarget(const ImportOptions& options) {
   return target;
 }
 
-v1::View ToApiView(const ModelView& view) {
-  v1::View api;
-  api.set_cedd(view.descriptor.data(), view.descriptor.size());
-  api.set_azimuth_deg(view.azimuth);
-  if (view.elevation) api.set_elevation_deg(*view.elevation);
-  api.set_typical_distance(view.typical_distance);
-  return api;
-}
-
 ImportTarget ServerTarget(const ImportOptions& options) {
   auto connection = std::make_shared<Connection>(ToConnectionOptions(options.network));
   auto enroller = std::make_shared<Enroller>(*connection);
@@ -166,7 +139,7 @@ ImportTarget ServerTarget(const ImportOptions& options) {
   // `connection` is captured so that it outlives the enroller that refers to it.
   target.enroll = [connection, enroller](const Enrollment& enrollment) {
     std::vector<v1::View> views;
-    for (const ModelView& view : enrollment.views) views.push_back(ToApiView(view));
+    for (const ModelView& view : enrollment.views) views.push_back(ToProtoView(view));
     return enroller->EnrollViews(enrollment.name, views).id();
   };
   return target;
@@ -231,8 +204,10 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
   command->add_option("--variant", options->variant,
                       "descriptor variant (default: cedd-lire; with --server, the server's)")
-      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}));
-  command->add_option("--seed", options->seed, "seed of the noisy copies for typical distances")
+      ->check(CLI::IsMember(VariantNames()));
+  command->add_option("--seed", options->seed,
+                      "base seed of the noisy copies for typical distances (the default stores\n"
+                      "what a server or the client library computes from the same images)")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "threads computing descriptors")
       ->check(CLI::Range(1u, 256u))

@@ -5,13 +5,14 @@
 #include <CLI/CLI.hpp>
 
 #include "cli/commands.h"
+#include "orbit/version.h"
 
 int main(int argc, char** argv) {
   CLI::App app{
       "Orbit: lightweight 3D object recognition from a moving camera.\n"
       "Each subcommand has its own help: orbit SUBCOMMAND --help"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", std::string("orbit 0.1.0"));
+  app.set_version_flag("--version", std::string("orbit ") + orbit::kOrbitVersion);
 
   int exit_code = 0;
   orbit::cli::AddDescriptorCommand(app, exit_code);

@@ -8,7 +8,7 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "cli/session_flags.h"
+#include "api/engine_names.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {
@@ -31,14 +31,8 @@ int RunServe(ServeOptions& o) {
   if (!o.tls_key.empty()) config.tls_key = o.tls_key;
   config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
-  config.session_defaults.engine = ParseEngine(o.engine);
-  const EngineOptions& defaults = config.session_defaults.options;
-  if (server::RunsHmm(config.session_defaults.engine) && defaults.window * defaults.hmm_states > config.limits.max_hmm_cells) {
-    throw std::invalid_argument(
-        "the default session (window " + std::to_string(defaults.window) + " x " +
-        std::to_string(defaults.hmm_states) + " HMM states) is above --max-hmm-cells " +
-        std::to_string(config.limits.max_hmm_cells));
-  }
+  config.session_defaults.engine = ParseSessionEngine(o.engine);
+  server::ValidateServerConfig(config);  // before the account below claims it will run
 
   // SIGTERM and SIGINT are taken by sigwait below: block them before any server thread exists,
   // so that every thread inherits the mask.
@@ -93,7 +87,7 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_flag("--allow-remote-without-tokens", c.allow_remote_without_tokens,
                 "serve a non-loopback address with no access control (unsafe)");
   cmd->add_option("--variant", o->variant, "descriptor variant of the models and sessions")
-      ->check(CLI::IsMember({"cedd-lire", "cedd-full"}))
+      ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str()
       ->envname("ORBIT_VARIANT");
   cmd->add_option("--index", o->index, "view search: kdtree (FLANN) or exact (brute force)")
@@ -102,7 +96,7 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--engine", o->engine,
                   "default engine of sessions that do not choose one (hmm: the most accurate fast "
                   "engine on COIL-100, see docs/results/coil100-reproduction.md)")
-      ->check(CLI::IsMember(EngineFlagNames()))
+      ->check(CLI::IsMember(SessionEngineNames()))
       ->capture_default_str();
   cmd->add_option("--window", c.session_defaults.options.window, "default window W")
       ->check(CLI::Range(1, kMaxWindow))

@@ -1,6 +1,6 @@
 // The session options of `orbit recognize` and `orbit demo` as command-line flags
 // (--engine, --top-k, --window, --w, --list-length, --hmm-states, --threshold); a flag left out
-// takes the server's default.
+// takes the server's default. Engine names are api/engine_names.h's.
 #pragma once
 
 #include <optional>
@@ -24,14 +24,6 @@ struct SessionFlags {
 };
 
 void AddSessionFlags(CLI::App& command, SessionFlags& flags);
-
-// The engine for its command-line name: vci, hmm, vci-hmm, vci-bm, vci-w0, eis, siis, eiis
-// (core/recognition_engine.h's names, plus vci-hmm for the combination).
-// Throws std::invalid_argument for any other name.
-v1::Engine ParseEngine(const std::string& name);
-
-// The names ParseEngine accepts, in a fixed order.
-std::vector<std::string> EngineFlagNames();
 
 SessionOptions ToSessionOptions(const SessionFlags& flags);
 

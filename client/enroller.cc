@@ -1,16 +1,16 @@
 #include "client/enroller.h"
 
 #include <stdexcept>
-#include <thread>
 
+#include "api/conversion.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
-#include "core/cedd.h"
-#include "core/typical_distance.h"
+#include "core/parallel_for.h"
 
 namespace orbit {
 
-v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant, std::uint64_t seed) {
+v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
+                     std::uint64_t base_seed) {
   if (image.image.empty()) throw std::invalid_argument("empty enrollment image");
   const cv::Rect whole(0, 0, image.image.cols, image.image.rows);
   const cv::Rect region = image.region.value_or(whole);
@@ -18,20 +18,13 @@ v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant, st
     throw std::invalid_argument("enrollment region is empty or not inside its image");
   }
   // The distortions are applied to the region alone, as a device would crop the object first.
-  const cv::Mat pixels = image.image(region);
-  const DescriptorValues values = ExtractCedd(pixels, variant).values;
-  std::array<DescriptorValues, kTypicalDistortionCount> copies;
-  const auto distorted = TypicalDistortions(pixels, seed);
-  for (int i = 0; i < kTypicalDistortionCount; ++i) {
-    copies[i] = ExtractCedd(distorted[i], variant).values;
-  }
-
-  v1::View view;
-  view.set_cedd(values.data(), values.size());
-  view.set_azimuth_deg(image.azimuth_deg);
-  if (image.elevation_deg) view.set_elevation_deg(*image.elevation_deg);
-  view.set_typical_distance(TypicalDistance(values, copies));
-  return view;
+  const ViewDescription described = DescribeView(image.image(region), variant, base_seed);
+  ModelView view;
+  view.descriptor = described.descriptor;
+  view.azimuth = image.azimuth_deg;
+  view.elevation = image.elevation_deg;
+  view.typical_distance = described.typical_distance;
+  return ToProtoView(view);
 }
 
 Enroller::Enroller(const Connection& connection, EnrollerOptions options)
@@ -49,25 +42,9 @@ DescriptorVariant Enroller::variant() {
 std::vector<v1::View> Enroller::ComputeViews(const std::vector<EnrollmentImage>& images) {
   const DescriptorVariant descriptor_variant = variant();
   std::vector<v1::View> views(images.size());
-  const unsigned threads = static_cast<unsigned>(
-      std::min<std::size_t>(options_.threads, std::max<std::size_t>(1, images.size())));
-  std::vector<std::exception_ptr> errors(threads);
-  auto work = [&](unsigned worker) {
-    try {
-      for (std::size_t f = worker; f < images.size(); f += threads) {
-        views[f] = ComputeView(images[f], descriptor_variant, options_.seed + f);
-      }
-    } catch (...) {
-      errors[worker] = std::current_exception();
-    }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < threads; ++t) pool.emplace_back(work, t);
-  work(0);
-  for (std::thread& thread : pool) thread.join();
-  for (const std::exception_ptr& error : errors) {
-    if (error) std::rethrow_exception(error);
-  }
+  ParallelFor(images.size(), static_cast<int>(options_.threads), [&](std::size_t f) {
+    views[f] = ComputeView(images[f], descriptor_variant, options_.seed);
+  });
   return views;
 }
 

@@ -1,10 +1,10 @@
 // Enroller: turns images of a new object, each with the azimuth it was taken at, into an
 // enrolled object on the server (Models.Enroll, proto/orbit/v1/models.proto).
 //
-// Everything heavy happens on the device: each view's CEDD (core/cedd.h, in the server's
-// descriptor variant) and its typical distance Ttyp, from the CEDDs of its distorted copies
-// (core/typical_distance.h; SPEC.md, "Recognition"), so the server receives 144 bytes and one
-// number per view and never an image. The object is committed atomically when the stream ends:
+// Everything heavy happens on the device: each view's CEDD (in the server's descriptor variant)
+// and its typical distance Ttyp, described exactly as the server, `orbit import` and the
+// evaluation describe a view (core/view_description.h, DescribeView; SPEC.md, "Recognition"),
+// so the server receives 144 bytes and one number per view and never an image. The object is committed atomically when the stream ends:
 // on any error nothing is stored.
 //
 // Errors: RpcError with the server's status (ALREADY_EXISTS for a name in use,
@@ -22,6 +22,7 @@
 
 #include "client/connection.h"
 #include "core/descriptor.h"
+#include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 
 namespace orbit {
@@ -34,14 +35,17 @@ struct EnrollmentImage {
   std::optional<double> elevation_deg;
 };
 
-// The view the server stores for `image`: the CEDD of the region (or whole image) and its
-// typical distance over the region's distorted copies, the Gaussian noise seeded with `seed`.
-// Throws std::invalid_argument as ExtractCedd and TypicalDistortions do.
-v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant, std::uint64_t seed);
+// The view the server stores for `image`: DescribeView of the region (or whole image), with
+// `base_seed` in the seed rule of core/view_description.h, and the image's azimuth and elevation.
+// Throws std::invalid_argument for an empty image or a region outside it, and as DescribeView.
+v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
+                     std::uint64_t base_seed = kDefaultViewNoiseSeed);
 
 struct EnrollerOptions {
-  std::uint64_t seed = 1;  // view f's noisy copy is seeded with seed + f (reproducible)
-  unsigned threads = 1;    // threads computing the views
+  // Base of the noise seed rule (core/view_description.h); the default stores what the server
+  // would compute from the same images.
+  std::uint64_t seed = kDefaultViewNoiseSeed;
+  unsigned threads = 1;  // threads computing the views
 };
 
 class Enroller {

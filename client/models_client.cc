@@ -1,7 +1,5 @@
 #include "client/models_client.h"
 
-#include <stdexcept>
-
 #include "client/rpc_error.h"
 
 namespace orbit {
@@ -16,19 +14,6 @@ v1::ObjectRef ObjectByName(const std::string& name) {
   v1::ObjectRef ref;
   ref.set_name(name);
   return ref;
-}
-
-v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
-  return variant == DescriptorVariant::kCeddFull ? v1::CEDD_FULL : v1::CEDD_LIRE;
-}
-
-DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
-  switch (variant) {
-    case v1::CEDD_LIRE: return DescriptorVariant::kCeddLire;
-    case v1::CEDD_FULL: return DescriptorVariant::kCeddFull;
-    default:
-      throw std::invalid_argument("unknown descriptor variant " + std::to_string(variant));
-  }
 }
 
 ModelsClient::ModelsClient(const Connection& connection)

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "api/conversion.h"
 #include "client/connection.h"
 #include "core/descriptor.h"
 #include "orbit/v1/models.grpc.pb.h"
@@ -20,11 +21,6 @@ namespace orbit {
 
 v1::ObjectRef ObjectById(std::int64_t id);
 v1::ObjectRef ObjectByName(const std::string& name);
-
-// The API's variant for ours, and back. FromProtoVariant throws std::invalid_argument for
-// DESCRIPTOR_VARIANT_UNSPECIFIED or an unknown value.
-v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant);
-DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant);
 
 class ModelsClient {
  public:

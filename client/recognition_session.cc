@@ -7,6 +7,7 @@
 #include "client/models_client.h"
 #include "client/rpc_error.h"
 #include "core/cedd.h"
+#include "core/recognition_engine.h"
 
 namespace orbit {
 namespace {
@@ -26,7 +27,7 @@ bool IsTransient(const grpc::Status& status) {
 int WindowSize(const SessionOptions& options, const v1::ServerInfoResponse& info) {
   if (options.window > 0) return options.window;
   if (info.session_defaults().window() > 0) return info.session_defaults().window();
-  return 64;
+  return kMaxWindow;
 }
 
 std::chrono::microseconds ReplayInterval(const v1::ServerInfoResponse& info) {

@@ -9,7 +9,10 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
+#include <string>
 #include <string_view>
+#include <vector>
 
 namespace orbit {
 
@@ -24,6 +27,8 @@ enum class DescriptorVariant {
   kCeddLire,  // bit-exact with the LIRE reference; reads only LIRE's grid of blocks
   kCeddFull,  // the same algorithm on a 40x40 grid covering every pixel of the region
 };
+inline constexpr std::array<DescriptorVariant, 2> kDescriptorVariants = {
+    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull};
 
 // The variant's name as it appears on the command line, in the API and in the model store:
 // "cedd-lire" or "cedd-full".
@@ -31,6 +36,21 @@ std::string_view VariantName(DescriptorVariant variant);
 
 // Inverse of VariantName; nullopt for any other text.
 std::optional<DescriptorVariant> ParseVariant(std::string_view name);
+
+// VariantName of every variant, in kDescriptorVariants' order (for --variant's check).
+std::vector<std::string> VariantNames();
+
+// The one check of descriptor values, used wherever values arrive from outside (the store, the
+// index, the engines, the server's requests). Throws std::invalid_argument
+// "<what> value V at index I is outside 0..7" for the first value out of range.
+void ValidateDescriptorValues(std::span<const std::uint8_t> values,
+                              std::string_view what = "descriptor");
+
+// The descriptor held in `bytes` (a store's blob, a request's `cedd` field): exactly
+// kDescriptorSize values, each valid. Throws std::invalid_argument
+// "<what> has N values, expected 144", or as ValidateDescriptorValues.
+DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes,
+                                     std::string_view what = "descriptor");
 
 struct Descriptor {
   DescriptorVariant variant = DescriptorVariant::kCeddLire;

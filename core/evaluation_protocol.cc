@@ -32,11 +32,16 @@ std::string_view DistortionName(QueryDistortion distortion) {
 }
 
 std::optional<QueryDistortion> ParseDistortion(std::string_view name) {
-  for (const auto d : {QueryDistortion::kNone, QueryDistortion::kMotionBlur,
-                       QueryDistortion::kGaussianNoise}) {
+  for (const QueryDistortion d : kQueryDistortions) {
     if (name == DistortionName(d)) return d;
   }
   return std::nullopt;
+}
+
+std::vector<std::string> DistortionNames() {
+  std::vector<std::string> names;
+  for (const QueryDistortion d : kQueryDistortions) names.emplace_back(DistortionName(d));
+  return names;
 }
 
 cv::Mat ApplyQueryDistortion(const cv::Mat& view, QueryDistortion distortion,

@@ -18,9 +18,11 @@
 // All functions are pure and thread-safe.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <optional>
 #include <span>
+#include <string>
 #include <string_view>
 #include <vector>
 
@@ -41,8 +43,13 @@ enum class QueryDistortion {
   kGaussianNoise,  // "gn": AddGaussianNoise(view, 0.012, seed)
 };
 
+inline constexpr std::array<QueryDistortion, 3> kQueryDistortions = {
+    QueryDistortion::kNone, QueryDistortion::kMotionBlur, QueryDistortion::kGaussianNoise};
+
 // "df", "mb", "gn".
 std::string_view DistortionName(QueryDistortion distortion);
+// DistortionName of every distortion, in kQueryDistortions' order.
+std::vector<std::string> DistortionNames();
 // Inverse of DistortionName (lower case only); nullopt for any other text.
 std::optional<QueryDistortion> ParseDistortion(std::string_view name);
 

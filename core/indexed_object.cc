@@ -94,12 +94,8 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
       throw std::invalid_argument("object " + std::to_string(model_.id) +
                                   ": a view's azimuth is not finite");
     }
-    for (const std::uint8_t value : view.descriptor) {
-      if (value > kDescriptorMaxValue) {
-        throw std::invalid_argument("object " + std::to_string(model_.id) +
-                                    ": a descriptor value exceeds 7");
-      }
-    }
+    ValidateDescriptorValues(view.descriptor,
+                             "object " + std::to_string(model_.id) + " descriptor");
     view.azimuth = NormaliseAzimuth(view.azimuth);
   }
   by_azimuth_.resize(model_.views.size());

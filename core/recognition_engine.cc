@@ -75,12 +75,7 @@ void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFram
                                 std::string(VariantName(frame.descriptor.variant)) +
                                 ", the model set has " + std::string(VariantName(index->variant())));
   }
-  for (const std::uint8_t value : frame.descriptor.values) {
-    if (value > kDescriptorMaxValue) {
-      throw std::invalid_argument("frame descriptor value " + std::to_string(value) +
-                                  " exceeds 7");
-    }
-  }
+  ValidateDescriptorValues(frame.descriptor.values, "frame descriptor");
   if (!std::isfinite(frame.azimuth)) throw std::invalid_argument("frame azimuth is not finite");
 }
 

@@ -2,7 +2,6 @@
 
 #include <stdexcept>
 
-#include "core/cedd.h"
 #include "core/distortion.h"
 #include "core/similarity.h"
 
@@ -18,16 +17,6 @@ double TypicalDistance(const DescriptorValues& view, std::span<const DescriptorV
   double sum = 0;
   for (const DescriptorValues& copy : copies) sum += TanimotoDistance(view, copy);
   return sum / static_cast<double>(copies.size());
-}
-
-double TypicalDistance(const cv::Mat& view, DescriptorVariant variant, std::uint64_t seed) {
-  const DescriptorValues original = ExtractCedd(view, variant).values;
-  std::array<DescriptorValues, kTypicalDistortionCount> copies;
-  const auto distorted = TypicalDistortions(view, seed);
-  for (int i = 0; i < kTypicalDistortionCount; ++i) {
-    copies[i] = ExtractCedd(distorted[i], variant).values;
-  }
-  return TypicalDistance(original, copies);
 }
 
 }  // namespace orbit

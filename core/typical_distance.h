@@ -9,7 +9,8 @@
 //   2. AddGaussianNoise(view, kGaussianNoiseVariance, seed)  variance 0.012
 // so Ttyp = (T(view, copy 1) + T(view, copy 2)) / 2.
 //
-// All functions are pure and thread-safe.
+// A view image's Ttyp, with its descriptor and the seed rule of its noisy copy, comes from
+// DescribeView (core/view_description.h). All functions are pure and thread-safe.
 #pragma once
 
 #include <array>
@@ -32,10 +33,5 @@ std::array<cv::Mat, kTypicalDistortionCount> TypicalDistortions(const cv::Mat& v
 // from an evaluation's query images): the mean TanimotoDistance(view, copy).
 // Throws std::invalid_argument when `copies` is empty.
 double TypicalDistance(const DescriptorValues& view, std::span<const DescriptorValues> copies);
-
-// Ttyp of a view image: extracts the CEDD (`variant`) of the view and of its
-// TypicalDistortions(view, seed) and averages the distances. Result in [0, 1].
-// Throws as ExtractCedd and TypicalDistortions.
-double TypicalDistance(const cv::Mat& view, DescriptorVariant variant, std::uint64_t seed);
 
 }  // namespace orbit

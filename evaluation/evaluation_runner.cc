@@ -1,7 +1,6 @@
 #include "evaluation/evaluation_runner.h"
 
 #include <malloc.h>
-#include <sched.h>
 
 #include <algorithm>
 #include <array>
@@ -17,20 +16,18 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/seeded_random.h"
-#include "core/typical_distance.h"
+#include "core/parallel_for.h"
+#include "core/view_description.h"
 
 namespace orbit {
 namespace {
 
-// Every image is described under all three distortions: DF and MB/GN queries, and MB + GN for
-// the typical distance of model views.
-constexpr std::array<QueryDistortion, 3> kAllDistortions = {
-    QueryDistortion::kNone, QueryDistortion::kMotionBlur, QueryDistortion::kGaussianNoise};
-constexpr std::size_t kDistortionCount = kAllDistortions.size();
+// Every image has a query descriptor under each distortion (DF, MB, GN).
+constexpr std::size_t kDistortionCount = kQueryDistortions.size();
 
 std::size_t DistortionSlot(QueryDistortion d) {
-  return static_cast<std::size_t>(std::find(kAllDistortions.begin(), kAllDistortions.end(), d) -
-                                  kAllDistortions.begin());
+  return static_cast<std::size_t>(std::find(kQueryDistortions.begin(), kQueryDistortions.end(), d) -
+                                  kQueryDistortions.begin());
 }
 
 // Images grouped by object name, objects in order of first appearance.
@@ -58,39 +55,12 @@ std::size_t HeapBytesInUse() {
   return info.uordblks + info.hblkhd;
 }
 
-// Runs task(i) for i in [0, count) on `threads` threads; reports progress after each task;
-// rethrows the first exception a task threw (the remaining tasks are skipped).
-template <typename Task>
-void ParallelFor(std::size_t count, int threads, std::string_view stage,
-                 const EvaluationOptions& options, Task task) {
-  std::atomic<std::size_t> next{0};
-  std::atomic<bool> failed{false};
-  std::exception_ptr error;
-  std::mutex mutex;  // guards error, done and the progress callback
-  std::size_t done = 0;
-  const auto worker = [&] {
-    while (!failed.load()) {
-      const std::size_t i = next.fetch_add(1);
-      if (i >= count) return;
-      try {
-        task(i);
-      } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!error) error = std::current_exception();
-        failed = true;
-        return;
-      }
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      if (options.progress) options.progress(stage, done, count);
-    }
-  };
-  std::vector<std::thread> pool;
-  const int extra = std::min<int>(threads, static_cast<int>(std::max<std::size_t>(count, 1))) - 1;
-  for (int t = 0; t < extra; ++t) pool.emplace_back(worker);
-  worker();
-  for (std::thread& thread : pool) thread.join();
-  if (error) std::rethrow_exception(error);
+// ParallelFor with the options' progress callback for `stage`.
+void RunStage(std::size_t count, int threads, std::string_view stage,
+              const EvaluationOptions& options, const std::function<void(std::size_t)>& task) {
+  ParallelFor(count, threads, task, [&](std::size_t done) {
+    if (options.progress) options.progress(stage, done, count);
+  });
 }
 
 void Validate(const std::vector<DatasetImage>& known, const EvaluationOptions& options) {
@@ -119,18 +89,13 @@ void Validate(const std::vector<DatasetImage>& known, const EvaluationOptions& o
 
 // Descriptors of every image: [variant][distortion slot][image].
 using DescriptorTable = std::vector<std::array<std::vector<DescriptorValues>, kDistortionCount>>;
+// Typical distances of every image as a model view: [variant][image].
+using TypicalDistanceTable = std::vector<std::vector<double>>;
 
 }  // namespace
 
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
-}
-
-int AvailableCpus() {
-  cpu_set_t set;
-  CPU_ZERO(&set);
-  if (::sched_getaffinity(0, sizeof(set), &set) == 0) return std::max(1, CPU_COUNT(&set));
-  return std::max(1u, std::thread::hardware_concurrency());
 }
 
 EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
@@ -179,13 +144,20 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   for (auto& per_variant : descriptors) {
     for (auto& per_distortion : per_variant) per_distortion.resize(images.size());
   }
-  ParallelFor(images.size(), report.threads, "descriptors", options, [&](std::size_t i) {
+  TypicalDistanceTable typical(variant_count, std::vector<double>(images.size()));
+  RunStage(images.size(), report.threads, "descriptors", options, [&](std::size_t i) {
     const cv::Mat view = ReadImageFile(images[i]->path);
-    for (std::size_t d = 0; d < kDistortionCount; ++d) {
-      const cv::Mat query = ApplyQueryDistortion(view, kAllDistortions[d], ImageNoiseSeed(options.seed, i));
-      for (std::size_t v = 0; v < variant_count; ++v) {
-        descriptors[v][d][i] = ExtractCedd(query, options.variants[v]).values;
-      }
+    // The GN query draws its own noise; the model view is described as every enrollment path
+    // describes it (its MB copy is the MB query: motion blur draws nothing).
+    const cv::Mat noisy = ApplyQueryDistortion(view, QueryDistortion::kGaussianNoise,
+                                               ImageNoiseSeed(options.seed, i));
+    for (std::size_t v = 0; v < variant_count; ++v) {
+      const ViewDescription described = DescribeView(view, options.variants[v], options.seed);
+      descriptors[v][DistortionSlot(QueryDistortion::kNone)][i] = described.descriptor;
+      descriptors[v][DistortionSlot(QueryDistortion::kMotionBlur)][i] = described.distorted[0];
+      descriptors[v][DistortionSlot(QueryDistortion::kGaussianNoise)][i] =
+          ExtractCedd(noisy, options.variants[v]).values;
+      typical[v][i] = described.typical_distance;
     }
   });
   report.descriptor_seconds = seconds_since(descriptor_start);
@@ -200,12 +172,8 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
       model.name = known_objects[o].name;
       model.variant = options.variants[v];
       for (std::size_t i : known_objects[o].images) {
-        const std::array<DescriptorValues, 2> copies{
-            table[DistortionSlot(QueryDistortion::kMotionBlur)][i],
-            table[DistortionSlot(QueryDistortion::kGaussianNoise)][i]};
-        const DescriptorValues& original = table[DistortionSlot(QueryDistortion::kNone)][i];
-        model.views.push_back(
-            {original, images[i]->azimuth, images[i]->elevation, TypicalDistance(original, copies)});
+        model.views.push_back({table[DistortionSlot(QueryDistortion::kNone)][i],
+                               images[i]->azimuth, images[i]->elevation, typical[v][i]});
       }
       models[v].push_back(std::move(model));
     }
@@ -254,7 +222,7 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   // One set of engines per thread, reused across tasks (ObserveSequence resets them).
   std::mutex engines_mutex;
   std::vector<std::vector<std::unique_ptr<RecognitionEngine>>> idle_engines;
-  ParallelFor(task_count, report.threads, "trials", options, [&](std::size_t task) {
+  RunStage(task_count, report.threads, "trials", options, [&](std::size_t task) {
     std::vector<std::unique_ptr<RecognitionEngine>> engines;
     {
       std::lock_guard<std::mutex> lock(engines_mutex);

@@ -3,11 +3,13 @@
 // x distortion x query length n. The engine of `orbit eval`.
 //
 // What it does, in order:
-//   1. reads every image once and computes its CEDD unchanged (DF), motion-blurred (MB) and
-//      with Gaussian noise (GN), for each variant, on all threads. The GN copy of image i uses
-//      the seed ImageNoiseSeed(seed, i), so reruns see the same noise;
-//   2. builds each known object's model: every image is a view at its azimuth, with its typical
-//      distance Ttyp = mean(T(DF, MB), T(DF, GN)) of those same descriptors (core/typical_distance.h);
+//   1. reads every image once and, for each variant, on all threads, describes it as a model
+//      view exactly as every enrollment path does (core/view_description.h, DescribeView with
+//      `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical distance), and
+//      computes its GN query, whose noise is drawn with ImageNoiseSeed(seed, i), so reruns see
+//      the same noise. The DF query is the view's CEDD, the MB query its motion-blurred copy;
+//   2. builds each known object's model: every image is a view at its azimuth, with the
+//      typical distance of step 1;
 //   3. runs the trials, one task per (variant, object, n, trial), spread over the threads: each
 //      task draws its query (SampleTrial), builds a ViewIndex of all known objects with the
 //      query object's excluded views removed, and asks every method, for every distortion, for
@@ -30,13 +32,14 @@
 #include "core/descriptor.h"
 #include "core/evaluation_protocol.h"
 #include "core/recognition_engine.h"
+#include "core/parallel_for.h"
 #include "core/view_index.h"
 
 namespace orbit {
 
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
-  std::vector<std::string> methods{"eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm"};
+  std::vector<std::string> methods{EngineNames().begin(), EngineNames().end()};  // all of them
   std::vector<QueryDistortion> distortions{QueryDistortion::kNone, QueryDistortion::kMotionBlur,
                                            QueryDistortion::kGaussianNoise};
   std::vector<int> query_lengths{1, 2, 4, 6, 8};  // n: frames per query (1..kMaxWindow)
@@ -104,9 +107,6 @@ struct EvaluationReport {
 
 // The seed of image i's Gaussian noise (its GN query and its typical distance).
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
-
-// The number of CPUs this process may run on (its affinity mask), at least 1.
-int AvailableCpus();
 
 // Runs the protocol. `known` holds the images of the objects in the model set, `unknown` those
 // of objects left out of it (may be empty); an object is the set of images sharing a name, and

@@ -1,11 +1,12 @@
 #include "server/models_service.h"
 
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <vector>
 
-#include "server/api_conversion.h"
+#include "api/conversion.h"
+#include "server/error_status.h"
+#include "server/request_reading.h"
 #include "server/unary_call.h"
 #include "storage/model_validation.h"
 #include "storage/store_error.h"
@@ -18,8 +19,16 @@ constexpr int kMaxPageSize = 1000;
 // All the views of one enrollment together (encoded images can be large).
 constexpr std::size_t kMaxEnrollmentBytes = 256u << 20;
 
-grpc::Status Invalid(const std::string& message) {
-  return {grpc::StatusCode::INVALID_ARGUMENT, message};
+v1::ObjectInfo ToObjectInfo(const ObjectSummary& summary) {
+  v1::ObjectInfo info;
+  info.set_id(summary.id);
+  info.set_name(summary.name);
+  info.set_variant(ToProtoVariant(summary.variant));
+  info.set_view_count(summary.view_count);
+  info.set_created_at(summary.created_at);
+  info.set_updated_at(summary.updated_at);
+  info.set_metadata_json(summary.metadata);
+  return info;
 }
 
 // The id an ObjectRef names. Throws StoreError kNotFound, std::invalid_argument when unset.
@@ -38,17 +47,16 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
   }
 }
 
-// Converts wire views to store views on the worker pool; the seed of view i is derived from the
-// object's name so that re-enrolling the same images gives the same typical distances.
+// Converts wire views to store views, on the worker pool. Views sent as images are described
+// by the seed rule of core/view_description.h, which depends on the image alone: the same
+// image stores the same numbers whichever object, position or path enrolls it.
 grpc::Status ConvertViews(const std::vector<v1::View>& wire, DescriptorVariant variant,
-                          const std::string& name, std::vector<ModelView>* views,
-                          std::vector<std::string>* thumbnails) {
-  const std::uint64_t base = std::hash<std::string>{}(name);
+                          std::vector<ModelView>* views, std::vector<std::string>* thumbnails) {
   bool any_thumbnail = false;
   for (std::size_t i = 0; i < wire.size(); ++i) {
     ModelView view;
     std::string thumbnail;
-    if (grpc::Status s = ToModelView(wire[i], variant, base + i, &view, &thumbnail); !s.ok()) {
+    if (grpc::Status s = ToModelView(wire[i], variant, &view, &thumbnail); !s.ok()) {
       return grpc::Status(s.error_code(), "view " + std::to_string(i) + ": " + s.error_message());
     }
     any_thumbnail = any_thumbnail || !thumbnail.empty();
@@ -93,7 +101,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
  private:
   grpc::Status Accept() {
     if (request_.kind_case() == v1::EnrollRequest::kHeader) {
-      if (have_header_) return Invalid("the header may be sent only once");
+      if (have_header_) return InvalidArgument("the header may be sent only once");
       const v1::EnrollHeader& header = request_.header();
       if (auto s = CheckVariant(header.variant(), env_.catalogue.variant(), "header.variant");
           !s.ok()) {
@@ -110,9 +118,9 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
       return grpc::Status::OK;
     }
     if (request_.kind_case() != v1::EnrollRequest::kView) {
-      return Invalid("empty request: set header or view");
+      return InvalidArgument("empty request: set header or view");
     }
-    if (!have_header_) return Invalid("the first message must be the header");
+    if (!have_header_) return InvalidArgument("the first message must be the header");
     if (views_.size() >= kMaxViewsPerObject) {
       return {grpc::StatusCode::RESOURCE_EXHAUSTED,
               "more than " + std::to_string(kMaxViewsPerObject) + " views for one object"};
@@ -127,14 +135,14 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
 
   // On the worker pool, after the client closed its side.
   grpc::Status Commit() {
-    if (!have_header_) return Invalid("no header: nothing to enroll");
-    if (views_.empty()) return Invalid("no views: an object needs at least one");
+    if (!have_header_) return InvalidArgument("no header: nothing to enroll");
+    if (views_.empty()) return InvalidArgument("no views: an object needs at least one");
     Enrollment enrollment;
     enrollment.name = header_.name();
     enrollment.variant = env_.catalogue.variant();
     enrollment.metadata = header_.metadata_json().empty() ? "{}" : header_.metadata_json();
-    if (grpc::Status s = ConvertViews(views_, enrollment.variant, enrollment.name,
-                                      &enrollment.views, &enrollment.thumbnails);
+    if (grpc::Status s =
+            ConvertViews(views_, enrollment.variant, &enrollment.views, &enrollment.thumbnails);
         !s.ok()) {
       return s;
     }
@@ -168,12 +176,11 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
                                                   v1::ObjectInfo* response) {
   return RunUnaryCall(context, env_.access, Role::kAdmin, env_.pool, [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-    if (request->views().empty()) return Invalid("views is empty");
+    if (request->views().empty()) return InvalidArgument("views is empty");
     std::vector<ModelView> views;
     std::vector<std::string> thumbnails;
     const std::vector<v1::View> wire(request->views().begin(), request->views().end());
-    if (grpc::Status s = ConvertViews(wire, env_.catalogue.variant(), std::to_string(id), &views,
-                                      &thumbnails);
+    if (grpc::Status s = ConvertViews(wire, env_.catalogue.variant(), &views, &thumbnails);
         !s.ok()) {
       return s;
     }
@@ -188,7 +195,7 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
   return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, [this, request, response] {
     ListRequest page;
     page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    if (page.limit < 1 || page.limit > kMaxPageSize) return Invalid("page_size must be 1..1000");
+    if (page.limit < 1 || page.limit > kMaxPageSize) return InvalidArgument("page_size must be 1..1000");
     if (!request->page_token().empty()) {
       std::size_t used = 0;
       try {
@@ -197,7 +204,7 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
         used = 0;
       }
       if (used != request->page_token().size() || page.after_id < 0) {
-        return Invalid("page_token is not one this server gave");
+        return InvalidArgument("page_token is not one this server gave");
       }
     }
     const std::vector<ObjectSummary> objects = env_.catalogue.store().List(page);
@@ -246,7 +253,7 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
   return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, [this, response] {
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     response->set_version(env_.version);
-    response->set_variant(ToProto(env_.catalogue.variant()));
+    response->set_variant(ToProtoVariant(env_.catalogue.variant()));
     response->set_object_count(static_cast<std::int64_t>(index->object_count()));
     response->set_view_count(static_cast<std::int64_t>(index->view_count()));
     *response->mutable_session_defaults() = DescribeSettings(env_.defaults, env_.catalogue.variant());

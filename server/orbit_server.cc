@@ -8,6 +8,7 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 
+#include "orbit/version.h"
 #include "server/model_catalogue.h"
 #include "server/models_service.h"
 #include "server/recognition_service.h"
@@ -40,6 +41,7 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerConfig& config)
 }  // namespace
 
 OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
+  ValidateServerConfig(config_);
   if (config_.tokens_file) {
     access_ = AccessControl::FromFile(*config_.tokens_file);
   } else if (!IsLoopbackAddress(config_.listen) && !config_.allow_remote_without_tokens) {

@@ -30,12 +30,11 @@ class RecognitionService;
 class SessionRegistry;
 class WorkerPool;
 
-inline constexpr const char* kOrbitVersion = "0.1.0";
-
 class OrbitServer {
  public:
   // Opens (creating if needed) the store, indexes its objects and starts serving.
-  // Throws std::runtime_error with a message for the operator when the configuration is unsafe
+  // Throws std::invalid_argument as ValidateServerConfig (server_config.h), and
+  // std::runtime_error with a message for the operator when the configuration is unsafe
   // (no tokens on a non-loopback address), a file cannot be read, the store cannot be opened, or
   // the address cannot be bound.
   explicit OrbitServer(const ServerConfig& config);

@@ -2,7 +2,9 @@
 
 #include <chrono>
 
-#include "server/api_conversion.h"
+#include "api/conversion.h"
+#include "server/error_status.h"
+#include "server/request_reading.h"
 #include "server/session_engine.h"
 #include "server/unary_call.h"
 

@@ -1,6 +1,9 @@
 #include "server/server_config.h"
 
 #include <sstream>
+#include <stdexcept>
+
+#include "api/engine_names.h"
 
 namespace orbit::server {
 
@@ -13,6 +16,17 @@ bool IsLoopbackAddress(const std::string& host_and_port) {
     host = host.substr(1, host.find(']') - 1);
   }
   return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+}
+
+void ValidateServerConfig(const ServerConfig& config) {
+  if (grpc::Status s = CheckHmmCells(config.session_defaults, config.limits); !s.ok()) {
+    const EngineOptions& o = config.session_defaults.options;
+    throw std::invalid_argument("the default session (window " + std::to_string(o.window) +
+                                " x " + std::to_string(o.hmm_states) +
+                                " HMM states) is above --max-hmm-cells " +
+                                std::to_string(config.limits.max_hmm_cells));
+  }
+  ValidateEngineOptions(config.session_defaults.options);
 }
 
 std::string ServerConfig::Describe() const {
@@ -33,8 +47,7 @@ std::string ServerConfig::Describe() const {
                     std::to_string(index.kd_checks) + " checks)"
               : std::string("exact"))
       << "\n"
-      << "  session defaults    engine " << CoreEngineNames(d.engine).front()
-      << (d.engine == v1::ENGINE_VCI_HMM ? "-hmm" : "") << ", top-k " << d.options.top_k
+      << "  session defaults    engine " << SessionEngineName(d.engine) << ", top-k " << d.options.top_k
       << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
       << d.options.list_length << ", HMM states " << d.options.hmm_states << ", Th "
       << d.options.threshold << "\n"

@@ -32,6 +32,11 @@ struct ServerConfig {
   std::string Describe() const;
 };
 
+// The rules `orbit serve` checks at start-up, before anything is opened: the default session
+// must be one the server would admit (the HMM memory rule of session_settings.h, engine options
+// in range). Throws std::invalid_argument naming the option. OrbitServer calls it.
+void ValidateServerConfig(const ServerConfig& config);
+
 // True for 127.0.0.0/8, ::1 and "localhost" (HOST of a HOST:PORT address, brackets allowed).
 bool IsLoopbackAddress(const std::string& host_and_port);
 

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <unordered_map>
 
+#include "api/engine_names.h"
+
 namespace orbit::server {
 namespace {
 

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <string>
 
-#include "server/api_conversion.h"
+#include "api/conversion.h"
+#include "server/error_status.h"
+#include "server/request_reading.h"
 
 namespace orbit::server {
 

@@ -41,10 +41,9 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
 // Every field filled in: what ServerInfo reports as the defaults.
 v1::SessionOptions DescribeSettings(const SessionSettings& settings, DescriptorVariant variant);
 
-// Whether the engine keeps an HMM (ENGINE_HMM, ENGINE_VCI_HMM): limits.max_hmm_cells applies.
-bool RunsHmm(v1::Engine engine);
-
-// Engine names of core/recognition_engine.h behind a v1::Engine (two for ENGINE_VCI_HMM).
-std::vector<std::string_view> CoreEngineNames(v1::Engine engine);
+// The HMM memory rule: OK unless `settings` runs an HMM (api/engine_names.h, RunsHmm) with
+// window x hmm_states above limits.max_hmm_cells; then RESOURCE_EXHAUSTED naming both numbers.
+// Checked for every session, and for the server's defaults at start-up (server_config.h).
+grpc::Status CheckHmmCells(const SessionSettings& settings, const ServerLimits& limits);
 
 }  // namespace orbit::server

@@ -9,7 +9,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include "server/access_control.h"
-#include "server/api_conversion.h"
+#include "server/error_status.h"
 #include "server/worker_pool.h"
 
 namespace orbit::server {

@@ -13,17 +13,6 @@ bool IsAsciiAlnum(char c) {
   return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9');
 }
 
-// The first descriptor value outside 0..kDescriptorMaxValue, as a message; "" when all are valid.
-std::string DescriptorValueProblem(std::span<const std::uint8_t> values) {
-  for (std::size_t i = 0; i < values.size(); ++i) {
-    if (values[i] > kDescriptorMaxValue) {
-      return "descriptor value " + std::to_string(values[i]) + " at index " + std::to_string(i) +
-             " is outside 0.." + std::to_string(kDescriptorMaxValue);
-    }
-  }
-  return "";
-}
-
 }  // namespace
 
 void ValidateObjectName(std::string_view name) {
@@ -50,8 +39,10 @@ void ValidateObjectName(std::string_view name) {
 
 void ValidateView(const ModelView& view, std::size_t position) {
   const std::string where = "view " + std::to_string(position) + ": ";
-  if (const std::string problem = DescriptorValueProblem(view.descriptor); !problem.empty()) {
-    throw std::invalid_argument(where + problem);
+  try {
+    ValidateDescriptorValues(view.descriptor);
+  } catch (const std::invalid_argument& e) {
+    throw std::invalid_argument(where + e.what());
   }
   if (!std::isfinite(view.azimuth)) {
     throw std::invalid_argument(where + "azimuth " + std::to_string(view.azimuth) +
@@ -67,19 +58,6 @@ void ValidateView(const ModelView& view, std::size_t position) {
                                 std::to_string(view.typical_distance) +
                                 " is outside [0, 1] (a Tanimoto distance)");
   }
-}
-
-DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes) {
-  if (bytes.size() != static_cast<std::size_t>(kDescriptorSize)) {
-    throw std::invalid_argument("descriptor has " + std::to_string(bytes.size()) +
-                                " values, expected " + std::to_string(kDescriptorSize));
-  }
-  if (const std::string problem = DescriptorValueProblem(bytes); !problem.empty()) {
-    throw std::invalid_argument(problem);
-  }
-  DescriptorValues values;
-  std::copy(bytes.begin(), bytes.end(), values.begin());
-  return values;
 }
 
 void ValidateViews(const std::vector<ModelView>& views,

@@ -35,9 +35,6 @@ void ValidateObjectName(std::string_view name);
 // Tanimoto distance, SPEC.md "Recognition"). `position` (the view's index) prefixes the message.
 void ValidateView(const ModelView& view, std::size_t position);
 
-// The descriptor held in `bytes`: exactly kDescriptorSize values, each in 0..kDescriptorMaxValue.
-DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes);
-
 // The views of one write: 1..kMaxViewsPerObject valid views, and `thumbnails` empty or one per
 // view, each at most kMaxThumbnailBytes.
 void ValidateViews(const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails);

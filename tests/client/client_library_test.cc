@@ -20,7 +20,7 @@
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
 #include "core/cedd.h"
-#include "core/typical_distance.h"
+#include "core/view_description.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -94,7 +94,7 @@ TEST(ClientLibrary, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
   EXPECT_EQ(view.elevation_deg(), 12.5);
   ASSERT_TRUE(view.has_typical_distance());
   EXPECT_DOUBLE_EQ(view.typical_distance(),
-                   TypicalDistance(image, DescriptorVariant::kCeddLire, 9));
+                   DescribeView(image, DescriptorVariant::kCeddLire, 9).typical_distance);
   EXPECT_GT(view.typical_distance(), 0.0);
   EXPECT_LT(view.typical_distance(), 1.0);
 
@@ -106,7 +106,7 @@ TEST(ClientLibrary, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
   const DescriptorValues crop_cedd = ExtractCedd(crop, DescriptorVariant::kCeddFull).values;
   EXPECT_EQ(cropped.cedd(), std::string(crop_cedd.begin(), crop_cedd.end()));
   EXPECT_DOUBLE_EQ(cropped.typical_distance(),
-                   TypicalDistance(crop, DescriptorVariant::kCeddFull, 9));
+                   DescribeView(crop, DescriptorVariant::kCeddFull, 9).typical_distance);
   EXPECT_FALSE(cropped.has_elevation_deg());
 
   EXPECT_THROW(ComputeView({image, 0, cv::Rect(100, 100, 40, 40), {}},
@@ -147,7 +147,7 @@ TEST(ClientLibrary, EnrollsListsGetsAndDeletesObjects) {
   ASSERT_EQ(obj2.views_size(), 36);
   EXPECT_EQ(obj2.views(1).azimuth_deg(), 10.0);
   const v1::View expected =
-      ComputeView(CoilEnrollmentImages(2)[1], DescriptorVariant::kCeddLire, /*seed=*/1 + 1);
+      ComputeView(CoilEnrollmentImages(2)[1], DescriptorVariant::kCeddLire);
   EXPECT_EQ(obj2.views(1).cedd(), expected.cedd());
   EXPECT_NEAR(obj2.views(1).typical_distance(), expected.typical_distance(), 1e-12);
 

@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "client/image_file.h"
-#include "core/typical_distance.h"
+#include "core/view_description.h"
 #include "tests/support/coil_models.h"
 
 namespace orbit {
@@ -293,7 +293,7 @@ TEST(RecognitionEngineTest, UnknownObjectsAreRejectedKnownOnesAccepted) {
                                 (model.name + "__" + std::to_string(static_cast<int>(view.azimuth)) +
                                  ".png")).string();
       view.typical_distance =
-          TypicalDistance(ReadImageFile(file), DescriptorVariant::kCeddLire, /*seed=*/1);
+          DescribeView(ReadImageFile(file), DescriptorVariant::kCeddLire).typical_distance;
     }
   }
   ViewIndex index(models, {.search = SearchMode::kKdTree});

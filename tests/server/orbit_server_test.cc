@@ -15,7 +15,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
-#include "core/typical_distance.h"
+#include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "tests/support/server_process.h"
@@ -49,7 +49,7 @@ double CoilTypicalDistance(int object, int azimuth) {
                                        ("obj" + std::to_string(object) + "__" +
                                         std::to_string(azimuth) + ".png"))
                                           .string());
-  return TypicalDistance(image, DescriptorVariant::kCeddLire, 7);
+  return DescribeView(image, DescriptorVariant::kCeddLire, 7).typical_distance;
 }
 
 class Client {

@@ -158,24 +158,5 @@ TEST_F(RefusalTest, MetadataThatIsNotAJsonObject) {
   ExpectUnchanged();
 }
 
-TEST(DescriptorFromBytesTest, NeedsExactly144ValuesInRange) {
-  std::vector<std::uint8_t> bytes(kDescriptorSize, 7);
-  bytes[5] = 3;
-  const DescriptorValues values = DescriptorFromBytes(bytes);
-  EXPECT_EQ(values[5], 3);
-  EXPECT_EQ(values[143], 7);
-  bytes.pop_back();
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
-            "descriptor has 143 values, expected 144");
-  bytes.push_back(7);
-  bytes.push_back(7);
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
-            "descriptor has 145 values, expected 144");
-  bytes.pop_back();
-  bytes[0] = 8;
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
-            "descriptor value 8 at index 0 is outside 0..7");
-}
-
 }  // namespace
 }  // namespace orbit

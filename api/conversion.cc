@@ -1,0 +1,97 @@
+#include "api/conversion.h"
+
+#include <cstdint>
+#include <span>
+#include <stdexcept>
+
+namespace orbit {
+
+v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
+  switch (variant) {
+    case DescriptorVariant::kCeddLire:
+      return v1::CEDD_LIRE;
+    case DescriptorVariant::kCeddFull:
+      return v1::CEDD_FULL;
+  }
+  return v1::DESCRIPTOR_VARIANT_UNSPECIFIED;
+}
+
+DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
+  switch (variant) {
+    case v1::CEDD_LIRE:
+      return DescriptorVariant::kCeddLire;
+    case v1::CEDD_FULL:
+      return DescriptorVariant::kCeddFull;
+    default:
+      throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
+  }
+}
+
+std::string ProtoVariantName(v1::DescriptorVariant variant) {
+  switch (variant) {
+    case v1::CEDD_LIRE:
+    case v1::CEDD_FULL:
+      return std::string(VariantName(FromProtoVariant(variant)));
+    case v1::DESCRIPTOR_VARIANT_UNSPECIFIED:
+      return "unspecified";
+    default:
+      return "unknown (" + std::to_string(variant) + ")";
+  }
+}
+
+DescriptorValues DescriptorFromWire(const std::string& bytes, std::string_view field) {
+  const auto* data = reinterpret_cast<const std::uint8_t*>(bytes.data());
+  return DescriptorFromBytes(std::span<const std::uint8_t>(data, bytes.size()), field);
+}
+
+v1::View ToProtoView(const ModelView& view, const std::string& thumbnail) {
+  v1::View out;
+  out.set_cedd(view.descriptor.data(), view.descriptor.size());
+  out.set_azimuth_deg(view.azimuth);
+  if (view.elevation) out.set_elevation_deg(*view.elevation);
+  out.set_typical_distance(view.typical_distance);
+  if (!thumbnail.empty()) out.set_thumbnail(thumbnail);
+  return out;
+}
+
+v1::Decision ToProtoDecision(Decision decision) {
+  switch (decision) {
+    case Decision::kAccept:
+      return v1::DECISION_ACCEPT;
+    case Decision::kUnknown:
+      return v1::DECISION_UNKNOWN;
+    case Decision::kUndecided:
+      return v1::DECISION_UNDECIDED;
+  }
+  return v1::DECISION_UNSPECIFIED;
+}
+
+v1::Move ToProtoMove(SuggestedMove move) {
+  switch (move) {
+    case SuggestedMove::kNone:
+      return v1::MOVE_NONE;
+    case SuggestedMove::kLeft:
+      return v1::MOVE_LEFT;
+    case SuggestedMove::kRight:
+      return v1::MOVE_RIGHT;
+  }
+  return v1::MOVE_UNSPECIFIED;
+}
+
+v1::SessionUpdate ToSessionUpdate(const FrameUpdate& update, const ViewIndexSnapshot& index) {
+  v1::SessionUpdate out;
+  out.set_frame_index(update.frame_index);
+  for (const RankedObject& ranked : update.ranking) {
+    v1::Candidate* candidate = out.add_candidates();
+    candidate->set_id(ranked.object);
+    candidate->set_score(ranked.score);
+    if (const IndexedObject* object = index.Find(ranked.object)) {
+      candidate->set_name(object->model().name);
+    }
+  }
+  out.set_decision(ToProtoDecision(update.decision));
+  out.set_move(ToProtoMove(update.move));
+  return out;
+}
+
+}  // namespace orbit

@@ -1,0 +1,44 @@
+// Between the types of core/ and the messages of proto/orbit/v1, both ways where both are
+// needed: the one conversion unit the client library and the server share, so that the two
+// ends of a call cannot drift apart (they once defaulted an unknown variant differently).
+//
+// Refusals are std::invalid_argument with a message naming the field; the server turns them
+// into INVALID_ARGUMENT. Pure functions, thread-safe.
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/descriptor.h"
+#include "core/object_model.h"
+#include "core/recognition_engine.h"
+#include "core/view_index.h"
+#include "orbit/v1/models.pb.h"
+#include "orbit/v1/recognition.pb.h"
+
+namespace orbit {
+
+// CEDD_LIRE <-> kCeddLire, CEDD_FULL <-> kCeddFull. FromProtoVariant throws
+// std::invalid_argument for DESCRIPTOR_VARIANT_UNSPECIFIED or a value this build does not know.
+v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant);
+DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant);
+
+// "cedd-lire", "cedd-full", "unspecified" or "unknown (N)": for messages.
+std::string ProtoVariantName(v1::DescriptorVariant variant);
+
+// A `cedd` field: exactly 144 bytes, each 0..7 (core/descriptor.h's check). Throws
+// std::invalid_argument naming `field`, e.g. "frame.cedd value 9 at index 17 is outside 0..7".
+DescriptorValues DescriptorFromWire(const std::string& bytes, std::string_view field);
+
+// A stored view on the wire: its CEDD, azimuth, elevation when known, typical distance and
+// `thumbnail` (empty: none).
+v1::View ToProtoView(const ModelView& view, const std::string& thumbnail = "");
+
+v1::Decision ToProtoDecision(Decision decision);
+v1::Move ToProtoMove(SuggestedMove move);
+
+// An engine's update as the wire carries it, with each candidate's name from `index` (the
+// snapshot the update was computed on).
+v1::SessionUpdate ToSessionUpdate(const FrameUpdate& update, const ViewIndexSnapshot& index);
+
+}  // namespace orbit

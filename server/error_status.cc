@@ -1,0 +1,34 @@
+#include "server/error_status.h"
+
+#include <stdexcept>
+
+#include "storage/store_error.h"
+
+namespace orbit::server {
+
+grpc::Status InvalidArgument(std::string message) {
+  return {grpc::StatusCode::INVALID_ARGUMENT, std::move(message)};
+}
+
+grpc::Status StatusFromException(const std::exception& error) {
+  if (dynamic_cast<const std::invalid_argument*>(&error) != nullptr) {
+    return InvalidArgument(error.what());
+  }
+  if (const auto* store = dynamic_cast<const StoreError*>(&error)) {
+    switch (store->code()) {
+      case StoreError::Code::kNotFound:
+        return {grpc::StatusCode::NOT_FOUND, error.what()};
+      case StoreError::Code::kAlreadyExists:
+        return {grpc::StatusCode::ALREADY_EXISTS, error.what()};
+      case StoreError::Code::kFull:
+        return {grpc::StatusCode::RESOURCE_EXHAUSTED, error.what()};
+      case StoreError::Code::kBusy:
+        return {grpc::StatusCode::UNAVAILABLE, error.what()};
+      default:
+        return {grpc::StatusCode::INTERNAL, error.what()};
+    }
+  }
+  return {grpc::StatusCode::INTERNAL, error.what()};
+}
+
+}  // namespace orbit::server

@@ -1,0 +1,136 @@
+#include "server/request_reading.h"
+
+#include <cmath>
+#include <optional>
+#include <stdexcept>
+#include <vector>
+
+#include <opencv2/imgcodecs.hpp>
+
+#include "api/conversion.h"
+#include "core/cedd.h"
+#include "core/view_description.h"
+#include "server/error_status.h"
+#include "storage/model_validation.h"
+
+namespace orbit::server {
+namespace {
+
+grpc::Status ReadCedd(const std::string& bytes, std::string_view field, DescriptorValues* out) {
+  try {
+    *out = DescriptorFromWire(bytes, field);
+  } catch (const std::invalid_argument& e) {
+    return InvalidArgument(e.what());
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status CheckFinite(double value, std::string_view field) {
+  if (!std::isfinite(value)) return InvalidArgument(std::string(field) + " must be a finite number");
+  return grpc::Status::OK;
+}
+
+// Decodes an encoded image and resolves its region of interest.
+grpc::Status DecodeImage(const std::string& bytes, const v1::Region& region, bool has_region,
+                         cv::Mat* image, std::optional<cv::Rect>* roi) {
+  const std::vector<std::uint8_t> buffer(bytes.begin(), bytes.end());
+  try {
+    *image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    image->release();
+  }
+  if (image->empty()) {
+    return InvalidArgument("image is not a PNG, JPEG or other image OpenCV can decode");
+  }
+  if (image->depth() == CV_16U) image->convertTo(*image, CV_8U, 1.0 / 256);
+  if (has_region) {
+    const cv::Rect rect(region.x(), region.y(), region.width(), region.height());
+    if (rect.width <= 0 || rect.height <= 0 ||
+        (rect & cv::Rect(0, 0, image->cols, image->rows)) != rect) {
+      return InvalidArgument("region must be non-empty and inside the " +
+                             std::to_string(image->cols) + "x" + std::to_string(image->rows) +
+                             " image");
+    }
+    *roi = rect;
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace
+
+grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant server,
+                          std::string_view field) {
+  if (requested == v1::DESCRIPTOR_VARIANT_UNSPECIFIED || requested == ToProtoVariant(server)) {
+    return grpc::Status::OK;
+  }
+  return InvalidArgument(std::string(field) + " is " + ProtoVariantName(requested) +
+                         " but this server's models are " + std::string(VariantName(server)) +
+                         "; variants cannot be mixed");
+}
+
+grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant, QueryFrame* out) {
+  if (auto s = CheckFinite(frame.azimuth_deg(), "frame.azimuth_deg"); !s.ok()) return s;
+  if (frame.has_elevation_deg()) {
+    if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
+  }
+  out->azimuth = frame.azimuth_deg();
+  out->descriptor.variant = variant;
+  const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
+  if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");
+  if (has_cedd) return ReadCedd(frame.cedd(), "frame.cedd", &out->descriptor.values);
+  cv::Mat image;
+  std::optional<cv::Rect> roi;
+  if (auto s = DecodeImage(frame.image(), frame.region(), frame.has_region(), &image, &roi);
+      !s.ok()) {
+    return s;
+  }
+  try {
+    out->descriptor = ExtractCedd(image, variant, roi);
+  } catch (const std::exception& e) {
+    return StatusFromException(e);
+  }
+  return grpc::Status::OK;
+}
+
+grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant, ModelView* out,
+                         std::string* thumbnail) {
+  if (auto s = CheckFinite(view.azimuth_deg(), "view.azimuth_deg"); !s.ok()) return s;
+  out->azimuth = view.azimuth_deg();
+  if (view.has_elevation_deg()) {
+    if (auto s = CheckFinite(view.elevation_deg(), "view.elevation_deg"); !s.ok()) return s;
+    out->elevation = view.elevation_deg();
+  }
+  if (view.thumbnail().size() > kMaxThumbnailBytes) {
+    return InvalidArgument("view.thumbnail is " + std::to_string(view.thumbnail().size()) +
+                           " bytes; at most " + std::to_string(kMaxThumbnailBytes));
+  }
+  *thumbnail = view.thumbnail();
+  const bool has_cedd = !view.cedd().empty(), has_image = !view.image().empty();
+  if (has_cedd == has_image) return InvalidArgument("a view needs exactly one of cedd and image");
+  if (has_cedd) {
+    if (view.has_typical_distance()) {
+      const double t = view.typical_distance();
+      if (!std::isfinite(t) || t < 0 || t > 1) {
+        return InvalidArgument("view.typical_distance must be in [0, 1]");
+      }
+      out->typical_distance = t;
+    }
+    return ReadCedd(view.cedd(), "view.cedd", &out->descriptor);
+  }
+  cv::Mat image;
+  std::optional<cv::Rect> roi;
+  if (auto s = DecodeImage(view.image(), view.region(), view.has_region(), &image, &roi);
+      !s.ok()) {
+    return s;
+  }
+  try {
+    const ViewDescription described = DescribeView(roi ? image(*roi) : image, variant);
+    out->descriptor = described.descriptor;
+    out->typical_distance = described.typical_distance;
+  } catch (const std::exception& e) {
+    return StatusFromException(e);
+  }
+  return grpc::Status::OK;
+}
+
+}  // namespace orbit::server

@@ -1,0 +1,68 @@
+// The descriptor's vocabulary (core/descriptor.h): variant names and the one check of values
+// that arrive from outside.
+#include "core/descriptor.h"
+
+#include <functional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace orbit {
+namespace {
+
+// The std::invalid_argument message of `call`; "" (and a test failure) when it throws none.
+std::string RefusalOf(const std::function<void()>& call) {
+  try {
+    call();
+  } catch (const std::invalid_argument& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no std::invalid_argument";
+  return "";
+}
+
+TEST(DescriptorTest, VariantNamesRoundTrip) {
+  for (DescriptorVariant variant : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
+    EXPECT_EQ(ParseVariant(VariantName(variant)), variant);
+  }
+  EXPECT_EQ(VariantName(DescriptorVariant::kCeddLire), "cedd-lire");
+  EXPECT_EQ(VariantName(DescriptorVariant::kCeddFull), "cedd-full");
+  EXPECT_EQ(ParseVariant("CEDD-LIRE"), std::nullopt);
+  EXPECT_EQ(ParseVariant(""), std::nullopt);
+}
+
+TEST(DescriptorTest, ValidateDescriptorValuesNamesTheFirstValueAbove7) {
+  std::vector<std::uint8_t> values(kDescriptorSize, 7);
+  EXPECT_NO_THROW(ValidateDescriptorValues(values));
+  values[17] = 9;
+  values[40] = 200;
+  EXPECT_EQ(RefusalOf([&] { ValidateDescriptorValues(values, "frame.cedd"); }),
+            "frame.cedd value 9 at index 17 is outside 0..7");
+  values[17] = 8;
+  EXPECT_EQ(RefusalOf([&] { ValidateDescriptorValues(values); }),
+            "descriptor value 8 at index 17 is outside 0..7");
+}
+
+TEST(DescriptorTest, DescriptorFromBytesNeedsExactly144ValuesInRange) {
+  std::vector<std::uint8_t> bytes(kDescriptorSize, 7);
+  bytes[5] = 3;
+  const DescriptorValues values = DescriptorFromBytes(bytes);
+  EXPECT_EQ(values[5], 3);
+  EXPECT_EQ(values[143], 7);
+  bytes.pop_back();
+  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
+            "descriptor has 143 values, expected 144");
+  bytes.push_back(7);
+  bytes.push_back(7);
+  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes, "view.cedd"); }),
+            "view.cedd has 145 values, expected 144");
+  bytes.pop_back();
+  bytes[0] = 8;
+  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
+            "descriptor value 8 at index 0 is outside 0..7");
+}
+
+}  // namespace
+}  // namespace orbit
