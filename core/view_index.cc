@@ -323,32 +323,27 @@ ViewIndex::ViewIndex(std::vector<ObjectModel> models, ViewIndexOptions options)
   current_ = std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
 }
 
-void ViewIndex::Add(ObjectModel model) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
-  const std::shared_ptr<const ViewIndexSnapshot> base = Snapshot();
-  if (base->Find(model.id) != nullptr) {
-    throw std::invalid_argument("an object with id " + std::to_string(model.id) +
-                                " is already in the index");
-  }
-  std::vector<SegmentState> segments = base->segments_;
-  std::vector<std::shared_ptr<const IndexedObject>> added{Prepare(std::move(model), variant_)};
-  segments.push_back(FreshState(BuildSegment(std::move(added), options_)));
-  // Binary-counter merging: while the newest segment is at least as large as the one before
-  // it, the two become one. Segment sizes then fall geometrically, so there are O(log views)
-  // segments and each view is re-indexed O(log views) times in all.
+namespace {
+
+// Appends a segment holding `object` and merges segments of similar size. Binary-counter
+// merging: while the newest segment is at least as large as the one before it, the two become
+// one. Segment sizes then fall geometrically, so there are O(log views) segments and each view is
+// re-indexed O(log views) times in all.
+void AppendObject(std::vector<SegmentState>& segments, std::shared_ptr<const IndexedObject> object,
+                  const ViewIndexOptions& options) {
+  std::vector<std::shared_ptr<const IndexedObject>> added{std::move(object)};
+  segments.push_back(FreshState(BuildSegment(std::move(added), options)));
   while (segments.size() >= 2 &&
          LiveViews(segments.back()) >= LiveViews(segments[segments.size() - 2])) {
-    SegmentState merged = Merge({&segments[segments.size() - 2], &segments.back()}, options_);
+    SegmentState merged = Merge({&segments[segments.size() - 2], &segments.back()}, options);
     segments.pop_back();
     segments.back() = std::move(merged);
   }
-  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
 }
 
-bool ViewIndex::Remove(ObjectId id) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
-  const std::shared_ptr<const ViewIndexSnapshot> base = Snapshot();
-  std::vector<SegmentState> segments = base->segments_;
+// Marks object `id` deleted in `segments`; false (nothing changed) when it is not there.
+bool MarkDeleted(std::vector<SegmentState>& segments, ObjectId id,
+                 const ViewIndexOptions& options) {
   for (std::size_t s = 0; s < segments.size(); ++s) {
     SegmentState& state = segments[s];
     const auto& objects = state.segment->objects;
@@ -360,13 +355,44 @@ bool ViewIndex::Remove(ObjectId id) {
       if (LiveViews(state) == 0) {
         segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(s));
       } else if (2 * state.dead_views > state.segment->view_count) {
-        state = Merge({&state}, options_);
+        state = Merge({&state}, options);
       }
-      Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
       return true;
     }
   }
   return false;
+}
+
+}  // namespace
+
+void ViewIndex::Add(ObjectModel model) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  const std::shared_ptr<const ViewIndexSnapshot> base = Snapshot();
+  if (base->Find(model.id) != nullptr) {
+    throw std::invalid_argument("an object with id " + std::to_string(model.id) +
+                                " is already in the index");
+  }
+  std::vector<SegmentState> segments = base->segments_;
+  AppendObject(segments, Prepare(std::move(model), variant_), options_);
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+}
+
+void ViewIndex::Replace(ObjectModel model) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  // Validated before anything changes: a refused model leaves the index as it was.
+  std::shared_ptr<const IndexedObject> object = Prepare(std::move(model), variant_);
+  std::vector<SegmentState> segments = Snapshot()->segments_;
+  MarkDeleted(segments, object->id(), options_);
+  AppendObject(segments, std::move(object), options_);
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+}
+
+bool ViewIndex::Remove(ObjectId id) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  std::vector<SegmentState> segments = Snapshot()->segments_;
+  if (!MarkDeleted(segments, id, options_)) return false;
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+  return true;
 }
 
 std::shared_ptr<const ViewIndexSnapshot> ViewIndex::Snapshot() const {

@@ -13,7 +13,7 @@
 //            docs/results/engines-speed.md for recall@N_L against kExact on COIL-100.
 //
 // Updates without a rebuild from scratch: views live in immutable segments, each with its own
-// kd-tree. Add() appends a segment holding the new object and merges segments of similar size
+// kd-tree. Add() (and Replace(), a removal and an addition in one step) appends a segment holding the new object and merges segments of similar size
 // (log-structured, so each view is re-indexed O(log views) times over the index's life);
 // Remove() records the object as deleted and a segment is rewritten only when more than half of
 // it is deleted. Searches skip deleted objects.
@@ -84,6 +84,11 @@ class ViewIndex {
   // Throws std::invalid_argument when the model's variant is not the index's, when its id is
   // already present, when it has no views, or when a view is invalid (as above).
   void Add(ObjectModel model);
+
+  // Puts `model` in place of the object with its id (adds it when there is none), published as
+  // one snapshot: no snapshot ever lacks the object or holds both versions. Snapshots taken
+  // before are unchanged. Throws as Add() for an invalid model, changing nothing.
+  void Replace(ObjectModel model);
 
   // Removes the object; returns false (and changes nothing) when no object has this id.
   bool Remove(ObjectId id);

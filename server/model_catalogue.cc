@@ -17,18 +17,14 @@ ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
                                 " differs from the server's " + std::string(VariantName(variant())));
   }
   std::lock_guard lock(write_mutex_);
-  const ObjectId id = store_.Enroll(enrollment);
-  Reindex(id);
-  return store_.Get(id)->summary;
+  return Reindex(store_.Enroll(enrollment));
 }
 
 ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>& views,
                                        const std::vector<std::string>& thumbnails) {
   std::lock_guard lock(write_mutex_);
   store_.AddViews(id, views, thumbnails);
-  index_->Remove(id);
-  Reindex(id);
-  return store_.Get(id)->summary;
+  return Reindex(id);
 }
 
 ObjectSummary ModelCatalogue::Delete(ObjectId id) {
@@ -40,15 +36,22 @@ ObjectSummary ModelCatalogue::Delete(ObjectId id) {
   return object->summary;
 }
 
-void ModelCatalogue::Reindex(ObjectId id) {
+ObjectSummary ModelCatalogue::Reindex(ObjectId id) {
   std::optional<StoredObject> stored = store_.Get(id);
-  if (!stored) return;  // deleted meanwhile by another store user; nothing to index
+  if (!stored) {
+    // Another user of the store deleted it between our write and this read: the store is the
+    // truth, so the index forgets it too.
+    index_->Remove(id);
+    throw StoreError(StoreError::Code::kNotFound,
+                     "object " + std::to_string(id) + " was deleted meanwhile");
+  }
   ObjectModel model;
   model.id = id;
   model.name = stored->summary.name;
   model.variant = stored->summary.variant;
   model.views = std::move(stored->views);
-  index_->Add(std::move(model));
+  index_->Replace(std::move(model));
+  return stored->summary;
 }
 
 }  // namespace orbit::server

@@ -1,7 +1,8 @@
 // ModelCatalogue: the server's objects, durable in a ModelStore and searchable in a ViewIndex,
 // kept in step. A write goes to the store first (when it returns, the object survives a crash)
 // and then to the index, so every session sees it from its next frame on (SPEC.md, "Service
-// behaviour").
+// behaviour"). Each change reaches the index as one snapshot (ViewIndex::Replace, Remove): a
+// frame never ranks without an object that is merely gaining views.
 //
 // Thread-safe: writes are serialised among themselves; reads (Snapshot, store reads) run beside
 // them.
@@ -25,8 +26,10 @@ class ModelCatalogue {
   // and as ModelStore::LoadAll.
   ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options);
 
-  // Each throws as the ModelStore method of the same name, and std::invalid_argument when the
-  // enrollment's variant is not the catalogue's. Return the object as stored.
+  // Each throws as the ModelStore method of the same name (StoreError kNotFound for an unknown
+  // id), std::invalid_argument when the enrollment's variant is not the catalogue's, and
+  // StoreError kNotFound when another user of the store deleted the object before it could be
+  // read back. Return the object as stored.
   ObjectSummary Enroll(const Enrollment& enrollment);
   ObjectSummary AddViews(ObjectId id, const std::vector<ModelView>& views,
                          const std::vector<std::string>& thumbnails);
@@ -37,8 +40,10 @@ class ModelCatalogue {
   DescriptorVariant variant() const { return index_->variant(); }
 
  private:
-  // Re-reads one object from the store into the index.
-  void Reindex(ObjectId id);
+  // Re-reads one object from the store and publishes it in the index in one snapshot; returns
+  // its summary. Throws StoreError kNotFound (after dropping it from the index) when it is gone.
+  // REQUIRES: write_mutex_ held.
+  ObjectSummary Reindex(ObjectId id);
 
   ModelStore& store_;
   std::unique_ptr<ViewIndex> index_;

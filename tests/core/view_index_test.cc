@@ -43,6 +43,39 @@ std::vector<ObjectModel> SmallModels() {
   return {Model(1, {{kA, 0}, {kC, 90}}), Model(2, {{kB, 45}})};
 }
 
+TEST(ViewIndexTest, ReplacePublishesTheNewVersionInOneSnapshot) {
+  for (const SearchMode mode : {SearchMode::kExact, SearchMode::kKdTree}) {
+    ViewIndex index(SmallModels(), {.search = mode});
+    const auto before = index.Snapshot();
+    // Object 2 gains kA at 180 degrees: the best match for kQuery is then object 1's view 0 or
+    // object 2's new view, both TC 0.8 (ties: lower object position first, and the replaced
+    // object moves to the end).
+    index.Replace(Model(2, {{kB, 45}, {kA, 180}}));
+    const auto after = index.Snapshot();
+    ASSERT_EQ(after->object_count(), 2u);
+    ASSERT_NE(after->Find(2), nullptr);
+    EXPECT_EQ(after->Find(2)->model().views.size(), 2u);
+    EXPECT_EQ(after->view_count(), 4u);
+    const auto list = after->Search(kQuery, 2);
+    ASSERT_EQ(list.size(), 2u);
+    EXPECT_EQ(list[1].object, 2);
+    EXPECT_EQ(list[1].azimuth, 180);
+    EXPECT_DOUBLE_EQ(list[1].similarity, 0.8);
+    // The snapshot taken before still holds the old version.
+    EXPECT_EQ(before->Find(2)->model().views.size(), 1u);
+    EXPECT_EQ(before->view_count(), 3u);
+
+    // Replacing an absent id adds it; an invalid model changes nothing.
+    index.Replace(Model(7, {{kC, 10}}));
+    EXPECT_EQ(index.Snapshot()->object_count(), 3u);
+    const auto last = index.Snapshot();
+    EXPECT_THROW(index.Replace(Model(2, {})), std::invalid_argument);
+    EXPECT_THROW(index.Replace(Model(2, {{kA, 0}}, DescriptorVariant::kCeddFull)),
+                 std::invalid_argument);
+    EXPECT_EQ(index.Snapshot(), last);
+  }
+}
+
 TEST(ViewIndexTest, ExactSearchRanksViewsByTanimotoWithHandComputedValues) {
   ViewIndex index(SmallModels());
   const auto list = index.Snapshot()->Search(kQuery, 5);

@@ -1,0 +1,105 @@
+// The conversions both ends of a call share (api/conversion.h), with hand-built values.
+#include "api/conversion.h"
+
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace orbit {
+namespace {
+
+TEST(ConversionTest, VariantsRoundTripAndUnknownOnesAreRefusedByName) {
+  for (const DescriptorVariant variant : kDescriptorVariants) {
+    EXPECT_EQ(FromProtoVariant(ToProtoVariant(variant)), variant);
+  }
+  EXPECT_EQ(ToProtoVariant(DescriptorVariant::kCeddLire), v1::CEDD_LIRE);
+  EXPECT_EQ(ToProtoVariant(DescriptorVariant::kCeddFull), v1::CEDD_FULL);
+  EXPECT_EQ(ProtoVariantName(v1::CEDD_FULL), "cedd-full");
+  EXPECT_EQ(ProtoVariantName(v1::DESCRIPTOR_VARIANT_UNSPECIFIED), "unspecified");
+  EXPECT_EQ(ProtoVariantName(static_cast<v1::DescriptorVariant>(9)), "unknown (9)");
+  // Neither end guesses a variant: both refuse what they do not know.
+  for (const auto bad : {v1::DESCRIPTOR_VARIANT_UNSPECIFIED, static_cast<v1::DescriptorVariant>(9)}) {
+    try {
+      FromProtoVariant(bad);
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_EQ(std::string(e.what()), "descriptor variant is " + ProtoVariantName(bad));
+    }
+  }
+}
+
+TEST(ConversionTest, DescriptorFromWireNamesTheField) {
+  std::string bytes(kDescriptorSize, '\x07');
+  bytes[3] = '\x02';
+  EXPECT_EQ(DescriptorFromWire(bytes, "frame.cedd")[3], 2);
+  bytes[17] = '\x09';
+  try {
+    DescriptorFromWire(bytes, "frame.cedd");
+    ADD_FAILURE() << "accepted a 9";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "frame.cedd value 9 at index 17 is outside 0..7");
+  }
+  try {
+    DescriptorFromWire(std::string(10, '\0'), "view.cedd");
+    ADD_FAILURE() << "accepted 10 bytes";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "view.cedd has 10 values, expected 144");
+  }
+}
+
+TEST(ConversionTest, ViewCarriesEveryStoredField) {
+  ModelView view;
+  view.descriptor[0] = 7;
+  view.descriptor[143] = 1;
+  view.azimuth = 35;
+  view.typical_distance = 0.25;
+  v1::View wire = ToProtoView(view);
+  ASSERT_EQ(wire.cedd().size(), 144u);
+  EXPECT_EQ(wire.cedd()[0], '\x07');
+  EXPECT_EQ(wire.cedd()[143], '\x01');
+  EXPECT_EQ(wire.azimuth_deg(), 35);
+  EXPECT_FALSE(wire.has_elevation_deg());
+  EXPECT_EQ(wire.typical_distance(), 0.25);
+  EXPECT_TRUE(wire.thumbnail().empty());
+  EXPECT_EQ(DescriptorFromWire(wire.cedd(), "view.cedd"), view.descriptor);
+
+  view.elevation = -12.5;
+  wire = ToProtoView(view, "png bytes");
+  EXPECT_EQ(wire.elevation_deg(), -12.5);
+  EXPECT_EQ(wire.thumbnail(), "png bytes");
+}
+
+TEST(ConversionTest, DecisionsAndMoves) {
+  EXPECT_EQ(ToProtoDecision(Decision::kAccept), v1::DECISION_ACCEPT);
+  EXPECT_EQ(ToProtoDecision(Decision::kUnknown), v1::DECISION_UNKNOWN);
+  EXPECT_EQ(ToProtoDecision(Decision::kUndecided), v1::DECISION_UNDECIDED);
+  EXPECT_EQ(ToProtoMove(SuggestedMove::kNone), v1::MOVE_NONE);
+  EXPECT_EQ(ToProtoMove(SuggestedMove::kLeft), v1::MOVE_LEFT);
+  EXPECT_EQ(ToProtoMove(SuggestedMove::kRight), v1::MOVE_RIGHT);
+}
+
+TEST(ConversionTest, SessionUpdateNamesCandidatesFromTheSnapshot) {
+  ObjectModel mug;
+  mug.id = 4;
+  mug.name = "mug";
+  mug.views.push_back({});
+  ViewIndex index(std::vector<ObjectModel>{mug});
+  FrameUpdate update;
+  update.frame_index = 12;
+  update.ranking = {{4, 0.75}, {9, 0.5}};  // object 9 was deleted meanwhile: no name
+  update.decision = Decision::kAccept;
+  update.move = SuggestedMove::kLeft;
+  const v1::SessionUpdate wire = ToSessionUpdate(update, *index.Snapshot());
+  EXPECT_EQ(wire.frame_index(), 12);
+  ASSERT_EQ(wire.candidates_size(), 2);
+  EXPECT_EQ(wire.candidates(0).id(), 4);
+  EXPECT_EQ(wire.candidates(0).name(), "mug");
+  EXPECT_EQ(wire.candidates(0).score(), 0.75);
+  EXPECT_EQ(wire.candidates(1).id(), 9);
+  EXPECT_EQ(wire.candidates(1).name(), "");
+  EXPECT_EQ(wire.decision(), v1::DECISION_ACCEPT);
+  EXPECT_EQ(wire.move(), v1::MOVE_LEFT);
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,54 @@
+// The rules `orbit serve` checks before it opens anything (server/server_config.h).
+#include "server/server_config.h"
+
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace orbit::server {
+namespace {
+
+TEST(ServerConfigTest, DefaultsAreValidAndAnHmmAboveTheCellLimitIsRefused) {
+  ServerConfig config;
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  config.session_defaults.options.hmm_states = 200;  // 8 x 200 = 1600 > 1024
+  try {
+    ValidateServerConfig(config);
+    ADD_FAILURE() << "accepted 8 x 200";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(),
+                 "the default session (window 8 x 200 HMM states) is above --max-hmm-cells 1024");
+  }
+  config.limits.max_hmm_cells = 1600;
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  config.session_defaults.options.hmm_states = 200;
+  config.session_defaults.engine = v1::ENGINE_VCI;
+  config.limits.max_hmm_cells = 1;
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  config.session_defaults.options.threshold = -1;
+  EXPECT_THROW(ValidateServerConfig(config), std::invalid_argument);
+}
+
+TEST(ServerConfigTest, LoopbackAddresses) {
+  for (const char* address : {"127.0.0.1:50051", "127.8.9.10:1", "localhost:80", "[::1]:50051",
+                              "::1"}) {
+    EXPECT_TRUE(IsLoopbackAddress(address)) << address;
+  }
+  for (const char* address : {"0.0.0.0:50051", "10.0.0.1:50051", "[::]:50051",
+                              "example.com:443", "128.0.0.1:1"}) {
+    EXPECT_FALSE(IsLoopbackAddress(address)) << address;
+  }
+}
+
+TEST(ServerConfigTest, DescribeNamesEngineAndLimits) {
+  ServerConfig config;
+  config.session_defaults.engine = v1::ENGINE_VCI_HMM;
+  const std::string text = config.Describe();
+  EXPECT_NE(text.find("session defaults    engine vci-hmm, top-k 5, window 8"), std::string::npos)
+      << text;
+  EXPECT_NE(text.find("HMM window x states <= 1024"), std::string::npos) << text;
+  EXPECT_NE(text.find("access control      none (loopback only)"), std::string::npos) << text;
+}
+
+}  // namespace
+}  // namespace orbit::server
