@@ -12,6 +12,7 @@
 #include "client/connection.h"
 #include "client/enroller.h"
 #include "client/recognition_session.h"
+#include "client/rpc_error.h"
 #include "client/image_file.h"
 #include "tests/support/test_data.h"
 
@@ -21,6 +22,24 @@ inline std::string CoilFile(int object, int azimuth) {
   return (DataDir() / "coil-100" /
           ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
       .string();
+}
+
+// `--image F --azimuth A` arguments of `orbit enroll` / `orbit recognize` for object `object`
+// at the given azimuths, each reported `offset` degrees off.
+inline std::string CoilImageArguments(int object, const std::vector<int>& azimuths,
+                                      int offset = 0) {
+  std::string args;
+  for (int a : azimuths) {
+    args += " --image " + CoilFile(object, a) + " --azimuth " + std::to_string(a + offset);
+  }
+  return args;
+}
+
+// 0, 20, ..., 340.
+inline std::vector<int> EveryTwentyDegrees() {
+  std::vector<int> azimuths;
+  for (int a = 0; a < 360; a += 20) azimuths.push_back(a);
+  return azimuths;
 }
 
 inline cv::Mat CoilImage(int object, int azimuth) {
@@ -50,6 +69,17 @@ inline std::vector<EnrollmentImage> CoilEnrollmentImages(int object) {
     images.push_back({CoilImage(object, azimuth), static_cast<double>(azimuth), {}, {}});
   }
   return images;
+}
+
+// The status code of the RpcError `call` throws; OK when it throws nothing.
+template <typename Call>
+grpc::StatusCode RpcCodeOf(Call call) {
+  try {
+    call();
+  } catch (const RpcError& e) {
+    return e.code();
+  }
+  return grpc::StatusCode::OK;
 }
 
 // Enrolls objects first..last as "objN" through the client library.

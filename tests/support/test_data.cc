@@ -71,6 +71,12 @@ CommandResult RunCommand(const std::string& command) {
 
 std::string OrbitBinary() { return ORBIT_BINARY; }
 
+CommandResult RunOrbit(const std::string& arguments) {
+  return RunCommand(OrbitBinary() + " " + arguments);
+}
+
+std::string CoilDir() { return (DataDir() / "coil-100").string(); }
+
 std::vector<std::string> OutputLines(const std::string& text) {
   std::vector<std::string> lines;
   std::istringstream in(text);

@@ -32,6 +32,12 @@ CommandResult RunCommand(const std::string& command);
 // Path of the built `orbit` binary.
 std::string OrbitBinary();
 
+// RunCommand of `orbit ARGUMENTS`.
+CommandResult RunOrbit(const std::string& arguments);
+
+// The COIL-100 folder of the shared data.
+std::string CoilDir();
+
 // The lines of a command's output, without their "\n".
 std::vector<std::string> OutputLines(const std::string& text);
 

@@ -1,0 +1,196 @@
+// orbit import (cli/import_command.cc) as an operator runs it, on real images: into a store
+// file (COIL-100 and manifest layouts) and onto a real `orbit serve` process.
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "client/connection.h"
+#include "client/models_client.h"
+#include "tests/support/client_test_support.h"
+#include "tests/support/server_process.h"
+#include "tests/support/storage_test_support.h"
+#include "tests/support/test_data.h"
+#include "client/image_file.h"
+#include "core/view_description.h"
+#include "storage/sqlite_model_store.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using testing::CoilDir;
+using testing::CoilFile;
+using testing::CoilImageArguments;
+using testing::EveryTwentyDegrees;
+using testing::OrbitBinary;
+using testing::OutputLines;
+using testing::RunCommand;
+using testing::RunOrbit;
+using testing::ScratchDir;
+using testing::ServerProcess;
+
+TEST(ImportCommandTest, ImportStoresLireDescriptorsAndTypicalDistances) {
+  ScratchDir dir;
+  const std::string db = (dir / "models.db").string();
+  ASSERT_EQ(RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() + " --objects 7")
+                .exit_code,
+            0);
+
+  SqliteModelStore store(db);
+  const std::vector<ObjectModel> models = store.LoadAll();
+  ASSERT_EQ(models.size(), 1u);
+  ASSERT_EQ(models[0].views.size(), 72u);
+  // Every view's descriptor is LIRE's own for that image (the reference file), at its azimuth.
+  std::map<std::string, DescriptorValues> reference;
+  for (const auto& ref : testing::ReadReferenceVectors(testing::DataDir() / "coil-100-lire-cedd.txt")) {
+    reference[ref.path] = ref.values;
+  }
+  for (const ModelView& view : models[0].views) {
+    const std::string path = "coil-100/obj7__" + std::to_string(int(view.azimuth)) + ".png";
+    EXPECT_EQ(view.descriptor, reference.at(path)) << path;
+  }
+  EXPECT_EQ(models[0].views[2].azimuth, 10.0);
+  // Ttyp of the view at 10 degrees is DescribeView's with the default base seed: what the
+  // client library and a server store for the same image.
+  const cv::Mat image = ReadImageFile((testing::DataDir() / "coil-100/obj7__10.png").string());
+  EXPECT_EQ(models[0].views[2].typical_distance,
+            DescribeView(image, DescriptorVariant::kCeddLire).typical_distance);
+  EXPECT_GT(models[0].views[2].typical_distance, 0.0);
+}
+
+TEST(ImportCommandTest, ImportFromAManifestWithElevationsAndVariant) {
+  ScratchDir dir;
+  const std::string db = (dir / "models.db").string();
+  std::ofstream(dir / "set.csv") << "object,path,azimuth,elevation\n"
+                                 << "mug," << CoilDir() << "/obj5__0.png,0,\n"
+                                 << "cup," << CoilDir() << "/obj6__0.png,-30,12.5\n"
+                                 << "mug," << CoilDir() << "/obj5__90.png,90,\n";
+
+  const testing::CommandResult imported =
+      RunOrbit("import --db " + db + " --layout manifest --manifest " + (dir / "set.csv").string() +
+            " --variant cedd-full");
+
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_THAT(OutputLines(imported.out),
+              ElementsAre("enrolled mug (id 1, 2 views)", "enrolled cup (id 2, 1 views)"));
+  SqliteModelStore store(db);
+  const StoredObject cup = *store.Get(2);
+  EXPECT_EQ(cup.summary.variant, DescriptorVariant::kCeddFull);
+  EXPECT_EQ(cup.views[0].azimuth, 330.0);
+  EXPECT_EQ(cup.views[0].elevation, 12.5);
+  EXPECT_EQ(store.Get(1)->views[1].elevation, std::nullopt);
+}
+
+TEST(ImportCommandTest, ImportRefusesABadObjectNameBeforeWritingAnything) {
+  ScratchDir dir;
+  const std::string db = (dir / "models.db").string();
+  std::ofstream(dir / "set.csv") << "path,object,azimuth\n"
+                                 << CoilDir() << "/obj5__0.png,mug,0\n"
+                                 << CoilDir() << "/obj6__0.png,red/cup,0\n";
+
+  const testing::CommandResult imported = RunOrbit(
+      "import --db " + db + " --layout manifest --manifest " + (dir / "set.csv").string());
+
+  EXPECT_EQ(imported.exit_code, 1);
+  EXPECT_THAT(imported.err, HasSubstr("object name \"red/cup\" has a character not allowed"));
+  EXPECT_FALSE(std::filesystem::exists(db));
+}
+
+// Every line of `orbit list` without its last column (updated_at).
+std::vector<std::string> WithoutTimestamps(const std::string& listing) {
+  std::vector<std::string> lines = OutputLines(listing);
+  for (std::string& line : lines) line = line.substr(0, line.rfind(' '));
+  return lines;
+}
+
+TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
+  ServerProcess server;
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  const std::string coil = " --layout coil100 --data " + (testing::DataDir() / "coil-100").string();
+  const auto imported = RunCommand(orbit + "import" + at + coil + " --objects 1-2");
+  ASSERT_EQ(imported.exit_code, 0) << imported.err;
+  EXPECT_EQ(OutputLines(imported.out),
+            (std::vector<std::string>{"enrolled obj1 (id 1, 72 views)",
+                                      "enrolled obj2 (id 2, 72 views)"}));
+  EXPECT_NE(imported.err.find("2 objects enrolled, 0 already present, on " + server.address()),
+            std::string::npos)
+      << imported.err;
+  const auto resumed = RunCommand(orbit + "import" + at + coil + " --objects 1-3");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(OutputLines(resumed.out),
+            (std::vector<std::string>{"skipped obj1 (already on the server as id 1)",
+                                      "skipped obj2 (already on the server as id 2)",
+                                      "enrolled obj3 (id 3, 72 views)"}));
+
+  // The same import into a file stores the very same views (same descriptors, same seeded
+  // typical distances), and both list alike.
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("orbit_cli_network_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string db = (dir / "models.db").string();
+  ASSERT_EQ(RunCommand(orbit + "import --db " + db + coil + " --objects 1-3").exit_code, 0);
+  {
+    SqliteModelStore store(db);
+    const std::optional<StoredObject> local = store.Get(2);
+    ASSERT_TRUE(local.has_value());
+    const Connection connection(testing::At(server.address()));
+    const v1::GetObjectResponse remote = ModelsClient(connection).GetObject(ObjectById(2), true);
+    ASSERT_EQ(remote.views_size(), static_cast<int>(local->views.size()));
+    for (int f = 0; f < remote.views_size(); ++f) {
+      const ModelView& view = local->views[f];
+      const std::string cedd(view.descriptor.begin(), view.descriptor.end());
+      EXPECT_EQ(remote.views(f).cedd(), cedd);
+      EXPECT_EQ(remote.views(f).azimuth_deg(), view.azimuth);
+      EXPECT_DOUBLE_EQ(remote.views(f).typical_distance(), view.typical_distance);
+    }
+  }
+  const auto listed_remote = RunCommand(orbit + "list" + at);
+  const auto listed_local = RunCommand(orbit + "list --db " + db);
+  ASSERT_EQ(listed_remote.exit_code, 0) << listed_remote.err;
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out), WithoutTimestamps(listed_local.out));
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-lire 72");
+  const auto json = RunCommand(orbit + "list --json" + at);
+  ASSERT_EQ(OutputLines(json.out).size(), 3u);
+  EXPECT_EQ(nlohmann::json::parse(OutputLines(json.out)[0])["name"], "obj1");
+
+  const auto deleted = RunCommand(orbit + "delete" + at + " obj2");
+  ASSERT_EQ(deleted.exit_code, 0) << deleted.err;
+  EXPECT_EQ(deleted.out, "deleted obj2 (id 2, 72 views)\n");
+  const auto missing = RunCommand(orbit + "delete" + at + " obj2");
+  EXPECT_EQ(missing.exit_code, 1);
+  EXPECT_NE(missing.err.find("no object named \"obj2\" on " + server.address()),
+            std::string::npos)
+      << missing.err;
+  EXPECT_EQ(OutputLines(RunCommand(orbit + "list" + at).out).size(), 2u);
+
+  // One of --db and --server, and the server's variant.
+  const auto neither = RunCommand(orbit + "list");
+  EXPECT_EQ(neither.exit_code, 1);
+  EXPECT_NE(neither.err.find("give --db FILE (a local model store) or --server HOST:PORT"),
+            std::string::npos)
+      << neither.err;
+  EXPECT_NE(RunCommand(orbit + "list --db " + db + at).exit_code, 0);
+  const auto variant =
+      RunCommand(orbit + "import" + at + coil + " --objects 4 --variant cedd-full");
+  EXPECT_EQ(variant.exit_code, 1);
+  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-lire)"),
+            std::string::npos)
+      << variant.err;
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,116 @@
+// The options every networked subcommand shares (cli/network_options.cc): --server, --token,
+// --token-file, --tls-ca, --timeout; unreachable servers and bad arguments reported clearly.
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "client/connection.h"
+#include "client/models_client.h"
+#include "tests/support/client_test_support.h"
+#include "tests/support/server_process.h"
+#include "tests/support/storage_test_support.h"
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using testing::CoilDir;
+using testing::CoilFile;
+using testing::CoilImageArguments;
+using testing::EveryTwentyDegrees;
+using testing::OrbitBinary;
+using testing::OutputLines;
+using testing::RunCommand;
+using testing::RunOrbit;
+using testing::ScratchDir;
+using testing::ServerProcess;
+
+TEST(NetworkOptionsTest, ReportsUnreachableServersAndBadArguments) {
+  const std::string orbit = OrbitBinary() + " ";
+  ServerProcess server;
+  const std::string address = server.address();
+  ASSERT_EQ(server.Stop(SIGTERM), 0);
+  const auto down = RunCommand(orbit + "info --timeout 2 --server " + address);
+  EXPECT_EQ(down.exit_code, 1);
+  EXPECT_NE(down.err.find("ServerInfo: UNAVAILABLE"), std::string::npos) << down.err;
+
+  const auto unpaired = RunCommand(orbit + "recognize --server " + address + " --image " +
+                                   CoilFile(1, 0) + " --azimuth 0 --azimuth 5");
+  EXPECT_EQ(unpaired.exit_code, 1);
+  EXPECT_NE(unpaired.err.find("one --azimuth per --image (1 images, 2 azimuths)"),
+            std::string::npos)
+      << unpaired.err;
+}
+
+TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
+  const auto dir = std::filesystem::temp_directory_path() /
+                   ("orbit_cli_tls_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  {
+    std::ofstream tokens(dir / "tokens");
+    tokens << "admin-token-0123456 admin\nreader-token-0123456 recognize\n";
+    std::ofstream reader(dir / "reader.token");
+    reader << "reader-token-0123456\n";
+  }
+  const std::string make_cert =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=edge.test "
+      "-addext subjectAltName=DNS:edge.test -keyout " + (dir / "key.pem").string() +
+      " -out " + (dir / "cert.pem").string() + " 2>/dev/null";
+  ASSERT_EQ(std::system(make_cert.c_str()), 0) << "openssl could not make a test certificate";
+  testing::ServerProcessOptions options;
+  options.tokens_file = dir / "tokens";
+  options.tls_cert = dir / "cert.pem";
+  options.tls_key = dir / "key.pem";
+  ServerProcess server(options);
+  const std::string net = " --server " + server.address() + " --tls-ca " +
+                          (dir / "cert.pem").string() + " --tls-server-name edge.test";
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string reader_file = " --token-file " + (dir / "reader.token").string();
+
+  const auto enrolled = RunCommand(orbit + "enroll" + net + " --token admin-token-0123456" +
+                                   " --name obj1" +
+                                   CoilImageArguments(1, EveryTwentyDegrees()));
+  ASSERT_EQ(enrolled.exit_code, 0) << enrolled.err;
+  const auto denied =
+      RunCommand(orbit + "enroll" + net + reader_file + " --name obj2" +
+                 CoilImageArguments(2, {0, 20}));
+  EXPECT_EQ(denied.exit_code, 1);
+  EXPECT_NE(denied.err.find("PERMISSION_DENIED"), std::string::npos) << denied.err;
+  const auto anonymous = RunCommand("env -u ORBIT_TOKEN " + orbit + "info" + net);
+  EXPECT_EQ(anonymous.exit_code, 1);
+  EXPECT_NE(anonymous.err.find("UNAUTHENTICATED"), std::string::npos) << anonymous.err;
+
+  // The token from the environment; a token file on the command line wins over it.
+  EXPECT_EQ(RunCommand("ORBIT_TOKEN=reader-token-0123456 " + orbit + "info" + net).exit_code, 0);
+  const auto file_wins =
+      RunCommand("ORBIT_TOKEN=stale-token-000000000 " + orbit + "list" + net + reader_file);
+  ASSERT_EQ(file_wins.exit_code, 0) << file_wins.err;
+  EXPECT_EQ(file_wins.out.rfind("1 obj1 cedd-lire 18 ", 0), 0u) << file_wins.out;
+  const auto recognised = RunCommand(orbit + "recognize --json" + net + reader_file +
+                                     CoilImageArguments(1, {30, 50}));
+  ASSERT_EQ(recognised.exit_code, 0) << recognised.err;
+  EXPECT_EQ(nlohmann::json::parse(OutputLines(recognised.out).back())["candidates"][0]["name"],
+            "obj1");
+
+  // Plaintext against the TLS port fails.
+  EXPECT_NE(RunCommand(orbit + "info --timeout 3 --server " + server.address() + reader_file)
+                .exit_code,
+            0);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace orbit

@@ -1,0 +1,101 @@
+// orbit enroll and orbit recognize (cli/enroll_command.cc, cli/recognize_command.cc,
+// cli/update_format.cc) against a real `orbit serve` process, as a user would type them.
+#include <unistd.h>
+
+#include <csignal>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "client/connection.h"
+#include "client/models_client.h"
+#include "tests/support/client_test_support.h"
+#include "tests/support/server_process.h"
+#include "tests/support/storage_test_support.h"
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::ElementsAre;
+using ::testing::HasSubstr;
+using ::testing::MatchesRegex;
+using testing::CoilDir;
+using testing::CoilFile;
+using testing::CoilImageArguments;
+using testing::EveryTwentyDegrees;
+using testing::OrbitBinary;
+using testing::OutputLines;
+using testing::RunCommand;
+using testing::RunOrbit;
+using testing::ScratchDir;
+using testing::ServerProcess;
+
+TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
+  ServerProcess server;
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  for (int object = 1; object <= 3; ++object) {
+    const auto r = RunCommand(orbit + "enroll" + at + " --name obj" + std::to_string(object) +
+                              CoilImageArguments(object, EveryTwentyDegrees()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out, "enrolled obj" + std::to_string(object) + " (id " + std::to_string(object) +
+                         ", 18 views)\n");
+  }
+  const auto again =
+      RunCommand(orbit + "enroll" + at + " --name obj1" + CoilImageArguments(1, {0, 20}));
+  EXPECT_EQ(again.exit_code, 1);
+  EXPECT_NE(again.err.find("ALREADY_EXISTS"), std::string::npos) << again.err;
+
+  const auto info = RunCommand(orbit + "info --json" + at);
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  const auto info_json = nlohmann::json::parse(info.out);
+  EXPECT_EQ(info_json["objects"], 3);
+  EXPECT_EQ(info_json["views"], 54);
+  EXPECT_EQ(info_json["variant"], "cedd-lire");
+
+  // Object 2 between its enrolled views, the compass 90 degrees off.
+  const std::string frames = CoilImageArguments(2, {30, 50, 70, 90}, 90);
+  const auto json = RunCommand(orbit + "recognize --json --top-k 2" + at + frames);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const std::vector<std::string> lines = OutputLines(json.out);
+  ASSERT_EQ(lines.size(), 4u) << json.out;
+  for (std::size_t k = 0; k < lines.size(); ++k) {
+    const auto update = nlohmann::json::parse(lines[k]);
+    EXPECT_EQ(update["frame"], k);
+    EXPECT_TRUE(update["decision"] == "ACCEPT" || update["decision"] == "UNKNOWN" ||
+                update["decision"] == "UNDECIDED")
+        << lines[k];
+    EXPECT_TRUE(update["move"] == "LEFT" || update["move"] == "RIGHT" || update["move"] == "NONE")
+        << lines[k];
+    const auto& candidates = update["candidates"];
+    ASSERT_TRUE(candidates.is_array());
+    ASSERT_GE(candidates.size(), 1u);
+    ASSERT_LE(candidates.size(), 2u);
+    for (std::size_t i = 1; i < candidates.size(); ++i) {
+      EXPECT_GE(candidates[i - 1]["score"].get<double>(), candidates[i]["score"].get<double>());
+    }
+    EXPECT_TRUE(candidates[0].contains("id"));
+  }
+  const auto last = nlohmann::json::parse(lines.back());
+  EXPECT_EQ(last["candidates"][0]["name"], "obj2");
+  EXPECT_EQ(last["candidates"][0]["id"], 2);
+  EXPECT_EQ(last["decision"], "ACCEPT");
+
+  const auto text = RunCommand(orbit + "recognize" + at + frames);
+  ASSERT_EQ(text.exit_code, 0) << text.err;
+  const std::vector<std::string> text_lines = OutputLines(text.out);
+  ASSERT_EQ(text_lines.size(), 4u);
+  EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     move ", 0), 0u) << text_lines[3];
+  EXPECT_NE(text_lines[3].find(" obj2 (id 2) "), std::string::npos) << text_lines[3];
+}
+
+}  // namespace
+}  // namespace orbit
