@@ -2,8 +2,6 @@
 // file (COIL-100 and manifest layouts) and onto a real `orbit serve` process.
 #include <unistd.h>
 
-#include <csignal>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,25 +13,21 @@
 #include <nlohmann/json.hpp>
 
 #include "client/connection.h"
+#include "client/image_file.h"
 #include "client/models_client.h"
+#include "core/view_description.h"
+#include "storage/sqlite_model_store.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 #include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
-#include "client/image_file.h"
-#include "core/view_description.h"
-#include "storage/sqlite_model_store.h"
 
 namespace orbit {
 namespace {
 
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using ::testing::MatchesRegex;
 using testing::CoilDir;
-using testing::CoilFile;
-using testing::CoilImageArguments;
-using testing::EveryTwentyDegrees;
 using testing::OrbitBinary;
 using testing::OutputLines;
 using testing::RunCommand;

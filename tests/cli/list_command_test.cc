@@ -1,12 +1,7 @@
 // orbit list, delete and backup (cli/list_command.cc, cli/delete_command.cc,
 // cli/backup_command.cc) on real store files, as an operator runs them.
-#include <unistd.h>
 
-#include <csignal>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 
@@ -14,13 +9,8 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "client/connection.h"
-#include "client/models_client.h"
-#include "tests/support/client_test_support.h"
-#include "tests/support/server_process.h"
 #include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
-#include "storage/sqlite_model_store.h"
 
 namespace orbit {
 namespace {
@@ -29,15 +19,9 @@ using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
 using testing::CoilDir;
-using testing::CoilFile;
-using testing::CoilImageArguments;
-using testing::EveryTwentyDegrees;
-using testing::OrbitBinary;
 using testing::OutputLines;
-using testing::RunCommand;
 using testing::RunOrbit;
 using testing::ScratchDir;
-using testing::ServerProcess;
 
 TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   ScratchDir dir;

@@ -6,36 +6,25 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 
-#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "client/connection.h"
-#include "client/models_client.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
-#include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
 
-using ::testing::ElementsAre;
-using ::testing::HasSubstr;
-using ::testing::MatchesRegex;
-using testing::CoilDir;
 using testing::CoilFile;
 using testing::CoilImageArguments;
 using testing::EveryTwentyDegrees;
 using testing::OrbitBinary;
 using testing::OutputLines;
 using testing::RunCommand;
-using testing::RunOrbit;
-using testing::ScratchDir;
 using testing::ServerProcess;
 
 TEST(NetworkOptionsTest, ReportsUnreachableServersAndBadArguments) {
@@ -58,23 +47,8 @@ TEST(NetworkOptionsTest, ReportsUnreachableServersAndBadArguments) {
 TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("orbit_cli_tls_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream tokens(dir / "tokens");
-    tokens << "admin-token-0123456 admin\nreader-token-0123456 recognize\n";
-    std::ofstream reader(dir / "reader.token");
-    reader << "reader-token-0123456\n";
-  }
-  const std::string make_cert =
-      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=edge.test "
-      "-addext subjectAltName=DNS:edge.test -keyout " + (dir / "key.pem").string() +
-      " -out " + (dir / "cert.pem").string() + " 2>/dev/null";
-  ASSERT_EQ(std::system(make_cert.c_str()), 0) << "openssl could not make a test certificate";
-  testing::ServerProcessOptions options;
-  options.tokens_file = dir / "tokens";
-  options.tls_cert = dir / "cert.pem";
-  options.tls_key = dir / "key.pem";
-  ServerProcess server(options);
+  ServerProcess server(testing::SecuredServerOptions(dir, "edge.test", "admin-token-0123456",
+                                                     "reader-token-0123456"));
   const std::string net = " --server " + server.address() + " --tls-ca " +
                           (dir / "cert.pem").string() + " --tls-server-name edge.test";
   const std::string orbit = OrbitBinary() + " ";

@@ -1,41 +1,25 @@
 // orbit enroll and orbit recognize (cli/enroll_command.cc, cli/recognize_command.cc,
 // cli/update_format.cc) against a real `orbit serve` process, as a user would type them.
-#include <unistd.h>
 
-#include <csignal>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
-#include <map>
 #include <string>
 #include <vector>
 
-#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include "client/connection.h"
-#include "client/models_client.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
-#include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
 
-using ::testing::ElementsAre;
-using ::testing::HasSubstr;
-using ::testing::MatchesRegex;
-using testing::CoilDir;
-using testing::CoilFile;
 using testing::CoilImageArguments;
 using testing::EveryTwentyDegrees;
 using testing::OrbitBinary;
 using testing::OutputLines;
 using testing::RunCommand;
-using testing::RunOrbit;
-using testing::ScratchDir;
 using testing::ServerProcess;
 
 TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {

@@ -96,23 +96,8 @@ TEST(ConnectionTest, UnreachableAndSilentServersFailWithinTheDeadline) {
 TEST(ConnectionTest, TokensAndTlsReachTheServer) {
   const auto dir = std::filesystem::temp_directory_path() /
                    ("orbit_client_tls_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
-  {
-    std::ofstream tokens(dir / "tokens");
-    tokens << "# operators\nadmin-secret-0001 admin\nreader-secret-0001 recognize\n";
-    std::ofstream token_file(dir / "reader.token");
-    token_file << "# the device's token\nreader-secret-0001\n";
-  }
-  const std::string make_cert =
-      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=orbit.test "
-      "-addext subjectAltName=DNS:orbit.test -keyout " + (dir / "key.pem").string() +
-      " -out " + (dir / "cert.pem").string() + " 2>/dev/null";
-  ASSERT_EQ(std::system(make_cert.c_str()), 0) << "openssl could not make a test certificate";
-  testing::ServerProcessOptions server_options;
-  server_options.tokens_file = dir / "tokens";
-  server_options.tls_cert = dir / "cert.pem";
-  server_options.tls_key = dir / "key.pem";
-  ServerProcess server(server_options);
+  ServerProcess server(testing::SecuredServerOptions(dir, "orbit.test", "admin-secret-0001",
+                                                     "reader-secret-0001"));
   ConnectionOptions tls = testing::At(server.address());
   tls.tls_root_certificates_file = (dir / "cert.pem").string();
   tls.tls_server_name = "orbit.test";

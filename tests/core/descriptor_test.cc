@@ -9,20 +9,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/test_data.h"
+
 namespace orbit {
 namespace {
 
-// The std::invalid_argument message of `call`; "" (and a test failure) when it throws none.
-std::string RefusalOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "no std::invalid_argument";
-  return "";
-}
-
+using orbit::testing::ErrorMessageOf;
 TEST(DescriptorTest, VariantNamesRoundTrip) {
   for (DescriptorVariant variant : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
     EXPECT_EQ(ParseVariant(VariantName(variant)), variant);
@@ -38,10 +30,10 @@ TEST(DescriptorTest, ValidateDescriptorValuesNamesTheFirstValueAbove7) {
   EXPECT_NO_THROW(ValidateDescriptorValues(values));
   values[17] = 9;
   values[40] = 200;
-  EXPECT_EQ(RefusalOf([&] { ValidateDescriptorValues(values, "frame.cedd"); }),
+  EXPECT_EQ(ErrorMessageOf([&] { ValidateDescriptorValues(values, "frame.cedd"); }),
             "frame.cedd value 9 at index 17 is outside 0..7");
   values[17] = 8;
-  EXPECT_EQ(RefusalOf([&] { ValidateDescriptorValues(values); }),
+  EXPECT_EQ(ErrorMessageOf([&] { ValidateDescriptorValues(values); }),
             "descriptor value 8 at index 17 is outside 0..7");
 }
 
@@ -52,15 +44,15 @@ TEST(DescriptorTest, DescriptorFromBytesNeedsExactly144ValuesInRange) {
   EXPECT_EQ(values[5], 3);
   EXPECT_EQ(values[143], 7);
   bytes.pop_back();
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes); }),
             "descriptor has 143 values, expected 144");
   bytes.push_back(7);
   bytes.push_back(7);
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes, "view.cedd"); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, "view.cedd"); }),
             "view.cedd has 145 values, expected 144");
   bytes.pop_back();
   bytes[0] = 8;
-  EXPECT_EQ(RefusalOf([&] { DescriptorFromBytes(bytes); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes); }),
             "descriptor value 8 at index 0 is outside 0..7");
 }
 

@@ -14,26 +14,17 @@
 #include <gtest/gtest.h>
 #include <grpcpp/test/server_context_test_spouse.h>
 
+#include "tests/support/test_data.h"
 #include "tests/support/storage_test_support.h"
 
 namespace orbit::server {
 namespace {
 
+using orbit::testing::ErrorMessageOf;
 using orbit::testing::ScratchDir;
 
 constexpr char kAdminToken[] = "admin-token-0123456789";          // 22 characters
 constexpr char kRecognizeToken[] = "recognize-token-0123456789";  // 26 characters
-
-// The std::runtime_error message of `call`; "" (and a test failure) when it throws none.
-std::string RefusalOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::runtime_error& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "accepted";
-  return "";
-}
 
 // A token file in a scratch folder, written with the given text.
 class AccessControlFileTest : public ::testing::Test {
@@ -82,43 +73,43 @@ TEST_F(AccessControlFileTest, AcceptsATokenOfExactlySixteenCharacters) {
 
 TEST_F(AccessControlFileTest, RefusesAnUnreadableFile) {
   const std::filesystem::path missing = dir_ / "no-such-file.txt";
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(missing); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(missing); }),
             missing.string() + ": cannot read the token file");
 }
 
 TEST_F(AccessControlFileTest, RefusesALineWithoutExactlyATokenAndARole) {
   Write("# header\n" + std::string(kAdminToken) + "\n");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             At(2) + "expected `<token> <role>`");
   Write(std::string(kAdminToken) + " admin\n\n" + kRecognizeToken + " recognize extra\n");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             At(3) + "expected `<token> <role>`");
 }
 
 TEST_F(AccessControlFileTest, RefusesAnUnknownRole) {
   Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " Admin\n");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             At(2) + "unknown role 'Admin' (recognize or admin)");
 }
 
 TEST_F(AccessControlFileTest, RefusesATokenShorterThanSixteenCharacters) {
   Write("\n\n0123456789abcde admin\n");  // 15 characters
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             At(3) + "token shorter than 16 characters");
 }
 
 TEST_F(AccessControlFileTest, RefusesADuplicateTokenAtItsSecondLine) {
   Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " recognize\n# again\n" +
         kAdminToken + " recognize\n");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }), At(4) + "duplicate token");
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }), At(4) + "duplicate token");
 }
 
 TEST_F(AccessControlFileTest, RefusesAFileWithNoTokenAtAll) {
   Write("");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             file_.string() + ": no tokens in the file");
   Write("# nobody may call yet\n\n   \n");
-  EXPECT_EQ(RefusalOf([&] { AccessControl::FromFile(file_); }),
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
             file_.string() + ": no tokens in the file");
 }
 

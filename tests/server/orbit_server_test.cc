@@ -594,11 +594,7 @@ TEST(Server, RefusesToServeARemoteAddressWithoutTokens) {
 TEST(Server, ServesTlsWithACertificate) {
   const auto dir = std::filesystem::temp_directory_path() / ("orbit_tls_" + std::to_string(getpid()));
   std::filesystem::create_directories(dir);
-  const std::string command = "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=localhost"
-                              " -addext subjectAltName=DNS:localhost,IP:127.0.0.1 -keyout " +
-                              (dir / "key.pem").string() + " -out " + (dir / "cert.pem").string() +
-                              " 2>/dev/null";
-  ASSERT_EQ(std::system(command.c_str()), 0) << "openssl could not make a test certificate";
+  testing::MakeSelfSignedCertificate(dir, "localhost", "DNS:localhost,IP:127.0.0.1");
   ServerProcess server({.tls_cert = dir / "cert.pem", .tls_key = dir / "key.pem"});
 
   std::ifstream cert_file(dir / "cert.pem");

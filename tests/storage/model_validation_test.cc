@@ -9,11 +9,13 @@
 #include <gtest/gtest.h>
 
 #include "storage/sqlite_model_store.h"
+#include "tests/support/test_data.h"
 #include "tests/support/storage_test_support.h"
 
 namespace orbit {
 namespace {
 
+using orbit::testing::ErrorMessageOf;
 using testing::RawDatabase;
 using testing::ScratchDir;
 using testing::SyntheticObject;
@@ -21,17 +23,6 @@ using testing::SyntheticView;
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// The std::invalid_argument message of `call`; "" (and a test failure) when it throws none.
-std::string RefusalOf(const std::function<void()>& call) {
-  try {
-    call();
-  } catch (const std::invalid_argument& e) {
-    return e.what();
-  }
-  ADD_FAILURE() << "accepted";
-  return "";
-}
 
 // A store holding one object, "keep", of 3 views; Unchanged() says whether the file still holds
 // exactly that, untouched.
@@ -65,28 +56,28 @@ class RefusalTest : public ::testing::Test {
 TEST_F(RefusalTest, DescriptorValuesOutsideZeroToSeven) {
   ModelView bad = SyntheticView(1, 0);
   bad.descriptor[17] = 9;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: descriptor value 9 at index 17 is outside 0..7");
   bad.descriptor[17] = 0;
   bad.descriptor[143] = 255;
-  EXPECT_EQ(RefusalOf([&] { store_.AddViews(keep_, {SyntheticView(2, 0), bad}); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.AddViews(keep_, {SyntheticView(2, 0), bad}); }),
             "view 1: descriptor value 255 at index 143 is outside 0..7");
   ExpectUnchanged();
 }
 
 TEST_F(RefusalTest, NonFiniteOrOutOfRangeAngles) {
   ModelView bad = SyntheticView(1, kNaN);
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: azimuth nan is not a finite number");
   bad.azimuth = -kInf;
-  EXPECT_EQ(RefusalOf([&] { store_.AddViews(keep_, {bad}); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.AddViews(keep_, {bad}); }),
             "view 0: azimuth -inf is not a finite number");
   bad.azimuth = 10;
   bad.elevation = 90.5;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: elevation 90.500000 is outside [-90, 90] degrees");
   bad.elevation = kNaN;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: elevation nan is outside [-90, 90] degrees");
   ExpectUnchanged();
 }
@@ -94,20 +85,20 @@ TEST_F(RefusalTest, NonFiniteOrOutOfRangeAngles) {
 TEST_F(RefusalTest, TypicalDistanceOutsideZeroToOne) {
   ModelView bad = SyntheticView(1, 0);
   bad.typical_distance = 1.5;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: typical distance 1.500000 is outside [0, 1] (a Tanimoto distance)");
   bad.typical_distance = kNaN;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: typical distance nan is outside [0, 1] (a Tanimoto distance)");
   bad.typical_distance = -0.01;
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(WithView(bad)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(WithView(bad)); }),
             "view 2: typical distance -0.010000 is outside [0, 1] (a Tanimoto distance)");
   ExpectUnchanged();
 }
 
 TEST_F(RefusalTest, BadNamesOnEnrollAndRename) {
   auto enroll_named = [&](const std::string& name) {
-    return RefusalOf([&] { store_.Enroll(SyntheticObject(name, 1)); });
+    return ErrorMessageOf([&] { store_.Enroll(SyntheticObject(name, 1)); });
   };
   EXPECT_EQ(enroll_named(""), "object name is empty");
   EXPECT_EQ(enroll_named(std::string(65, 'a')),
@@ -122,7 +113,7 @@ TEST_F(RefusalTest, BadNamesOnEnrollAndRename) {
             "object name \"red mug\" has a character not allowed at position 3 (allowed: ASCII "
             "letters, digits, '_', '-', '.')");
   EXPECT_EQ(enroll_named("-mug"), "object name \"-mug\" must start with a letter or a digit");
-  EXPECT_EQ(RefusalOf([&] { store_.Rename(keep_, "x;DROP TABLE objects"); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Rename(keep_, "x;DROP TABLE objects"); }),
             "object name \"x;DROP TABLE objects\" has a character not allowed at position 1 "
             "(allowed: ASCII letters, digits, '_', '-', '.')");
   store_.Enroll(SyntheticObject(std::string(64, 'z'), 1));  // the longest name is fine
@@ -131,16 +122,16 @@ TEST_F(RefusalTest, BadNamesOnEnrollAndRename) {
 }
 
 TEST_F(RefusalTest, TooFewOrTooManyViewsAndMismatchedThumbnails) {
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(SyntheticObject("empty", 0)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(SyntheticObject("empty", 0)); }),
             "no views: an object needs at least one view");
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(SyntheticObject("huge", 1025)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(SyntheticObject("huge", 1025)); }),
             "1025 views, more than the limit of 1024 per object");
   Enrollment thumbs = SyntheticObject("thumbs", 3);
   thumbs.thumbnails = {"a", "b"};
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(thumbs); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(thumbs); }),
             "2 thumbnails for 3 views: give none or one per view");
   thumbs.thumbnails = {"a", std::string(64 * 1024 + 1, 'x'), "c"};
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(thumbs); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(thumbs); }),
             "view 1: thumbnail of 65537 bytes is larger than the limit of 65536");
   ExpectUnchanged();
 }
@@ -148,12 +139,12 @@ TEST_F(RefusalTest, TooFewOrTooManyViewsAndMismatchedThumbnails) {
 TEST_F(RefusalTest, MetadataThatIsNotAJsonObject) {
   Enrollment enrollment = SyntheticObject("meta", 1);
   enrollment.metadata = "{\"colour\": ";
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(enrollment); }), "metadata is not valid JSON");
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(enrollment); }), "metadata is not valid JSON");
   enrollment.metadata = "[1, 2]";
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(enrollment); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(enrollment); }),
             "metadata must be a JSON object ({...})");
   enrollment.metadata = "{\"x\": \"" + std::string(16 * 1024, 'y') + "\"}";
-  EXPECT_EQ(RefusalOf([&] { store_.Enroll(enrollment); }),
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(enrollment); }),
             "metadata of 16393 bytes is larger than the limit of 16384");
   ExpectUnchanged();
 }

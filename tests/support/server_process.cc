@@ -1,11 +1,11 @@
 #include "tests/support/server_process.h"
 
+#include <fcntl.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cstdlib>
-#include <fcntl.h>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -126,6 +126,34 @@ RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args) {
   std::error_code ignored;
   std::filesystem::remove_all(dir, ignored);
   return result;
+}
+
+void MakeSelfSignedCertificate(const std::filesystem::path& dir, const std::string& common_name,
+                               const std::string& subject_alt_names) {
+  const std::string command = "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=" +
+                              common_name + " -addext subjectAltName=" + subject_alt_names +
+                              " -keyout " + (dir / "key.pem").string() + " -out " +
+                              (dir / "cert.pem").string() + " 2>/dev/null";
+  if (std::system(command.c_str()) != 0) {
+    throw std::runtime_error("openssl could not make a test certificate in " + dir.string());
+  }
+}
+
+ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir,
+                                          const std::string& host,
+                                          const std::string& admin_token,
+                                          const std::string& reader_token) {
+  std::filesystem::create_directories(dir);
+  std::ofstream(dir / "tokens") << "# operators\n"
+                                << admin_token << " admin\n"
+                                << reader_token << " recognize\n";
+  std::ofstream(dir / "reader.token") << "# the device's token\n" << reader_token << "\n";
+  MakeSelfSignedCertificate(dir, host, "DNS:" + host);
+  ServerProcessOptions options;
+  options.tokens_file = dir / "tokens";
+  options.tls_cert = dir / "cert.pem";
+  options.tls_key = dir / "key.pem";
+  return options;
 }
 
 }  // namespace orbit::testing

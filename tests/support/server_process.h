@@ -27,6 +27,21 @@ struct ServerProcessOptions {
   std::vector<std::string> extra_args = {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };
 
+// Writes a self-signed certificate for `subject_alt_names` (e.g. "DNS:orbit.test" or
+// "DNS:localhost,IP:127.0.0.1") to dir/cert.pem and its key to dir/key.pem, with openssl.
+// Throws std::runtime_error when openssl fails.
+void MakeSelfSignedCertificate(const std::filesystem::path& dir, const std::string& common_name,
+                               const std::string& subject_alt_names);
+
+// Options of a server with TLS and tokens, its files written to `dir`: a certificate for `host`
+// (dir/cert.pem, as MakeSelfSignedCertificate), a token file granting `admin_token` the admin
+// role and `reader_token` the recognize role, and dir/reader.token holding the reader's token
+// behind a comment line, as an operator hands it to a device.
+ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir,
+                                          const std::string& host,
+                                          const std::string& admin_token,
+                                          const std::string& reader_token);
+
 class ServerProcess {
  public:
   // Starts the server and waits (up to 60 s) until it says it is listening.

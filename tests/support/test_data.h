@@ -3,8 +3,11 @@
 
 #include <array>
 #include <filesystem>
+#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include <gtest/gtest.h>
 
 #include "core/descriptor.h"
 
@@ -37,6 +40,18 @@ CommandResult RunOrbit(const std::string& arguments);
 
 // The COIL-100 folder of the shared data.
 std::string CoilDir();
+
+// The message of the `Error` that `call` throws; "" (and a test failure) when it throws none.
+template <typename Error = std::invalid_argument, typename Call>
+std::string ErrorMessageOf(Call call) {
+  try {
+    call();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no exception thrown";
+  return "";
+}
 
 // The lines of a command's output, without their "\n".
 std::vector<std::string> OutputLines(const std::string& text);
