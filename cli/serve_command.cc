@@ -7,8 +7,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "cli/commands.h"
 #include "api/engine_names.h"
+#include "cli/commands.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {
@@ -118,7 +118,7 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-hmm-cells", c.limits.max_hmm_cells,
                   "largest window x HMM states a session may ask for (about 10 bytes per cell "
                   "and enrolled object)")
-      ->check(CLI::Range(1, 64 * 360))
+      ->check(CLI::Range(1, kMaxWindow * kMaxHmmStates))
       ->capture_default_str();
   cmd->add_option("--max-message-bytes", c.limits.max_message_bytes, "largest request message")
       ->check(CLI::Range(1024, 64 << 20))

@@ -31,7 +31,8 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.list_length >= 1, "list_length (N_L) must be at least 1");
   Require(std::isfinite(o.orientation_weight) && o.orientation_weight >= 0,
           "orientation_weight (w) must be finite and >= 0");
-  Require(o.hmm_states >= 1 && o.hmm_states <= 360, "hmm_states must be in 1..360");
+  Require(o.hmm_states >= 1 && o.hmm_states <= kMaxHmmStates,
+          "hmm_states must be in 1.." + std::to_string(kMaxHmmStates));
   Require(std::isfinite(o.threshold) && o.threshold > 0, "threshold (Th) must be finite and > 0");
   Require(o.top_k >= 1, "top_k must be at least 1");
   Require(o.averaged_views >= 2 && o.averaged_views <= 360, "averaged_views must be in 2..360");

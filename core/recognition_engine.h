@@ -50,12 +50,14 @@
 namespace orbit {
 
 inline constexpr int kMaxWindow = 64;
+// Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
+inline constexpr int kMaxHmmStates = 360;
 
 struct EngineOptions {
   int window = 8;                   // W: frames kept (1..kMaxWindow)
   int list_length = 4;              // N_L: views per VCI retrieval list (>= 1)
   double orientation_weight = 0.5;  // w: VCI's orientation term, per radian (>= 0; "vci" only)
-  int hmm_states = 8;               // HMM states = equal azimuth sectors (1..360)
+  int hmm_states = 8;               // HMM states = equal azimuth sectors (1..kMaxHmmStates)
   double threshold = 2.0;           // Th: accept when T_M / mean Ttyp <= Th (> 0)
   int top_k = 5;                    // objects in each update's ranking (>= 1)
   int averaged_views = 8;           // N_avg: active vision's averaged views per object (2..360)

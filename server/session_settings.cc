@@ -43,7 +43,7 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
   EngineOptions& o = settings.options;
   if (requested.top_k() != 0) {
     if (requested.top_k() < 1 || requested.top_k() > kMaxTopK) {
-      return InvalidArgument("options.top_k must be 1..100");
+      return InvalidArgument("options.top_k must be 1.." + std::to_string(kMaxTopK));
     }
     o.top_k = requested.top_k();
   }
@@ -63,13 +63,13 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
   }
   if (requested.list_length() != 0) {
     if (requested.list_length() < 1 || requested.list_length() > kMaxListLength) {
-      return InvalidArgument("options.list_length must be 1..64");
+      return InvalidArgument("options.list_length must be 1.." + std::to_string(kMaxListLength));
     }
     o.list_length = requested.list_length();
   }
   if (requested.hmm_states() != 0) {
-    if (requested.hmm_states() < 1 || requested.hmm_states() > 360) {
-      return InvalidArgument("options.hmm_states must be 1..360");
+    if (requested.hmm_states() < 1 || requested.hmm_states() > kMaxHmmStates) {
+      return InvalidArgument("options.hmm_states must be 1.." + std::to_string(kMaxHmmStates));
     }
     o.hmm_states = requested.hmm_states();
   }
