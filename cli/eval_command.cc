@@ -2,14 +2,10 @@
 // a Markdown table of hit rates on stdout, optionally a CSV file and a PNG plot.
 #include <unistd.h>
 
-#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
-#include <map>
 #include <memory>
-#include <optional>
-#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -60,62 +56,6 @@ struct EvalOptions {
   bool no_progress = false;
 };
 
-// Manifest objects are numbered 1, 2, ... in order of first appearance; keeps those selected.
-std::vector<DatasetImage> SelectByNumber(const std::vector<DatasetImage>& images,
-                                         const std::vector<int>& numbers, bool keep) {
-  std::map<std::string, int> number_of;
-  for (const DatasetImage& image : images) {
-    number_of.emplace(image.object, static_cast<int>(number_of.size()) + 1);
-  }
-  const int object_count = static_cast<int>(number_of.size());
-  if (keep && !numbers.empty() && numbers.back() > object_count) {
-    throw std::invalid_argument("object " + std::to_string(numbers.back()) +
-                                " selected, but the manifest has " + std::to_string(object_count) +
-                                " objects");
-  }
-  std::vector<DatasetImage> selected;
-  for (const DatasetImage& image : images) {
-    const bool listed = std::binary_search(numbers.begin(), numbers.end(), number_of[image.object]);
-    if (listed == keep) selected.push_back(image);
-  }
-  return selected;
-}
-
-// Known and unknown images as the options select them.
-std::pair<std::vector<DatasetImage>, std::vector<DatasetImage>> LoadDataset(const EvalOptions& o) {
-  const std::optional<std::vector<int>> objects =
-      o.objects.empty() ? std::nullopt : std::optional(ParseObjectRange(o.objects));
-  const std::optional<std::vector<int>> unknown =
-      o.unknown_objects.empty() ? std::nullopt : std::optional(ParseObjectRange(o.unknown_objects));
-  if (objects && unknown) {
-    std::vector<int> both;
-    std::set_intersection(objects->begin(), objects->end(), unknown->begin(), unknown->end(),
-                          std::back_inserter(both));
-    if (!both.empty()) {
-      throw std::invalid_argument("object " + std::to_string(both.front()) +
-                                  " is in both --objects and --unknown-objects");
-    }
-  }
-  std::vector<DatasetImage> known, untrained;
-  if (o.layout == "coil100") {
-    if (o.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
-    known = ListCoil100(o.data, objects);
-    if (unknown) {
-      untrained = ListCoil100(o.data, unknown);
-      std::set<std::string> names;
-      for (const DatasetImage& image : untrained) names.insert(image.object);
-      std::erase_if(known, [&](const DatasetImage& image) { return names.contains(image.object); });
-    }
-  } else {
-    if (o.manifest.empty()) throw std::invalid_argument("--layout manifest needs --manifest FILE");
-    const std::vector<DatasetImage> all = ReadManifest(o.manifest);
-    if (unknown) untrained = SelectByNumber(all, *unknown, true);
-    known = objects ? SelectByNumber(all, *objects, true)
-                    : (unknown ? SelectByNumber(all, *unknown, false) : all);
-  }
-  return {std::move(known), std::move(untrained)};
-}
-
 EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   EvaluationOptions options;
   options.variants.clear();
@@ -140,7 +80,8 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
 
 int RunEval(const EvalOptions& o) {
   try {
-    const auto [known, unknown] = LoadDataset(o);
+    const auto [known, unknown] =
+        SelectDataset({o.layout, o.data, o.manifest, o.objects, o.unknown_objects});
     EvaluationOptions options = ToEvaluationOptions(o);
     std::unique_ptr<ProgressBar> progress;
     if (!o.no_progress) {

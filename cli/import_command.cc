@@ -3,7 +3,6 @@
 // set).
 #include <unistd.h>
 
-#include <algorithm>
 #include <functional>
 #include <iostream>
 #include <memory>
@@ -41,50 +40,16 @@ struct ImportOptions {
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
-// The images of one object, in dataset order.
-struct ObjectImages {
-  std::string name;
-  std::vector<DatasetImage> images;
-};
-
-std::vector<DatasetImage> ListImages(const ImportOptions& options) {
-  if (options.layout == "coil100") {
-    if (options.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
-    std::optional<std::vector<int>> objects;
-    if (!options.objects.empty()) objects = ParseObjectRange(options.objects);
-    return ListCoil100(options.data, objects);
-  }
-  if (options.manifest.empty()) throw std::invalid_argument("--layout manifest needs --manifest");
-  if (!options.objects.empty()) {
-    throw std::invalid_argument("--objects applies to --layout coil100 only");
-  }
-  return ReadManifest(options.manifest);
-}
-
-// Groups the images by object name, objects in order of first appearance. Every name is checked
-// before anything is computed or written.
-std::vector<ObjectImages> GroupByObject(const std::vector<DatasetImage>& images) {
-  std::vector<ObjectImages> objects;
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    auto same_name = [&](const ObjectImages& o) { return o.name == images[i].object; };
-    auto found = std::find_if(objects.begin(), objects.end(), same_name);
-    if (found == objects.end()) {
-      ValidateObjectName(images[i].object);
-      found = objects.insert(objects.end(), ObjectImages{images[i].object, {}});
-    }
-    found->images.push_back(images[i]);
-  }
-  return objects;
-}
-
-// The model views of one object, each image described as every enrollment path describes it
-// (core/view_description.h: CEDD and typical distance, `seed` the base of the seed rule), on
-// `threads` threads. The numbers depend on the images alone, whatever the thread count.
-std::vector<ModelView> ComputeViews(const ObjectImages& object, DescriptorVariant variant,
+// The model views of one object (its images are positions in `images`), each image described as
+// every enrollment path describes it (core/view_description.h: CEDD and typical distance, `seed`
+// the base of the seed rule), on `threads` threads. The numbers depend on the images alone,
+// whatever the thread count.
+std::vector<ModelView> ComputeViews(const std::vector<DatasetImage>& images,
+                                    const DatasetObject& object, DescriptorVariant variant,
                                     std::uint64_t seed, unsigned threads) {
   std::vector<ModelView> views(object.images.size());
   ParallelFor(views.size(), static_cast<int>(threads), [&](std::size_t f) {
-    const DatasetImage& image = object.images[f];
+    const DatasetImage& image = images[object.images[f]];
     const ViewDescription described = DescribeView(ReadImageFile(image.path), variant, seed);
     views[f] = {described.descriptor, image.azimuth, image.elevation, described.typical_distance};
   });
@@ -147,7 +112,11 @@ ImportTarget ServerTarget(const ImportOptions& options) {
 
 int RunImport(const ImportOptions& options) {
   const bool remote = UsesServer(options.db, options.network);
-  const std::vector<ObjectImages> objects = GroupByObject(ListImages(options));
+  const std::vector<DatasetImage> images =
+      SelectDataset({options.layout, options.data, options.manifest, options.objects, ""}).known;
+  const std::vector<DatasetObject> objects = GroupByObject(images);
+  // Every name is checked before anything is computed or written.
+  for (const DatasetObject& object : objects) ValidateObjectName(object.name);
   const ImportTarget target = remote ? ServerTarget(options) : StoreTarget(options);
   const DescriptorVariant variant = target.variant;
 
@@ -156,7 +125,7 @@ int RunImport(const ImportOptions& options) {
   std::size_t enrolled = 0;
   std::size_t skipped = 0;
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    const ObjectImages& object = objects[i];
+    const DatasetObject& object = objects[i];
     progress.Update("import", i, objects.size());
     if (std::optional<ObjectId> existing = target.find(object.name)) {
       // An import that was interrupted carries on where it stopped.
@@ -168,7 +137,7 @@ int RunImport(const ImportOptions& options) {
     Enrollment enrollment;
     enrollment.name = object.name;
     enrollment.variant = variant;
-    enrollment.views = ComputeViews(object, variant, options.seed, options.threads);
+    enrollment.views = ComputeViews(images, object, variant, options.seed, options.threads);
     const ObjectId id = target.enroll(enrollment);
     // Printed only once the object is durable: a line here is a promise.
     std::cout << "enrolled " << object.name << " (id " << id << ", " << enrollment.views.size()
@@ -199,7 +168,8 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"coil100", "manifest"}));
   command->add_option("--data", options->data, "folder of COIL-100 images (--layout coil100)");
   command->add_option("--objects", options->objects,
-                      "COIL-100 objects to import, e.g. 1-20 or 1-5,9 (default: all)");
+                      "objects to import, e.g. 1-20 or 1-5,9 (coil100: object numbers;\n"
+                      "manifest: order of first appearance); default: all");
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
   command->add_option("--variant", options->variant,

@@ -4,6 +4,7 @@
 #include <charconv>
 #include <cmath>
 #include <fstream>
+#include <iterator>
 #include <limits>
 #include <map>
 #include <regex>
@@ -92,6 +93,35 @@ std::optional<double> ParseFiniteNumber(const std::string& text) {
     return std::nullopt;
   }
   return value;
+}
+
+// The images of the objects numbered `numbers` (sorted ascending; objects numbered 1, 2, ... in
+// order of first appearance), or with keep == false those of every other object; images keep
+// their order. Throws std::invalid_argument when keep is true and a number exceeds the objects.
+std::vector<DatasetImage> SelectByNumber(const std::vector<DatasetImage>& images,
+                                         const std::vector<int>& numbers, bool keep) {
+  const std::vector<DatasetObject> objects = GroupByObject(images);
+  const int object_count = static_cast<int>(objects.size());
+  if (keep && !numbers.empty() && numbers.back() > object_count) {
+    throw std::invalid_argument("object " + std::to_string(numbers.back()) +
+                                " selected, but the manifest has " + std::to_string(object_count) +
+                                " objects");
+  }
+  std::vector<bool> listed(images.size(), false);
+  for (int number : numbers) {
+    if (number > object_count) continue;
+    for (std::size_t i : objects[number - 1].images) listed[i] = true;
+  }
+  std::vector<DatasetImage> selected;
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    if (listed[i] == keep) selected.push_back(images[i]);
+  }
+  return selected;
+}
+
+std::optional<std::vector<int>> ParseOptionalRange(const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  return ParseObjectRange(text);
 }
 
 }  // namespace
@@ -238,6 +268,59 @@ std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
   if (column_count == 0) throw fail(1, "no header row (expected path,object,azimuth[,elevation])");
   if (images.empty()) throw std::runtime_error(csv.string() + ": no images");
   return images;
+}
+
+std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images) {
+  std::vector<DatasetObject> objects;
+  std::map<std::string, std::size_t> position;  // name -> its place in `objects`
+  for (std::size_t i = 0; i < images.size(); ++i) {
+    const auto [it, added] = position.emplace(images[i].object, objects.size());
+    if (added) objects.push_back({images[i].object, {}});
+    objects[it->second].images.push_back(i);
+  }
+  return objects;
+}
+
+SelectedImages SelectDataset(const DatasetSelection& selection) {
+  const std::optional<std::vector<int>> objects = ParseOptionalRange(selection.objects);
+  const std::optional<std::vector<int>> unknown = ParseOptionalRange(selection.unknown_objects);
+  if (objects && unknown) {
+    std::vector<int> both;
+    std::set_intersection(objects->begin(), objects->end(), unknown->begin(), unknown->end(),
+                          std::back_inserter(both));
+    if (!both.empty()) {
+      throw std::invalid_argument("object " + std::to_string(both.front()) +
+                                  " is in both --objects and --unknown-objects");
+    }
+  }
+  SelectedImages selected;
+  if (selection.layout == "coil100") {
+    if (selection.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
+    selected.known = ListCoil100(selection.data, objects);
+    if (unknown) {
+      selected.unknown = ListCoil100(selection.data, unknown);
+      std::set<std::string> names;
+      for (const DatasetImage& image : selected.unknown) names.insert(image.object);
+      std::erase_if(selected.known,
+                    [&](const DatasetImage& image) { return names.contains(image.object); });
+    }
+  } else if (selection.layout == "manifest") {
+    if (selection.manifest.empty()) {
+      throw std::invalid_argument("--layout manifest needs --manifest FILE");
+    }
+    std::vector<DatasetImage> all = ReadManifest(selection.manifest);
+    if (unknown) selected.unknown = SelectByNumber(all, *unknown, true);
+    if (objects) {
+      selected.known = SelectByNumber(all, *objects, true);
+    } else if (unknown) {
+      selected.known = SelectByNumber(all, *unknown, false);
+    } else {
+      selected.known = std::move(all);
+    }
+  } else {
+    throw std::invalid_argument("unknown layout \"" + selection.layout + "\"");
+  }
+  return selected;
 }
 
 }  // namespace orbit

@@ -4,10 +4,12 @@
 // Two layouts:
 //   coil100   a folder of files objN__A.png (COIL-100: object N, azimuth A degrees);
 //   manifest  a CSV file with columns path,object,azimuth and an optional elevation column.
+// SelectDataset picks the known and unknown objects of either, as both commands select them.
 //
 // All functions are thread-safe (they share no state); errors are thrown as described.
 #pragma once
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -56,5 +58,45 @@ std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,
 // fields, a path or object is empty, or an azimuth or elevation is not a finite number; and
 // "FILE: no images" when there are no data rows. Image files are not opened here.
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
+
+// One object of a dataset: the images sharing a name.
+struct DatasetObject {
+  std::string name;
+  std::vector<std::size_t> images;  // positions in the image list, ascending
+
+  friend bool operator==(const DatasetObject&, const DatasetObject&) = default;
+};
+
+// Groups `images` by object name: objects in order of first appearance, each with the positions
+// of its images. Empty for no images.
+std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images);
+
+// Which images of a dataset a command uses, as `orbit eval` and `orbit import` take them.
+// Objects are numbered from 1: in a coil100 folder by the N of objN; in a manifest by order of
+// first appearance.
+struct DatasetSelection {
+  std::string layout = "coil100";  // "coil100": the folder `data`; "manifest": the file `manifest`
+  std::filesystem::path data;      // the COIL-100 folder (coil100)
+  std::filesystem::path manifest;  // the manifest CSV file (manifest)
+  std::string objects;             // the known objects (ParseObjectRange); "": all not unknown
+  std::string unknown_objects;     // objects left out of the model set (ParseObjectRange); "": none
+};
+
+// The images a selection names: those of the known objects and those of the unknown ones, each
+// in the dataset's order (ListCoil100's, or the manifest's).
+struct SelectedImages {
+  std::vector<DatasetImage> known;
+  std::vector<DatasetImage> unknown;
+};
+
+// Lists the dataset and keeps the selected objects.
+//
+// Throws std::invalid_argument as ParseObjectRange does, and
+//   "object N is in both --objects and --unknown-objects",
+//   "--layout coil100 needs --data DIR", "--layout manifest needs --manifest FILE",
+//   "object N selected, but the manifest has M objects" (N the largest number selected),
+//   "unknown layout \"L\"";
+// std::runtime_error as ListCoil100 (a selected object without images) and ReadManifest do.
+SelectedImages SelectDataset(const DatasetSelection& selection);
 
 }  // namespace orbit

@@ -3,15 +3,13 @@
 #include <malloc.h>
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <chrono>
-#include <exception>
-#include <map>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
-#include <thread>
+#include <string>
+#include <vector>
 
 #include "client/image_file.h"
 #include "core/cedd.h"
@@ -22,30 +20,10 @@
 namespace orbit {
 namespace {
 
-// Every image has a query descriptor under each distortion (DF, MB, GN).
-constexpr std::size_t kDistortionCount = kQueryDistortions.size();
+using Clock = std::chrono::steady_clock;
 
-std::size_t DistortionSlot(QueryDistortion d) {
-  return static_cast<std::size_t>(std::find(kQueryDistortions.begin(), kQueryDistortions.end(), d) -
-                                  kQueryDistortions.begin());
-}
-
-// Images grouped by object name, objects in order of first appearance.
-struct DatasetObject {
-  std::string name;
-  std::vector<std::size_t> images;  // positions in the combined image list
-};
-
-std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images,
-                                         std::size_t first_image) {
-  std::vector<DatasetObject> objects;
-  std::map<std::string, std::size_t> position;
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    const auto [it, added] = position.emplace(images[i].object, objects.size());
-    if (added) objects.push_back({images[i].object, {}});
-    objects[it->second].images.push_back(first_image + i);
-  }
-  return objects;
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
 // Bytes the allocator has handed out and not taken back (glibc's mallinfo2: arena and mmapped
@@ -63,7 +41,9 @@ void RunStage(std::size_t count, int threads, std::string_view stage,
   });
 }
 
-void Validate(const std::vector<DatasetImage>& known, const EvaluationOptions& options) {
+// Throws std::invalid_argument for options out of range or no known image (RunEvaluation's
+// contract).
+void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOptions& options) {
   const auto require = [](bool ok, const std::string& message) {
     if (!ok) throw std::invalid_argument(message);
   };
@@ -87,30 +67,40 @@ void Validate(const std::vector<DatasetImage>& known, const EvaluationOptions& o
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
 }
 
-// Descriptors of every image: [variant][distortion slot][image].
-using DescriptorTable = std::vector<std::array<std::vector<DescriptorValues>, kDistortionCount>>;
-// Typical distances of every image as a model view: [variant][image].
-using TypicalDistanceTable = std::vector<std::vector<double>>;
-
-}  // namespace
-
-std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
-  return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
+// The longest query, n. REQUIRES: options.query_lengths is not empty (ValidateOptions).
+int LargestN(const EvaluationOptions& options) {
+  return *std::max_element(options.query_lengths.begin(), options.query_lengths.end());
 }
 
-EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
-                               const std::vector<DatasetImage>& unknown,
-                               const EvaluationOptions& options) {
-  Validate(known, options);
-  using Clock = std::chrono::steady_clock;
-  const auto seconds_since = [](Clock::time_point start) {
-    return std::chrono::duration<double>(Clock::now() - start).count();
-  };
+// The evaluated images and their objects. Images: the known ones, then the unknown ones.
+// Objects are numbered the same way (known ones first), each in order of first appearance; the
+// known object numbered o has the model id o + 1.
+struct EvaluationDataset {
+  std::vector<const DatasetImage*> images;
+  std::vector<DatasetObject> known;    // image positions into `images`
+  std::vector<DatasetObject> unknown;  // image positions into `images`
 
-  const std::vector<DatasetObject> known_objects = GroupByObject(known, 0);
-  const std::vector<DatasetObject> unknown_objects = GroupByObject(unknown, known.size());
-  const int max_n = *std::max_element(options.query_lengths.begin(), options.query_lengths.end());
-  for (const auto& group : {&known_objects, &unknown_objects}) {
+  std::size_t object_count() const { return known.size() + unknown.size(); }
+  bool is_known(std::size_t object) const { return object < known.size(); }
+  const DatasetObject& object(std::size_t object) const {
+    return is_known(object) ? known[object] : unknown[object - known.size()];
+  }
+};
+
+// Validates the options and the dataset and groups the images by object; throws
+// std::invalid_argument as RunEvaluation documents.
+EvaluationDataset ValidateAndGroup(const std::vector<DatasetImage>& known,
+                                   const std::vector<DatasetImage>& unknown,
+                                   const EvaluationOptions& options) {
+  ValidateOptions(known, options);
+  EvaluationDataset dataset;
+  dataset.known = GroupByObject(known);
+  dataset.unknown = GroupByObject(unknown);
+  for (DatasetObject& object : dataset.unknown) {
+    for (std::size_t& image : object.images) image += known.size();
+  }
+  const int max_n = LargestN(options);
+  for (const auto& group : {&dataset.known, &dataset.unknown}) {
     for (const DatasetObject& object : *group) {
       if (static_cast<int>(object.images.size()) < max_n) {
         throw std::invalid_argument("object \"" + object.name + "\" has " +
@@ -119,169 +109,197 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
       }
     }
   }
-  for (const DatasetObject& object : unknown_objects) {
-    if (std::any_of(known_objects.begin(), known_objects.end(),
+  for (const DatasetObject& object : dataset.unknown) {
+    if (std::any_of(dataset.known.begin(), dataset.known.end(),
                     [&](const DatasetObject& k) { return k.name == object.name; })) {
       throw std::invalid_argument("object \"" + object.name + "\" is both known and unknown");
     }
   }
-  std::vector<const DatasetImage*> images;
-  for (const DatasetImage& image : known) images.push_back(&image);
-  for (const DatasetImage& image : unknown) images.push_back(&image);
+  for (const DatasetImage& image : known) dataset.images.push_back(&image);
+  for (const DatasetImage& image : unknown) dataset.images.push_back(&image);
+  return dataset;
+}
 
-  EvaluationReport report;
-  report.known_objects = known_objects.size();
-  report.unknown_objects = unknown_objects.size();
-  report.images = images.size();
-  report.seed = options.seed;
-  report.search = options.index.search;
-  report.threads = options.threads > 0 ? options.threads : AvailableCpus();
-  const std::size_t variant_count = options.variants.size();
+// Every image described in every variant: [image][variant].
+using DescribedImages = std::vector<std::vector<DescribedImage>>;
 
-  // 1. Descriptors of every image under every distortion, for every variant.
-  const Clock::time_point descriptor_start = Clock::now();
-  DescriptorTable descriptors(variant_count);
-  for (auto& per_variant : descriptors) {
-    for (auto& per_distortion : per_variant) per_distortion.resize(images.size());
-  }
-  TypicalDistanceTable typical(variant_count, std::vector<double>(images.size()));
-  RunStage(images.size(), report.threads, "descriptors", options, [&](std::size_t i) {
-    const cv::Mat view = ReadImageFile(images[i]->path);
-    // The GN query draws its own noise; the model view is described as every enrollment path
-    // describes it (its MB copy is the MB query: motion blur draws nothing).
-    const cv::Mat noisy = ApplyQueryDistortion(view, QueryDistortion::kGaussianNoise,
-                                               ImageNoiseSeed(options.seed, i));
-    for (std::size_t v = 0; v < variant_count; ++v) {
-      const ViewDescription described = DescribeView(view, options.variants[v], options.seed);
-      descriptors[v][DistortionSlot(QueryDistortion::kNone)][i] = described.descriptor;
-      descriptors[v][DistortionSlot(QueryDistortion::kMotionBlur)][i] = described.distorted[0];
-      descriptors[v][DistortionSlot(QueryDistortion::kGaussianNoise)][i] =
-          ExtractCedd(noisy, options.variants[v]).values;
-      typical[v][i] = described.typical_distance;
-    }
+// Step 1: DescribeImage of every image, on `threads` threads.
+DescribedImages DescribeImages(const EvaluationDataset& dataset, const EvaluationOptions& options,
+                               int threads) {
+  DescribedImages described(dataset.images.size());
+  RunStage(described.size(), threads, "descriptors", options, [&](std::size_t i) {
+    described[i] = DescribeImage(*dataset.images[i], i, options.variants, options.seed);
   });
-  report.descriptor_seconds = seconds_since(descriptor_start);
+  return described;
+}
 
-  // 2. Models of the known objects; ids are positions + 1.
-  std::vector<std::vector<ObjectModel>> models(variant_count);
-  for (std::size_t v = 0; v < variant_count; ++v) {
-    const auto& table = descriptors[v];
-    for (std::size_t o = 0; o < known_objects.size(); ++o) {
+// The model set of one variant.
+struct VariantModels {
+  std::vector<ObjectModel> models;  // one per known object, ids = positions + 1
+  // The index of all of them, which unknown objects are queried against (immutable, shared by
+  // all threads).
+  std::shared_ptr<const ViewIndexSnapshot> full_index;
+  ModelMemory memory;
+};
+
+// Step 2: for each variant (in the options' order), the known objects' models made of their
+// images' model views, then the full index and its memory. Single-threaded, so the heap growth
+// across an index's construction is that index's memory.
+std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
+                                       const DescribedImages& described,
+                                       const EvaluationOptions& options) {
+  std::vector<VariantModels> variants(options.variants.size());
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    for (std::size_t o = 0; o < dataset.known.size(); ++o) {
       ObjectModel model;
       model.id = static_cast<ObjectId>(o + 1);
-      model.name = known_objects[o].name;
+      model.name = dataset.known[o].name;
       model.variant = options.variants[v];
-      for (std::size_t i : known_objects[o].images) {
-        model.views.push_back({table[DistortionSlot(QueryDistortion::kNone)][i],
-                               images[i]->azimuth, images[i]->elevation, typical[v][i]});
-      }
-      models[v].push_back(std::move(model));
+      for (std::size_t i : dataset.known[o].images) model.views.push_back(described[i][v].view);
+      variants[v].models.push_back(std::move(model));
     }
   }
-
-  // The full index of each variant: the model memory, and the index unknown objects are
-  // queried against (snapshots are immutable and shared by all threads).
-  std::vector<std::shared_ptr<const ViewIndexSnapshot>> full_index(variant_count);
-  for (std::size_t v = 0; v < variant_count; ++v) {
-    ModelMemory memory;
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    ModelMemory& memory = variants[v].memory;
     memory.variant = options.variants[v];
-    memory.objects = models[v].size();
-    for (const ObjectModel& model : models[v]) memory.views += model.views.size();
+    memory.objects = variants[v].models.size();
+    for (const ObjectModel& model : variants[v].models) memory.views += model.views.size();
     memory.descriptor_bytes = memory.views * kDescriptorSize;
     const std::size_t before = HeapBytesInUse();
-    const ViewIndex index(models[v], options.index);
-    full_index[v] = index.Snapshot();
+    const ViewIndex index(variants[v].models, options.index);
+    variants[v].full_index = index.Snapshot();
     const std::size_t after = HeapBytesInUse();
     memory.index_bytes = after > before ? after - before : 0;
-    report.memory.push_back(memory);
+  }
+  return variants;
+}
+
+// The tasks of step 3, one per (variant, object, n, trial) in that nesting order, and where
+// their outcomes lie in the flat outcome table: [task][distortion][method].
+struct TrialGrid {
+  struct Task {
+    std::size_t variant = 0;
+    std::size_t object = 0;  // EvaluationDataset's numbering
+    std::size_t n_slot = 0;  // position in the options' query lengths
+    std::size_t trial = 0;
+  };
+
+  std::size_t variants = 0, objects = 0, ns = 0, trials = 0, distortions = 0, methods = 0;
+
+  std::size_t task_count() const { return variants * objects * ns * trials; }
+  std::size_t outcome_count() const { return task_count() * distortions * methods; }
+  std::size_t TaskNumber(const Task& t) const {
+    return ((t.variant * objects + t.object) * ns + t.n_slot) * trials + t.trial;
+  }
+  Task TaskAt(std::size_t task) const {
+    return {task / trials / ns / objects, (task / trials / ns) % objects, (task / trials) % ns,
+            task % trials};
+  }
+  std::size_t OutcomeSlot(std::size_t task, std::size_t d, std::size_t m) const {
+    return (task * distortions + d) * methods + m;
+  }
+};
+
+// One method's answer to one query.
+struct Outcome {
+  bool hit = false;       // known object: top-1 right
+  bool accepted = false;  // known object: top-1 right and accepted
+  bool rejected = false;  // unknown object: answered kUnknown
+  double seconds = 0;     // wall-clock time in ObserveSequence
+};
+
+// One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,
+// made anew when none is idle, and gives it back. Thread-safe.
+class EnginePool {
+ public:
+  using Engines = std::vector<std::unique_ptr<RecognitionEngine>>;
+
+  EnginePool(const std::vector<std::string>& methods, const EngineOptions& options)
+      : methods_(methods), options_(options) {}
+
+  Engines Take() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!idle_.empty()) {
+        Engines engines = std::move(idle_.back());
+        idle_.pop_back();
+        return engines;
+      }
+    }
+    Engines engines;
+    for (const std::string& method : methods_) engines.push_back(CreateEngine(method, options_));
+    return engines;
   }
 
-  // 3. Trials: tasks (variant, object, n, trial), known objects first, then unknown ones.
-  const std::size_t n_count = options.query_lengths.size();
-  const std::size_t trials = static_cast<std::size_t>(options.trials);
-  const std::size_t object_count = known_objects.size() + unknown_objects.size();
-  const std::size_t task_count = variant_count * object_count * n_count * trials;
-  const std::size_t method_count = options.methods.size();
-  const std::size_t distortion_count = options.distortions.size();
+  void Give(Engines engines) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    idle_.push_back(std::move(engines));
+  }
 
-  struct Outcome {  // one method's answer to one query
-    bool hit = false;
-    bool accepted = false;
-    bool rejected = false;
-    double seconds = 0;
-  };
-  // [task][distortion][method], flattened.
-  std::vector<Outcome> outcomes(task_count * distortion_count * method_count);
+ private:
+  const std::vector<std::string>& methods_;
+  const EngineOptions options_;
+  std::mutex mutex_;
+  std::vector<Engines> idle_;  // guarded by mutex_
+};
 
-  EngineOptions engine_options = options.engine;
-  engine_options.window = std::max(engine_options.window, max_n);
-  report.engine = engine_options;
-  report.index = options.index;
-
-  const Clock::time_point trial_start = Clock::now();
-  // One set of engines per thread, reused across tasks (ObserveSequence resets them).
-  std::mutex engines_mutex;
-  std::vector<std::vector<std::unique_ptr<RecognitionEngine>>> idle_engines;
-  RunStage(task_count, report.threads, "trials", options, [&](std::size_t task) {
-    std::vector<std::unique_ptr<RecognitionEngine>> engines;
-    {
-      std::lock_guard<std::mutex> lock(engines_mutex);
-      if (!idle_engines.empty()) {
-        engines = std::move(idle_engines.back());
-        idle_engines.pop_back();
-      }
+// The index a trial of known object `object` queries: every model, the object's own without
+// the views near its query (query.removed_views).
+std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectModel>& models,
+                                                    std::size_t object, const TrialQuery& query,
+                                                    const ViewIndexOptions& options) {
+  std::vector<ObjectModel> trial_models;
+  trial_models.reserve(models.size());
+  for (std::size_t o = 0; o < models.size(); ++o) {
+    if (o != object) {
+      trial_models.push_back(models[o]);
+      continue;
     }
-    if (engines.empty()) {
-      for (const std::string& method : options.methods) {
-        engines.push_back(CreateEngine(method, engine_options));
-      }
-    }
+    ObjectModel reduced = WithoutViews(models[o], query.removed_views);
+    // A model left without views (tiny datasets only) cannot be indexed: the object is
+    // absent from this trial's model set and the query cannot hit.
+    if (!reduced.views.empty()) trial_models.push_back(std::move(reduced));
+  }
+  return ViewIndex(std::move(trial_models), options).Snapshot();
+}
 
-    const std::size_t trial = task % trials;
-    const std::size_t n_slot = (task / trials) % n_count;
-    const std::size_t object = (task / trials / n_count) % object_count;
-    const std::size_t v = task / trials / n_count / object_count;
-    const int n = options.query_lengths[n_slot];
-    const bool is_known = object < known_objects.size();
-    const DatasetObject& target =
-        is_known ? known_objects[object] : unknown_objects[object - known_objects.size()];
-
+// Step 3: every task of `grid` on `threads` threads; returns the outcome table. Each task
+// draws its query (SampleTrial, from its own TrialSeed) and asks every method, for every
+// distortion, for its answer to the whole query.
+std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const DescribedImages& described,
+                               const std::vector<VariantModels>& models, const TrialGrid& grid,
+                               const EvaluationOptions& options,
+                               const EngineOptions& engine_options, int threads) {
+  std::vector<Outcome> outcomes(grid.outcome_count());
+  EnginePool pool(options.methods, engine_options);
+  RunStage(grid.task_count(), threads, "trials", options, [&](std::size_t task) {
+    const TrialGrid::Task t = grid.TaskAt(task);
+    const int n = options.query_lengths[t.n_slot];
+    const DatasetObject& target = dataset.object(t.object);
     std::vector<double> azimuths;
-    for (std::size_t i : target.images) azimuths.push_back(images[i]->azimuth);
-    const TrialQuery query =
-        SampleTrial(azimuths, n, TrialSeed(options.seed, static_cast<int>(object), n,
-                                           static_cast<int>(trial)));
+    for (std::size_t i : target.images) azimuths.push_back(dataset.images[i]->azimuth);
+    const std::uint64_t trial_seed =
+        TrialSeed(options.seed, static_cast<int>(t.object), n, static_cast<int>(t.trial));
+    const TrialQuery query = SampleTrial(azimuths, n, trial_seed);
+    const bool is_known = dataset.is_known(t.object);
+    const std::shared_ptr<const ViewIndexSnapshot> snapshot =
+        is_known ? TrialIndex(models[t.variant].models, t.object, query, options.index)
+                 : models[t.variant].full_index;
 
-    std::shared_ptr<const ViewIndexSnapshot> snapshot = full_index[v];
-    if (is_known) {
-      std::vector<ObjectModel> trial_models;
-      trial_models.reserve(models[v].size());
-      for (std::size_t o = 0; o < models[v].size(); ++o) {
-        if (o != object) {
-          trial_models.push_back(models[v][o]);
-          continue;
-        }
-        ObjectModel reduced = WithoutViews(models[v][o], query.removed_views);
-        // A model left without views (tiny datasets only) cannot be indexed: the object is
-        // absent from this trial's model set and the query cannot hit.
-        if (!reduced.views.empty()) trial_models.push_back(std::move(reduced));
-      }
-      snapshot = ViewIndex(std::move(trial_models), options.index).Snapshot();
-    }
-
-    const ObjectId expected = static_cast<ObjectId>(object + 1);
+    EnginePool::Engines engines = pool.Take();
+    const ObjectId expected = static_cast<ObjectId>(t.object + 1);
     std::vector<QueryFrame> frames(query.views.size());
-    for (std::size_t d = 0; d < distortion_count; ++d) {
-      const auto& table = descriptors[v][DistortionSlot(options.distortions[d])];
+    for (std::size_t d = 0; d < grid.distortions; ++d) {
       for (std::size_t k = 0; k < frames.size(); ++k) {
-        frames[k].descriptor = {options.variants[v], table[target.images[query.views[k]]]};
+        const DescribedImage& image = described[target.images[query.views[k]]][t.variant];
+        frames[k].descriptor = {options.variants[t.variant], image.Query(options.distortions[d])};
         frames[k].azimuth = query.azimuths[k];
       }
-      for (std::size_t m = 0; m < method_count; ++m) {
+      for (std::size_t m = 0; m < grid.methods; ++m) {
         const Clock::time_point start = Clock::now();
         const FrameUpdate update = engines[m]->ObserveSequence(snapshot, frames);
-        Outcome& outcome = outcomes[(task * distortion_count + d) * method_count + m];
-        outcome.seconds = seconds_since(start);
+        Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
+        outcome.seconds = SecondsSince(start);
         if (is_known) {
           outcome.hit = IsTopOneHit(update.ranking, expected);
           outcome.accepted = outcome.hit && update.decision == Decision::kAccept;
@@ -290,28 +308,32 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
         }
       }
     }
-    std::lock_guard<std::mutex> lock(engines_mutex);
-    idle_engines.push_back(std::move(engines));
+    pool.Give(std::move(engines));
   });
-  report.trial_seconds = seconds_since(trial_start);
+  return outcomes;
+}
 
-  // Aggregate in a fixed order: variant, distortion, method, n.
-  for (std::size_t v = 0; v < variant_count; ++v) {
-    for (std::size_t d = 0; d < distortion_count; ++d) {
-      for (std::size_t m = 0; m < method_count; ++m) {
-        for (std::size_t s = 0; s < n_count; ++s) {
+// The report's cells, in its fixed order (variant, distortion, method, n), each summing its
+// outcomes over every object and trial.
+std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
+                                           const TrialGrid& grid, const EvaluationDataset& dataset,
+                                           const EvaluationOptions& options) {
+  std::vector<EvaluationCell> cells;
+  for (std::size_t v = 0; v < grid.variants; ++v) {
+    for (std::size_t d = 0; d < grid.distortions; ++d) {
+      for (std::size_t m = 0; m < grid.methods; ++m) {
+        for (std::size_t s = 0; s < grid.ns; ++s) {
           EvaluationCell cell;
           cell.method = options.methods[m];
           cell.variant = options.variants[v];
           cell.distortion = options.distortions[d];
           cell.n = options.query_lengths[s];
-          for (std::size_t object = 0; object < object_count; ++object) {
-            const bool is_known = object < known_objects.size();
-            for (std::size_t trial = 0; trial < trials; ++trial) {
-              const std::size_t task = ((v * object_count + object) * n_count + s) * trials + trial;
-              const Outcome& outcome = outcomes[(task * distortion_count + d) * method_count + m];
+          for (std::size_t object = 0; object < grid.objects; ++object) {
+            for (std::size_t trial = 0; trial < grid.trials; ++trial) {
+              const std::size_t task = grid.TaskNumber({v, object, s, trial});
+              const Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
               cell.seconds += outcome.seconds;
-              if (is_known) {
+              if (dataset.is_known(object)) {
                 ++cell.trials;
                 cell.hits += outcome.hit;
                 cell.accepted += outcome.accepted;
@@ -321,11 +343,82 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
               }
             }
           }
-          report.cells.push_back(std::move(cell));
+          cells.push_back(std::move(cell));
         }
       }
     }
   }
+  return cells;
+}
+
+}  // namespace
+
+std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
+  return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
+}
+
+const DescriptorValues& DescribedImage::Query(QueryDistortion distortion) const {
+  switch (distortion) {
+    case QueryDistortion::kNone:
+      return view.descriptor;
+    case QueryDistortion::kMotionBlur:
+      return motion_blur_query;
+    case QueryDistortion::kGaussianNoise:
+      return noise_query;
+  }
+  throw std::invalid_argument("unknown query distortion");
+}
+
+std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
+                                          const std::vector<DescriptorVariant>& variants,
+                                          std::uint64_t seed) {
+  const cv::Mat view = ReadImageFile(image.path);
+  // The GN query draws its own noise; the model view is described as every enrollment path
+  // describes it, and its MB copy is the MB query (motion blur draws nothing).
+  const cv::Mat noisy = ApplyQueryDistortion(view, QueryDistortion::kGaussianNoise,
+                                             ImageNoiseSeed(seed, position));
+  std::vector<DescribedImage> described;
+  for (DescriptorVariant variant : variants) {
+    const ViewDescription description = DescribeView(view, variant, seed);
+    DescribedImage& d = described.emplace_back();
+    d.view = {description.descriptor, image.azimuth, image.elevation, description.typical_distance};
+    d.motion_blur_query = description.distorted[0];
+    d.noise_query = ExtractCedd(noisy, variant).values;
+  }
+  return described;
+}
+
+EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
+                               const std::vector<DatasetImage>& unknown,
+                               const EvaluationOptions& options) {
+  const EvaluationDataset dataset = ValidateAndGroup(known, unknown, options);
+  EvaluationReport report;
+  report.known_objects = dataset.known.size();
+  report.unknown_objects = dataset.unknown.size();
+  report.images = dataset.images.size();
+  report.seed = options.seed;
+  report.search = options.index.search;
+  report.index = options.index;
+  report.threads = options.threads > 0 ? options.threads : AvailableCpus();
+  report.engine = options.engine;
+  report.engine.window = std::max(report.engine.window, LargestN(options));
+
+  const Clock::time_point descriptor_start = Clock::now();
+  const DescribedImages described = DescribeImages(dataset, options, report.threads);
+  report.descriptor_seconds = SecondsSince(descriptor_start);
+
+  const std::vector<VariantModels> models = BuildModels(dataset, described, options);
+  for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
+
+  const TrialGrid grid{options.variants.size(),     dataset.object_count(),
+                       options.query_lengths.size(), static_cast<std::size_t>(options.trials),
+                       options.distortions.size(),  options.methods.size()};
+  const Clock::time_point trial_start = Clock::now();
+  const std::vector<Outcome> outcomes =
+      RunTrials(dataset, described, models, grid, options, report.engine, report.threads);
+  report.trial_seconds = SecondsSince(trial_start);
+
+  report.cells = AggregateCells(outcomes, grid, dataset, options);
   return report;
 }
 

@@ -4,12 +4,13 @@
 //
 // What it does, in order:
 //   1. reads every image once and, for each variant, on all threads, describes it as a model
-//      view exactly as every enrollment path does (core/view_description.h, DescribeView with
-//      `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical distance), and
-//      computes its GN query, whose noise is drawn with ImageNoiseSeed(seed, i), so reruns see
-//      the same noise. The DF query is the view's CEDD, the MB query its motion-blurred copy;
-//   2. builds each known object's model: every image is a view at its azimuth, with the
-//      typical distance of step 1;
+//      view exactly as every enrollment path does (DescribeImage: core/view_description.h,
+//      DescribeView with `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical
+//      distance), and computes its GN query, whose noise is drawn with ImageNoiseSeed(seed, i),
+//      so reruns see the same noise. The DF query is the view's CEDD, the MB query its
+//      motion-blurred copy;
+//   2. builds each known object's model from its images' model views of step 1, and the index
+//      of all known objects, whose memory the report gives;
 //   3. runs the trials, one task per (variant, object, n, trial), spread over the threads: each
 //      task draws its query (SampleTrial), builds a ViewIndex of all known objects with the
 //      query object's excluded views removed, and asks every method, for every distortion, for
@@ -31,6 +32,7 @@
 #include "evaluation/dataset.h"
 #include "core/descriptor.h"
 #include "core/evaluation_protocol.h"
+#include "core/object_model.h"
 #include "core/recognition_engine.h"
 #include "core/parallel_for.h"
 #include "core/view_index.h"
@@ -105,8 +107,28 @@ struct EvaluationReport {
   double trial_seconds = 0;         // wall-clock time of step 3
 };
 
-// The seed of image i's Gaussian noise (its GN query and its typical distance).
+// The seed of the Gaussian noise of image i's GN query.
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
+
+// One image as the evaluation uses it, in one descriptor variant (step 1).
+struct DescribedImage {
+  // The model view it contributes: described exactly as every enrollment path describes it
+  // (DescribeView with the options' seed as base), at the image's azimuth and elevation.
+  ModelView view;
+  DescriptorValues motion_blur_query{};  // CEDD of DescribeView's motion-blurred copy
+  DescriptorValues noise_query{};        // CEDD of a copy with noise seeded ImageNoiseSeed
+
+  // The query descriptor under `distortion`: the DF query is the view's own CEDD.
+  const DescriptorValues& Query(QueryDistortion distortion) const;
+};
+
+// Step 1 for one image: reads it once and describes it in each of `variants` (the results in
+// that order). `position` is its place among the evaluated images (known ones first, then
+// unknown ones), which seeds its GN query: ImageNoiseSeed(seed, position).
+// Throws std::runtime_error naming the file when it cannot be read.
+std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
+                                          const std::vector<DescriptorVariant>& variants,
+                                          std::uint64_t seed);
 
 // Runs the protocol. `known` holds the images of the objects in the model set, `unknown` those
 // of objects left out of it (may be empty); an object is the set of images sharing a name, and

@@ -16,6 +16,7 @@ namespace {
 
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
+using testing::ErrorMessageOf;
 
 // A fresh folder under the system's temp dir, removed with everything in it at the end.
 class TempDir {
@@ -40,17 +41,6 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-// The message of the exception `call` throws, or "" when it throws none.
-template <typename Exception, typename Call>
-std::string ErrorOf(Call call) {
-  try {
-    call();
-  } catch (const Exception& e) {
-    return e.what();
-  }
-  return "";
-}
-
 TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
   EXPECT_THAT(ParseObjectRange("7"), ElementsAre(7));
   EXPECT_THAT(ParseObjectRange("1-5,9"), ElementsAre(1, 2, 3, 4, 5, 9));
@@ -61,19 +51,19 @@ TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
 }
 
 TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange(""); }), HasSubstr("empty"));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1,,3"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange(""); }), HasSubstr("empty"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1,,3"); }),
               HasSubstr("empty item"));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-5,x"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-5,x"); }),
               HasSubstr("\"x\""));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("0-3"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("0-3"); }),
               HasSubstr("numbered from 1"));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("5-1"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("5-1"); }),
               HasSubstr("\"5-1\" ends before it starts"));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-"); }), HasSubstr("\"1-\""));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("99999999999"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-"); }), HasSubstr("\"1-\""));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("99999999999"); }),
               HasSubstr("too large"));
-  EXPECT_THAT(ErrorOf<std::invalid_argument>([] { ParseObjectRange("1-1000000000"); }),
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000000000"); }),
               HasSubstr("too large"));
 }
 
@@ -111,12 +101,13 @@ TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
   EXPECT_EQ(images[1].azimuth, 10);
   EXPECT_EQ(images[2].object, "obj10");
 
-  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(dir.path(), std::vector<int>{2, 3}); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>(
+                  [&] { ListCoil100(dir.path(), std::vector<int>{2, 3}); }),
               HasSubstr("no image of object 3"));
-  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(dir.path() / "missing"); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ListCoil100(dir.path() / "missing"); }),
               HasSubstr("not a directory"));
   TempDir empty;
-  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ListCoil100(empty.path()); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ListCoil100(empty.path()); }),
               HasSubstr("no COIL-100 images"));
 }
 
@@ -151,7 +142,7 @@ TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
   TempDir dir;
   const auto error = [&](const std::string& text) {
     const auto csv = dir.Write("bad.csv", text);
-    return ErrorOf<std::runtime_error>([&] { ReadManifest(csv); });
+    return ErrorMessageOf<std::runtime_error>([&] { ReadManifest(csv); });
   };
   const std::string name = (dir.path() / "bad.csv").string();
   EXPECT_THAT(error("path,object\na.png,x\n"), HasSubstr(name + ":1: header lacks the column \"azimuth\""));
@@ -169,8 +160,90 @@ TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
   EXPECT_THAT(error("path,object,azimuth\n\"a.png,x,1\n"), HasSubstr(":2: malformed quotes"));
   EXPECT_THAT(error("path,object,azimuth\n"), HasSubstr(name + ": no images"));
   EXPECT_THAT(error(""), HasSubstr("no header row"));
-  EXPECT_THAT(ErrorOf<std::runtime_error>([&] { ReadManifest(dir.path() / "none.csv"); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ReadManifest(dir.path() / "none.csv"); }),
               HasSubstr("cannot read"));
+}
+
+TEST(GroupByObjectTest, ObjectsInOrderOfFirstAppearanceWithTheirPositions) {
+  const std::vector<DatasetImage> images{{"1.png", "mug", 0, {}},  {"2.png", "cup", 0, {}},
+                                         {"3.png", "mug", 90, {}}, {"4.png", "box", 0, {}},
+                                         {"5.png", "cup", 90, {}}, {"6.png", "mug", 180, {}}};
+  EXPECT_THAT(GroupByObject(images),
+              ElementsAre(DatasetObject{"mug", {0, 2, 5}}, DatasetObject{"cup", {1, 4}},
+                          DatasetObject{"box", {3}}));
+  EXPECT_TRUE(GroupByObject({}).empty());
+}
+
+TEST(SelectDatasetTest, RefusesMissingPathsOverlapsAndNumbersBeyondTheManifest) {
+  TempDir dir;
+  const auto csv = dir.Write("m.csv", "path,object,azimuth\na.png,cup,0\nb.png,mug,0\n");
+  const auto error = [](const DatasetSelection& selection) {
+    return ErrorMessageOf([&] { SelectDataset(selection); });
+  };
+  EXPECT_EQ(error({"coil100", "", "", "", ""}), "--layout coil100 needs --data DIR");
+  EXPECT_EQ(error({"manifest", "", "", "1-2", ""}), "--layout manifest needs --manifest FILE");
+  EXPECT_EQ(error({"manifest", "", csv, "1-3", "3-5"}),
+            "object 3 is in both --objects and --unknown-objects");
+  EXPECT_EQ(error({"manifest", "", csv, "1,3", ""}),
+            "object 3 selected, but the manifest has 2 objects");
+  EXPECT_EQ(error({"manifest", "", csv, "", "2-4"}),
+            "object 4 selected, but the manifest has 2 objects");
+  EXPECT_EQ(error({"folder", dir.path(), "", "", ""}), "unknown layout \"folder\"");
+  EXPECT_THAT(error({"manifest", "", csv, "1-x", ""}), HasSubstr("\"1-x\""));
+}
+
+// Manifest objects are numbered 1, 2, ... in order of first appearance; images keep the file's
+// order.
+TEST(SelectDatasetTest, SelectsManifestObjectsByNumber) {
+  TempDir dir;
+  const auto csv = dir.Write("m.csv",
+                             "path,object,azimuth\n"
+                             "/a.png,cup,0\n/b.png,mug,0\n/c.png,cup,90\n"
+                             "/d.png,box,0\n/e.png,mug,90\n");
+  const auto paths = [](const std::vector<DatasetImage>& images) {
+    std::vector<std::string> result;
+    for (const DatasetImage& image : images) result.push_back(image.path);
+    return result;
+  };
+
+  SelectedImages selected = SelectDataset({"manifest", "", csv, "1,3", ""});
+  EXPECT_THAT(paths(selected.known), ElementsAre("/a.png", "/c.png", "/d.png"));
+  EXPECT_TRUE(selected.unknown.empty());
+
+  selected = SelectDataset({"manifest", "", csv, "", "2"});  // known: every other object
+  EXPECT_THAT(paths(selected.known), ElementsAre("/a.png", "/c.png", "/d.png"));
+  EXPECT_THAT(paths(selected.unknown), ElementsAre("/b.png", "/e.png"));
+
+  selected = SelectDataset({"manifest", "", csv, "3", "1"});
+  EXPECT_THAT(paths(selected.known), ElementsAre("/d.png"));
+  EXPECT_THAT(paths(selected.unknown), ElementsAre("/a.png", "/c.png"));
+
+  selected = SelectDataset({"manifest", "", csv, "", ""});
+  EXPECT_EQ(selected.known, ReadManifest(csv));
+}
+
+TEST(SelectDatasetTest, SelectsCoil100ObjectsByTheirNumber) {
+  TempDir dir;
+  for (const char* name : {"obj1__0.png", "obj1__5.png", "obj2__0.png", "obj10__0.png"}) {
+    dir.Write(name, "");
+  }
+  const auto objects = [](const std::vector<DatasetImage>& images) {
+    std::vector<std::string> result;
+    for (const DatasetImage& image : images) result.push_back(image.object);
+    return result;
+  };
+
+  SelectedImages selected = SelectDataset({"coil100", dir.path(), "", "", "2"});
+  EXPECT_THAT(objects(selected.known), ElementsAre("obj1", "obj1", "obj10"));
+  EXPECT_THAT(objects(selected.unknown), ElementsAre("obj2"));
+
+  selected = SelectDataset({"coil100", dir.path(), "", "1,10", ""});
+  EXPECT_THAT(objects(selected.known), ElementsAre("obj1", "obj1", "obj10"));
+  EXPECT_TRUE(selected.unknown.empty());
+
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>(
+                  [&] { SelectDataset({"coil100", dir.path(), "", "3", ""}); }),
+              HasSubstr("no image of object 3"));
 }
 
 }  // namespace

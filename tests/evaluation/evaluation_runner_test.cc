@@ -1,0 +1,100 @@
+#include "evaluation/evaluation_runner.h"
+
+#include <cstdint>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "client/image_file.h"
+#include "core/cedd.h"
+#include "core/view_description.h"
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::HasSubstr;
+
+DatasetImage Coil100Image() {
+  return {(testing::DataDir() / "coil-100" / "obj3__20.png").string(), "obj3", 20, std::nullopt};
+}
+
+// The evaluation's model views are what every enrollment path stores for the same image
+// (DescribeView), with the options' seed as the base of the seed rule.
+TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
+  const DatasetImage image = Coil100Image();
+  const cv::Mat pixels = ReadImageFile(image.path);
+  const std::uint64_t seed = 7;
+  const std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire,
+                                                DescriptorVariant::kCeddFull};
+
+  const std::vector<DescribedImage> described = DescribeImage(image, 0, variants, seed);
+
+  ASSERT_EQ(described.size(), 2u);
+  for (std::size_t v = 0; v < variants.size(); ++v) {
+    const ViewDescription expected = DescribeView(pixels, variants[v], seed);
+    const ModelView& view = described[v].view;
+    EXPECT_EQ(view.descriptor, expected.descriptor) << VariantName(variants[v]);
+    EXPECT_EQ(view.typical_distance, expected.typical_distance) << VariantName(variants[v]);
+    EXPECT_GT(view.typical_distance, 0.0);
+    // The seed reaches DescribeView: the default base draws other noise.
+    EXPECT_NE(view.typical_distance, DescribeView(pixels, variants[v]).typical_distance);
+    EXPECT_EQ(view.azimuth, 20.0);
+    EXPECT_FALSE(view.elevation.has_value());
+    // DF is the view itself; MB is DescribeView's motion-blurred copy.
+    EXPECT_EQ(described[v].Query(QueryDistortion::kNone), expected.descriptor);
+    EXPECT_EQ(described[v].Query(QueryDistortion::kMotionBlur), expected.distorted[0]);
+  }
+  EXPECT_NE(described[0].view.descriptor, described[1].view.descriptor);
+}
+
+// The GN query's noise is seeded by the image's position, so two places draw different noise.
+TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
+  const DatasetImage image = Coil100Image();
+  const cv::Mat pixels = ReadImageFile(image.path);
+  const std::vector<DescriptorVariant> lire{DescriptorVariant::kCeddLire};
+
+  const DescribedImage first = DescribeImage(image, 0, lire, 7)[0];
+  const DescribedImage fifth = DescribeImage(image, 4, lire, 7)[0];
+
+  const cv::Mat noisy = ApplyQueryDistortion(pixels, QueryDistortion::kGaussianNoise,
+                                             ImageNoiseSeed(7, 4));
+  EXPECT_EQ(fifth.Query(QueryDistortion::kGaussianNoise),
+            ExtractCedd(noisy, DescriptorVariant::kCeddLire).values);
+  EXPECT_NE(first.noise_query, fifth.noise_query);
+  EXPECT_NE(fifth.noise_query, fifth.view.descriptor);
+  // The model view depends on the image alone.
+  EXPECT_EQ(first.view.descriptor, fifth.view.descriptor);
+  EXPECT_EQ(first.view.typical_distance, fifth.view.typical_distance);
+}
+
+TEST(DescribeImageTest, NamesAFileThatCannotBeRead) {
+  const DatasetImage missing{"/nonexistent/obj1__0.png", "obj1", 0, std::nullopt};
+  EXPECT_THAT(testing::ErrorMessageOf<std::runtime_error>(
+                  [&] { DescribeImage(missing, 0, {DescriptorVariant::kCeddLire}, 1); }),
+              HasSubstr("/nonexistent/obj1__0.png"));
+}
+
+// Refusals that come before any image is read (the paths do not exist).
+TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
+  const std::vector<DatasetImage> known{{"/none/a0.png", "a", 0, {}},
+                                        {"/none/a1.png", "a", 90, {}},
+                                        {"/none/b0.png", "b", 0, {}},
+                                        {"/none/b1.png", "b", 90, {}}};
+  EvaluationOptions options;
+  options.query_lengths = {1, 2};
+  const std::vector<DatasetImage> unknown{{"/none/b2.png", "b", 180, {}},
+                                          {"/none/b3.png", "b", 270, {}}};
+  EXPECT_EQ(testing::ErrorMessageOf([&] { RunEvaluation(known, unknown, options); }),
+            "object \"b\" is both known and unknown");
+  options.query_lengths = {4};
+  EXPECT_EQ(testing::ErrorMessageOf([&] { RunEvaluation(known, {}, options); }),
+            "object \"a\" has 2 views; n = 4 needs as many");
+}
+
+}  // namespace
+}  // namespace orbit
