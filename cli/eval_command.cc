@@ -176,7 +176,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--hmm-states", o->hmm_states, "HMM states (azimuth sectors) per object")
-      ->check(CLI::Range(1, 360))
+      ->check(CLI::Range(1, kMaxHmmStates))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
                       "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");
