@@ -131,9 +131,8 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
 
   // The same import into a file stores the very same views (same descriptors, same seeded
   // typical distances), and both list alike.
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("orbit_cli_network_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   const std::string db = (dir / "models.db").string();
   ASSERT_EQ(RunCommand(orbit + "import --db " + db + coil + " --objects 1-3").exit_code, 0);
   {
@@ -183,7 +182,6 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-lire)"),
             std::string::npos)
       << variant.err;
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -45,8 +45,8 @@ TEST(NetworkOptionsTest, ReportsUnreachableServersAndBadArguments) {
 }
 
 TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("orbit_cli_tls_" + std::to_string(::getpid()));
+  const testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   ServerProcess server(testing::SecuredServerOptions(dir, "edge.test", "admin-token-0123456",
                                                      "reader-token-0123456"));
   const std::string net = " --server " + server.address() + " --tls-ca " +
@@ -83,7 +83,6 @@ TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
   EXPECT_NE(RunCommand(orbit + "info --timeout 3 --server " + server.address() + reader_file)
                 .exit_code,
             0);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

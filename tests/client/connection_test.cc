@@ -94,8 +94,8 @@ TEST(ConnectionTest, UnreachableAndSilentServersFailWithinTheDeadline) {
 }
 
 TEST(ConnectionTest, TokensAndTlsReachTheServer) {
-  const auto dir = std::filesystem::temp_directory_path() /
-                   ("orbit_client_tls_" + std::to_string(::getpid()));
+  const testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   ServerProcess server(testing::SecuredServerOptions(dir, "orbit.test", "admin-secret-0001",
                                                      "reader-secret-0001"));
   ConnectionOptions tls = testing::At(server.address());
@@ -131,7 +131,6 @@ TEST(ConnectionTest, TokensAndTlsReachTheServer) {
   plaintext.tls_root_certificates_file.clear();
   EXPECT_EQ(RpcCodeOf([&] { ModelsClient(Connection(plaintext)).ServerInfo(); }),
             grpc::StatusCode::UNAVAILABLE);
-  std::filesystem::remove_all(dir);
 }
 
 }  // namespace

@@ -17,29 +17,8 @@ namespace {
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using testing::ErrorMessageOf;
+using testing::ScratchDir;
 
-// A fresh folder under the system's temp dir, removed with everything in it at the end.
-class TempDir {
- public:
-  TempDir() {
-    path_ = std::filesystem::temp_directory_path() /
-            ("orbit_dataset_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter_++));
-    std::filesystem::create_directories(path_);
-  }
-  ~TempDir() { std::filesystem::remove_all(path_); }
-  const std::filesystem::path& path() const { return path_; }
-
-  std::filesystem::path Write(const std::string& name, const std::string& text) const {
-    const auto file = path_ / name;
-    std::filesystem::create_directories(file.parent_path());
-    std::ofstream(file) << text;
-    return file;
-  }
-
- private:
-  static inline int counter_ = 0;
-  std::filesystem::path path_;
-};
 
 TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
   EXPECT_THAT(ParseObjectRange("7"), ElementsAre(7));
@@ -88,7 +67,7 @@ TEST(ListCoil100Test, ListsTheSharedDataSortedByObjectThenAzimuth) {
 }
 
 TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
-  TempDir dir;
+  ScratchDir dir;
   dir.Write("obj2__10.png", "");
   dir.Write("obj2__5.png", "");
   dir.Write("obj10__0.png", "");
@@ -106,13 +85,13 @@ TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
               HasSubstr("no image of object 3"));
   EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ListCoil100(dir.path() / "missing"); }),
               HasSubstr("not a directory"));
-  TempDir empty;
+  ScratchDir empty;
   EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ListCoil100(empty.path()); }),
               HasSubstr("no COIL-100 images"));
 }
 
 TEST(ReadManifestTest, ResolvesRelativePathsAgainstTheCsvFolder) {
-  TempDir dir;
+  ScratchDir dir;
   const auto csv = dir.Write("sets/cups.csv",
                              "object,azimuth,path,elevation\r\n"
                              "cup, 90 ,views/a.png,10\r\n"
@@ -130,7 +109,7 @@ TEST(ReadManifestTest, ResolvesRelativePathsAgainstTheCsvFolder) {
 }
 
 TEST(ReadManifestTest, ElevationColumnIsOptional) {
-  TempDir dir;
+  ScratchDir dir;
   const auto csv = dir.Write("m.csv", "path,object,azimuth\na.png,box,12.5\n");
   const std::vector<DatasetImage> images = ReadManifest(csv);
   ASSERT_EQ(images.size(), 1u);
@@ -139,7 +118,7 @@ TEST(ReadManifestTest, ElevationColumnIsOptional) {
 }
 
 TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
-  TempDir dir;
+  ScratchDir dir;
   const auto error = [&](const std::string& text) {
     const auto csv = dir.Write("bad.csv", text);
     return ErrorMessageOf<std::runtime_error>([&] { ReadManifest(csv); });
@@ -175,7 +154,7 @@ TEST(GroupByObjectTest, ObjectsInOrderOfFirstAppearanceWithTheirPositions) {
 }
 
 TEST(SelectDatasetTest, RefusesMissingPathsOverlapsAndNumbersBeyondTheManifest) {
-  TempDir dir;
+  ScratchDir dir;
   const auto csv = dir.Write("m.csv", "path,object,azimuth\na.png,cup,0\nb.png,mug,0\n");
   const auto error = [](const DatasetSelection& selection) {
     return ErrorMessageOf([&] { SelectDataset(selection); });
@@ -195,7 +174,7 @@ TEST(SelectDatasetTest, RefusesMissingPathsOverlapsAndNumbersBeyondTheManifest) 
 // Manifest objects are numbered 1, 2, ... in order of first appearance; images keep the file's
 // order.
 TEST(SelectDatasetTest, SelectsManifestObjectsByNumber) {
-  TempDir dir;
+  ScratchDir dir;
   const auto csv = dir.Write("m.csv",
                              "path,object,azimuth\n"
                              "/a.png,cup,0\n/b.png,mug,0\n/c.png,cup,90\n"
@@ -223,7 +202,7 @@ TEST(SelectDatasetTest, SelectsManifestObjectsByNumber) {
 }
 
 TEST(SelectDatasetTest, SelectsCoil100ObjectsByTheirNumber) {
-  TempDir dir;
+  ScratchDir dir;
   for (const char* name : {"obj1__0.png", "obj1__5.png", "obj2__0.png", "obj10__0.png"}) {
     dir.Write(name, "");
   }

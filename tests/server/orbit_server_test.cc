@@ -592,8 +592,8 @@ TEST(Server, RefusesToServeARemoteAddressWithoutTokens) {
 }
 
 TEST(Server, ServesTlsWithACertificate) {
-  const auto dir = std::filesystem::temp_directory_path() / ("orbit_tls_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   testing::MakeSelfSignedCertificate(dir, "localhost", "DNS:localhost,IP:127.0.0.1");
   ServerProcess server({.tls_cert = dir / "cert.pem", .tls_key = dir / "key.pem"});
 
@@ -609,14 +609,13 @@ TEST(Server, ServesTlsWithACertificate) {
   const Client plain(server.address());  // plaintext against TLS: the call fails
   v1::ListObjectsResponse list;
   EXPECT_EQ(plain.List(&list).error_code(), grpc::UNAVAILABLE);
-  std::filesystem::remove_all(dir);
 }
 
 // ---- durability and shutdown ----
 
 TEST(Server, AcknowledgedEnrollmentSurvivesKillNine) {
-  const auto dir = std::filesystem::temp_directory_path() / ("orbit_kill_" + std::to_string(getpid()));
-  std::filesystem::create_directories(dir);
+  const testing::ScratchDir scratch;
+  const std::filesystem::path& dir = scratch.path();
   const auto db = dir / "models.db";
   int port = 0;
   {
@@ -635,7 +634,6 @@ TEST(Server, AcknowledgedEnrollmentSurvivesKillNine) {
   EXPECT_EQ(list.objects(0).view_count(), 72);
   const auto session = client.Session(v1::SessionOptions(), {CoilFrame(90, 45, 0)});
   EXPECT_EQ(session.updates.at(0).candidates(0).name(), "obj90");
-  std::filesystem::remove_all(dir);
 }
 
 TEST(Server, HalfSentEnrollmentLeavesNothing) {

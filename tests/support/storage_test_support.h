@@ -1,8 +1,7 @@
-// What the storage tests share: a scratch folder, synthetic object models, and a raw SQLite
+// What the storage tests share: synthetic object models (scratch folders: test_data.h), and a raw SQLite
 // connection to look at a store's file from outside the store.
 #pragma once
 
-#include <unistd.h>
 
 #include <cstdint>
 #include <filesystem>
@@ -15,28 +14,9 @@
 
 #include "core/object_model.h"
 #include "storage/model_store.h"
+#include "tests/support/test_data.h"
 
 namespace orbit::testing {
-
-// A fresh folder under the system's temp dir, removed with everything in it at the end.
-class ScratchDir {
- public:
-  ScratchDir() {
-    static int counter = 0;
-    path_ = std::filesystem::temp_directory_path() /
-            ("orbit_storage_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    std::filesystem::remove_all(path_);
-    std::filesystem::create_directories(path_);
-  }
-  ~ScratchDir() { std::filesystem::remove_all(path_); }
-  ScratchDir(const ScratchDir&) = delete;
-  ScratchDir& operator=(const ScratchDir&) = delete;
-
-  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
-
- private:
-  std::filesystem::path path_;
-};
 
 // A view whose descriptor values (all in 0..7) are a deterministic function of `seed`, distinct
 // for distinct seeds in practice: 144 draws of std::mt19937 (its output is fixed by the standard).

@@ -1,7 +1,9 @@
 #include "tests/support/test_data.h"
 
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <atomic>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
@@ -67,6 +69,23 @@ CommandResult RunCommand(const std::string& command) {
   std::filesystem::remove(out);
   std::filesystem::remove(err);
   return result;
+}
+
+ScratchDir::ScratchDir() {
+  static std::atomic<int> counter{0};
+  path_ = std::filesystem::temp_directory_path() /
+          ("orbit_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  std::filesystem::remove_all(path_);
+  std::filesystem::create_directories(path_);
+}
+
+ScratchDir::~ScratchDir() { std::filesystem::remove_all(path_); }
+
+std::filesystem::path ScratchDir::Write(const std::string& name, const std::string& text) const {
+  const std::filesystem::path file = path_ / name;
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+  return file;
 }
 
 std::string OrbitBinary() { return ORBIT_BINARY; }

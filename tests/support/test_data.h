@@ -24,6 +24,24 @@ struct ReferenceVector {
 };
 std::vector<ReferenceVector> ReadReferenceVectors(const std::filesystem::path& file);
 
+// A fresh folder under the system's temp dir, removed with everything in it at the end.
+class ScratchDir {
+ public:
+  ScratchDir();
+  ~ScratchDir();
+  ScratchDir(const ScratchDir&) = delete;
+  ScratchDir& operator=(const ScratchDir&) = delete;
+
+  const std::filesystem::path& path() const { return path_; }
+  std::filesystem::path operator/(const std::string& name) const { return path_ / name; }
+
+  // Writes `text` to the file `name` in the folder (creating subfolders); returns its path.
+  std::filesystem::path Write(const std::string& name, const std::string& text) const;
+
+ private:
+  std::filesystem::path path_;
+};
+
 // Runs a command through the shell; returns its exit status and what it printed.
 struct CommandResult {
   int exit_code = -1;
