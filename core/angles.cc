@@ -21,7 +21,13 @@ double NormaliseAzimuth(double degrees) {
   return normalised >= 360.0 || normalised == 0 ? 0.0 : normalised;
 }
 
-double AzimuthChange(double from, double to) { return WrapDegrees(to - from); }
+double AzimuthChange(double from, double to) {
+  const double change = to - from;
+  // Far-apart finite azimuths (1e308 and -1e308) overflow the difference; the turn between them
+  // is the turn between their equivalents in [0, 360).
+  if (!std::isfinite(change)) return WrapDegrees(NormaliseAzimuth(to) - NormaliseAzimuth(from));
+  return WrapDegrees(change);
+}
 
 double DegreesToRadians(double degrees) { return degrees * (std::numbers::pi / 180.0); }
 

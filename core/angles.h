@@ -14,7 +14,8 @@ double WrapDegrees(double degrees);
 double NormaliseAzimuth(double degrees);
 
 // WrapDegrees(to - from): the signed turn from `from` to `to`, positive when `to` lies
-// counter-clockwise (toward increasing azimuth) of `from`.
+// counter-clockwise (toward increasing azimuth) of `from`. Any finite azimuths, however far
+// apart (the difference of 1e308 and -1e308 does not overflow). REQUIRES: both finite.
 double AzimuthChange(double from, double to);
 
 double DegreesToRadians(double degrees);

@@ -11,8 +11,9 @@
 namespace orbit {
 
 double OrientationMismatch(double beta_k, double beta_next, double alpha_k, double alpha_next) {
-  const double d_beta = WrapDegrees(beta_k - beta_next);
-  const double d_alpha = WrapDegrees(alpha_k - alpha_next);
+  // AzimuthChange(next, k) = WrapDegrees(k - next), without overflow for far-apart readings.
+  const double d_beta = AzimuthChange(beta_next, beta_k);
+  const double d_alpha = AzimuthChange(alpha_next, alpha_k);
   return DegreesToRadians(std::abs(WrapDegrees(d_beta - d_alpha)));
 }
 

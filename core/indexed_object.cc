@@ -26,7 +26,7 @@ double GeneralisedTanimoto(const Q& q, const C& c) {
 }
 
 // Circular distance between two azimuths, in [0, 180].
-double CircularDistance(double a, double b) { return std::abs(WrapDegrees(a - b)); }
+double CircularDistance(double a, double b) { return std::abs(AzimuthChange(b, a)); }
 
 MeanDescriptor MeanOf(const ObjectModel& model, const std::vector<int>& views) {
   std::array<double, kDescriptorSize> sum{};

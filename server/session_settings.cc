@@ -48,7 +48,9 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
     o.top_k = requested.top_k();
   }
   if (requested.window() != 0) {
-    if (requested.window() < 1) return InvalidArgument("options.window must be at least 1");
+    if (requested.window() < 1 || requested.window() > kMaxWindow) {
+      return InvalidArgument("options.window must be 1.." + std::to_string(kMaxWindow));
+    }
     if (requested.window() > limits.max_window) {
       return {grpc::StatusCode::RESOURCE_EXHAUSTED,
               "options.window " + std::to_string(requested.window()) + " is above this server's " +

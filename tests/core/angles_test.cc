@@ -35,6 +35,16 @@ TEST(AnglesTest, AzimuthChangeIsTheShortSignedTurnAcrossZero) {
   EXPECT_DOUBLE_EQ(DegreesToRadians(180), std::numbers::pi);
 }
 
+TEST(AnglesTest, AzimuthChangeOfFarApartFiniteAzimuthsDoesNotOverflow) {
+  // 1e308 = 296 (mod 360) and -1e308 = 64 (mod 360), by hand with an exact fmod: the turn from
+  // -1e308 to 1e308 is 296 - 64 = 232, i.e. -128.
+  EXPECT_EQ(NormaliseAzimuth(1e308), 296.0);
+  EXPECT_EQ(NormaliseAzimuth(-1e308), 64.0);
+  EXPECT_EQ(AzimuthChange(-1e308, 1e308), -128.0);
+  EXPECT_EQ(AzimuthChange(1e308, -1e308), 128.0);
+  EXPECT_EQ(AzimuthChange(-1e308, -1e308), 0.0);
+}
+
 TEST(AnglesTest, ArcOverlapCountsBothPiecesAcrossZero) {
   // [350, 20) and [0, 30): [0, 20).
   EXPECT_DOUBLE_EQ(ArcOverlap({350, 30}, {0, 30}), 20);

@@ -139,6 +139,28 @@ TEST(RecognitionEngineTest, ShiftedAndWrappedAzimuthsGiveIdenticalAnswers) {
   }
 }
 
+// Any finite azimuth is valid input: 1e308 and -1e308 (whose difference overflows) act exactly
+// like their equivalents 296 and 64 (core/angles.h), for every engine.
+TEST(RecognitionEngineTest, FarApartFiniteAzimuthsActLikeTheirEquivalentsBelow360) {
+  for (const std::string_view name : EngineNames()) {
+    std::vector<QueryFrame> huge = Frames(7, {290, 300, 310}, 0);
+    std::vector<QueryFrame> small = huge;
+    huge[0].azimuth = 1e308;
+    huge[1].azimuth = -1e308;
+    huge[2].azimuth = 1e308;
+    small[0].azimuth = 296;
+    small[1].azimuth = 64;
+    small[2].azimuth = 296;
+    const auto engine = CreateEngine(name);
+    FrameUpdate expected;
+    ASSERT_NO_THROW(expected = engine->ObserveSequence(CoilIndex(SearchMode::kExact), small))
+        << name;
+    FrameUpdate got;
+    ASSERT_NO_THROW(got = engine->ObserveSequence(CoilIndex(SearchMode::kExact), huge)) << name;
+    ExpectSameUpdate(got, expected, std::string(name));
+  }
+}
+
 // A sequence whose first two frames show object 2 and last three object 5: each candidate
 // misses some lists and is extended there through the IMU, so the orientation-implied views
 // must also depend on azimuth differences only.

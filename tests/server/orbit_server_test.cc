@@ -406,9 +406,21 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
         << c.what << ": " << result.status.error_message();
     EXPECT_TRUE(result.updates.empty()) << c.what;
   }
+  // A window outside the API's 1..64 is a bad argument (a window inside it but above the
+  // server's --max-window is RESOURCE_EXHAUSTED: tests/server/session_settings_test.cc).
   v1::SessionOptions wide;
-  wide.set_window(65);
-  EXPECT_EQ(client.Session(wide, {}).status.error_code(), grpc::RESOURCE_EXHAUSTED);
+  wide.set_window(1000);
+  const auto too_wide = client.Session(wide, {});
+  EXPECT_EQ(too_wide.status.error_code(), grpc::INVALID_ARGUMENT);
+  EXPECT_EQ(too_wide.status.error_message(), "options.window must be 1..64");
+  // Any finite azimuth is served, however far apart two frames' are (their difference
+  // overflows a double): the HMM session answers both frames.
+  v1::SessionOptions hmm;
+  hmm.set_engine(v1::ENGINE_HMM);
+  const auto far_apart =
+      client.Session(hmm, {FrameWith(CoilCedd(60, 0), 1e308), FrameWith(CoilCedd(60, 0), -1e308)});
+  EXPECT_TRUE(far_apart.status.ok()) << far_apart.status.error_message();
+  EXPECT_EQ(far_apart.updates.size(), 2u);
   // The HMM's state grows with window x states x objects: 64 x 360 is refused (default limit
   // 1024), 64 x 16 = 1024 is not, and neither is 64 x 360 for an engine without an HMM.
   v1::SessionOptions big_hmm;

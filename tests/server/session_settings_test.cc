@@ -49,7 +49,9 @@ TEST(SessionSettingsTest, OutOfRangeValuesAreInvalidArgumentNamingTheField) {
       {[](v1::SessionOptions& o) { o.set_engine(static_cast<v1::Engine>(42)); },
        "options.engine 42 is not an engine"},
       {[](v1::SessionOptions& o) { o.set_top_k(101); }, "options.top_k must be 1..100"},
-      {[](v1::SessionOptions& o) { o.set_window(-1); }, "options.window must be at least 1"},
+      {[](v1::SessionOptions& o) { o.set_window(-1); }, "options.window must be 1..64"},
+      // Beyond the API's range is a bad argument, whatever this server's limit.
+      {[](v1::SessionOptions& o) { o.set_window(1000); }, "options.window must be 1..64"},
       {[](v1::SessionOptions& o) { o.set_orientation_weight(-0.5); },
        "options.orientation_weight must be >= 0"},
       {[](v1::SessionOptions& o) { o.set_list_length(65); }, "options.list_length must be 1..64"},
