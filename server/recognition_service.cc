@@ -25,7 +25,7 @@ grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionServi
   if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize); !allowed.ok()) {
     return new RefusedSession(allowed);
   }
-  return new SessionReactor(env_);
+  return new SessionReactor(env_, context);
 }
 
 grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerContext* context,

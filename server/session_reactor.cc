@@ -9,8 +9,10 @@
 
 namespace orbit::server {
 
-SessionReactor::SessionReactor(const SessionEnvironment& environment)
+SessionReactor::SessionReactor(const SessionEnvironment& environment,
+                               grpc::CallbackServerContext* context)
     : env_(environment),
+      context_(context),
       allowance_(2 * environment.limits.max_frames_per_second),
       allowance_time_(Clock::now()),
       last_activity_(Clock::now().time_since_epoch().count()) {
@@ -110,12 +112,14 @@ void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
     return;
   }
   update_ = std::move(update);
+  write_started_ = Clock::now();
   StartWrite(&update_);
 }
 
 void SessionReactor::OnWriteDone(bool ok) {
   std::lock_guard lock(mutex_);
   busy_ = false;
+  write_started_.reset();
   if (!ok) {
     FinishOnce({grpc::StatusCode::CANCELLED, "the device stopped receiving updates"});
   } else if (pending_close_) {
@@ -130,6 +134,10 @@ void SessionReactor::Close(const grpc::Status& status) {
   if (finished_) return;
   if (busy_) {
     if (!pending_close_) pending_close_ = status;
+    // The device has not taken its update for a long while: it has stopped reading, and the
+    // write would wait for it forever. Cancelling completes the write (not ok) and ends the
+    // call, which frees the slot.
+    if (write_started_ && Clock::now() - *write_started_ >= kStalledWrite) context_->TryCancel();
     return;
   }
   FinishOnce(status);  // a read is outstanding; it completes with ok = false

@@ -39,13 +39,16 @@ class SessionReactor final
       public RegisteredSession {
  public:
   // Registers with the registry (ending the stream at once with its refusal, if any) and
-  // reads the first request.
-  explicit SessionReactor(const SessionEnvironment& environment);
+  // reads the first request. `context` is the call's; it outlives the reactor.
+  SessionReactor(const SessionEnvironment& environment, grpc::CallbackServerContext* context);
 
   void OnReadDone(bool ok) override;
   void OnWriteDone(bool ok) override;
   void OnDone() override;
 
+  // Ends the stream with `status` once the frame in hand, if any, is processed. An update the
+  // device has not taken for kStalledWrite is abandoned: the call is cancelled, so a device that
+  // stops reading cannot hold its session slot (its window full, the write would never end).
   void Close(const grpc::Status& status) override;
   std::chrono::steady_clock::time_point last_activity() const override;
 
@@ -62,13 +65,18 @@ class SessionReactor final
   // Runs on the worker pool.
   void Process(v1::Frame frame, Clock::time_point received);
 
+  // A write not taken by the device for this long, when the session is closed, is abandoned.
+  static constexpr std::chrono::seconds kStalledWrite{1};
+
   const SessionEnvironment env_;
+  grpc::CallbackServerContext* const context_;
   std::recursive_mutex mutex_;  // recursive: a reaction may run inside a Start* call
   v1::SessionRequest request_;
   v1::SessionUpdate update_;
   std::unique_ptr<SessionEngine> engine_;  // set by the open request
   bool registered_ = false;
   bool busy_ = false;      // a frame is being processed or its update written
+  std::optional<Clock::time_point> write_started_;  // while an update is being written
   bool finished_ = false;  // Finish has been called
   std::optional<grpc::Status> pending_close_;  // Close() while busy: applied when idle
   // Frame-rate limit: a token bucket holding up to 2 s of frames.
