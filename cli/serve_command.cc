@@ -123,6 +123,11 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--max-message-bytes", c.limits.max_message_bytes, "largest request message")
       ->check(CLI::Range(1024, 64 << 20))
       ->capture_default_str();
+  cmd->add_option("--max-image-pixels", c.limits.max_image_pixels,
+                  "largest width x height of an uploaded image, read from its header before "
+                  "decoding (PNG or JPEG; a decoded image takes up to 8 bytes a pixel)")
+      ->check(CLI::Range(1, 1 << 30))
+      ->capture_default_str();
   cmd->add_option("--idle-timeout", c.limits.idle_timeout_seconds,
                   "seconds without a frame before a session is closed")
       ->check(CLI::Range(1, 86400))

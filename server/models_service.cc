@@ -51,12 +51,13 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
 // by the seed rule of core/view_description.h, which depends on the image alone: the same
 // image stores the same numbers whichever object, position or path enrolls it.
 grpc::Status ConvertViews(const std::vector<v1::View>& wire, DescriptorVariant variant,
-                          std::vector<ModelView>* views, std::vector<std::string>* thumbnails) {
+                          const ServerLimits& limits, std::vector<ModelView>* views,
+                          std::vector<std::string>* thumbnails) {
   bool any_thumbnail = false;
   for (std::size_t i = 0; i < wire.size(); ++i) {
     ModelView view;
     std::string thumbnail;
-    if (grpc::Status s = ToModelView(wire[i], variant, &view, &thumbnail); !s.ok()) {
+    if (grpc::Status s = ToModelView(wire[i], variant, limits, &view, &thumbnail); !s.ok()) {
       return grpc::Status(s.error_code(), "view " + std::to_string(i) + ": " + s.error_message());
     }
     any_thumbnail = any_thumbnail || !thumbnail.empty();
@@ -142,7 +143,8 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
     enrollment.variant = env_.catalogue.variant();
     enrollment.metadata = header_.metadata_json().empty() ? "{}" : header_.metadata_json();
     if (grpc::Status s =
-            ConvertViews(views_, enrollment.variant, &enrollment.views, &enrollment.thumbnails);
+            ConvertViews(views_, enrollment.variant, env_.limits, &enrollment.views,
+                         &enrollment.thumbnails);
         !s.ok()) {
       return s;
     }
@@ -180,7 +182,8 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
     std::vector<ModelView> views;
     std::vector<std::string> thumbnails;
     const std::vector<v1::View> wire(request->views().begin(), request->views().end());
-    if (grpc::Status s = ConvertViews(wire, env_.catalogue.variant(), &views, &thumbnails);
+    if (grpc::Status s =
+            ConvertViews(wire, env_.catalogue.variant(), env_.limits, &views, &thumbnails);
         !s.ok()) {
       return s;
     }

@@ -49,7 +49,7 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
     for (const v1::Frame& frame : request->frames()) {
       const Clock::time_point start = Clock::now();
       QueryFrame query;
-      status = ToQueryFrame(frame, env_.catalogue.variant(), &query);
+      status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
       if (!status.ok()) return status;
       v1::SessionUpdate* update = response->add_updates();
       *update = ToSessionUpdate(engine.Observe(index, query), *index);

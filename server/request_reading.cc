@@ -11,6 +11,7 @@
 #include "core/cedd.h"
 #include "core/view_description.h"
 #include "server/error_status.h"
+#include "server/image_budget.h"
 #include "storage/model_validation.h"
 
 namespace orbit::server {
@@ -30,28 +31,47 @@ grpc::Status CheckFinite(double value, std::string_view field) {
   return grpc::Status::OK;
 }
 
-// Decodes an encoded image and resolves its region of interest.
-grpc::Status DecodeImage(const std::string& bytes, const v1::Region& region, bool has_region,
-                         cv::Mat* image, std::optional<cv::Rect>* roi) {
+// An uploaded image, decoded, with the decode slot it holds: members are destroyed in reverse
+// order, so the slot is given back only once the pixels are freed.
+struct DecodedImage {
+  DecodeSlots::Slot slot;
+  cv::Mat pixels;
+  std::optional<cv::Rect> roi;  // the request's region, when it has one
+};
+
+// Decodes the encoded image `bytes` (the request's `field`) and resolves its region of interest.
+// The image budget (server/image_budget.h: limits.max_image_pixels, kMaxJpegScans) is checked on
+// the header first; only then does the decode wait for one of the process's decode slots, which
+// out->slot holds until *out is destroyed.
+grpc::Status DecodeImage(const std::string& bytes, std::string_view field,
+                         const ServerLimits& limits, const v1::Region& region, bool has_region,
+                         DecodedImage* out) {
+  ImageHeader header;
+  if (auto s = ReadImageHeader(bytes, field, &header); !s.ok()) return s;
+  if (auto s = CheckImageBudget(header, limits.max_image_pixels, field); !s.ok()) return s;
+  out->slot = ProcessDecodeSlots().Acquire();
+  cv::Mat& image = out->pixels;
   const std::vector<std::uint8_t> buffer(bytes.begin(), bytes.end());
   try {
-    *image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
+    image = cv::imdecode(buffer, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {
-    image->release();
+    image.release();
   }
-  if (image->empty()) {
-    return InvalidArgument("image is not a PNG, JPEG or other image OpenCV can decode");
+  if (image.empty()) {
+    return InvalidArgument(std::string(field) + " cannot be decoded: its " +
+                           (header.format == ImageFormat::kPng ? "PNG" : "JPEG") +
+                           " data is corrupt or truncated");
   }
-  if (image->depth() == CV_16U) image->convertTo(*image, CV_8U, 1.0 / 256);
+  if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 256);
   if (has_region) {
     const cv::Rect rect(region.x(), region.y(), region.width(), region.height());
     if (rect.width <= 0 || rect.height <= 0 ||
-        (rect & cv::Rect(0, 0, image->cols, image->rows)) != rect) {
+        (rect & cv::Rect(0, 0, image.cols, image.rows)) != rect) {
       return InvalidArgument("region must be non-empty and inside the " +
-                             std::to_string(image->cols) + "x" + std::to_string(image->rows) +
+                             std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                              " image");
     }
-    *roi = rect;
+    out->roi = rect;
   }
   return grpc::Status::OK;
 }
@@ -68,7 +88,8 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
                          "; variants cannot be mixed");
 }
 
-grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant, QueryFrame* out) {
+grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
+                          const ServerLimits& limits, QueryFrame* out) {
   if (auto s = CheckFinite(frame.azimuth_deg(), "frame.azimuth_deg"); !s.ok()) return s;
   if (frame.has_elevation_deg()) {
     if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
@@ -78,22 +99,22 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant, Que
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
   if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");
   if (has_cedd) return ReadCedd(frame.cedd(), "frame.cedd", &out->descriptor.values);
-  cv::Mat image;
-  std::optional<cv::Rect> roi;
-  if (auto s = DecodeImage(frame.image(), frame.region(), frame.has_region(), &image, &roi);
+  DecodedImage image;
+  if (auto s = DecodeImage(frame.image(), "frame.image", limits, frame.region(),
+                           frame.has_region(), &image);
       !s.ok()) {
     return s;
   }
   try {
-    out->descriptor = ExtractCedd(image, variant, roi);
+    out->descriptor = ExtractCedd(image.pixels, variant, image.roi);
   } catch (const std::exception& e) {
     return StatusFromException(e);
   }
   return grpc::Status::OK;
 }
 
-grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant, ModelView* out,
-                         std::string* thumbnail) {
+grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
+                         const ServerLimits& limits, ModelView* out, std::string* thumbnail) {
   if (auto s = CheckFinite(view.azimuth_deg(), "view.azimuth_deg"); !s.ok()) return s;
   out->azimuth = view.azimuth_deg();
   if (view.has_elevation_deg()) {
@@ -117,14 +138,15 @@ grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant, ModelV
     }
     return ReadCedd(view.cedd(), "view.cedd", &out->descriptor);
   }
-  cv::Mat image;
-  std::optional<cv::Rect> roi;
-  if (auto s = DecodeImage(view.image(), view.region(), view.has_region(), &image, &roi);
+  DecodedImage image;
+  if (auto s = DecodeImage(view.image(), "view.image", limits, view.region(), view.has_region(),
+                           &image);
       !s.ok()) {
     return s;
   }
   try {
-    const ViewDescription described = DescribeView(roi ? image(*roi) : image, variant);
+    const ViewDescription described =
+        DescribeView(image.roi ? image.pixels(*image.roi) : image.pixels, variant);
     out->descriptor = described.descriptor;
     out->typical_distance = described.typical_distance;
   } catch (const std::exception& e) {

@@ -1,8 +1,9 @@
 // Requests read into the values of core/ and storage/, with the checks SPEC.md's "Service
 // behaviour" asks for and that only the server makes: the variant of a request against the
 // server's, uploaded images decoded and described here. The conversions both ends share are in
-// api/conversion.h. Every refusal is INVALID_ARGUMENT with a message that names the field and
-// says what is wrong. Pure functions, thread-safe.
+// api/conversion.h. Every refusal names the field and says what is wrong; it is INVALID_ARGUMENT,
+// except an image above the server's pixel limit (RESOURCE_EXHAUSTED, server/image_budget.h).
+// Thread-safe; pure but for the process's decode slots, which an image decode waits for.
 #pragma once
 
 #include <string>
@@ -14,6 +15,7 @@
 #include "core/recognition_engine.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
+#include "server/session_settings.h"
 
 namespace orbit::server {
 
@@ -21,17 +23,22 @@ namespace orbit::server {
 grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant server,
                           std::string_view field);
 
-// A frame as the engines take it. With `cedd`: exactly 144 values, each 0..7. With `image`: the
-// image is decoded and its CEDD (of `region` when set, which must lie inside it) computed in
-// the server's variant. The azimuth must be finite.
-grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant, QueryFrame* out);
+// A frame as the engines take it. With `cedd`: exactly 144 values, each 0..7. With `image`: a PNG
+// or JPEG of at most limits.max_image_pixels pixels, read from its header before anything is
+// decoded (server/image_budget.h; RESOURCE_EXHAUSTED above it), then decoded (waiting for one of
+// the process's decode slots, held until the descriptor is computed) and its CEDD (of `region`
+// when set, which must lie inside it) computed in the server's variant. The azimuth must be
+// finite.
+grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
+                          const ServerLimits& limits, QueryFrame* out);
 
 // A view as the store keeps it. With `cedd`, the typical distance is taken from the message
-// (0, unknown, when absent; else it must be in [0, 1]); with `image`, the server describes the
-// image (or its region) as every enrollment path does (core/view_description.h, DescribeView
-// with the default seed), so an uploaded image stores what the client library would have sent.
-// `thumbnail` receives the view's thumbnail bytes (at most 64 KiB).
-grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant, ModelView* out,
-                         std::string* thumbnail);
+// (0, unknown, when absent; else it must be in [0, 1]); with `image` (within `limits` as a
+// frame's image is), the server describes the image (or its region) as every enrollment path
+// does (core/view_description.h, DescribeView with the default seed), so an uploaded image stores
+// what the client library would have sent. `thumbnail` receives the view's thumbnail bytes (at
+// most 64 KiB).
+grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
+                         const ServerLimits& limits, ModelView* out, std::string* thumbnail);
 
 }  // namespace orbit::server

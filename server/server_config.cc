@@ -54,7 +54,8 @@ std::string ServerConfig::Describe() const {
       << "  limits              " << limits.max_sessions << " sessions, "
       << limits.max_frames_per_second << " frames/s per session, window <= "
       << limits.max_window << ", HMM window x states <= " << limits.max_hmm_cells
-      << ", messages <= " << limits.max_message_bytes << " bytes, idle "
+      << ", messages <= " << limits.max_message_bytes << " bytes, images <= "
+      << limits.max_image_pixels << " pixels, idle "
       << limits.idle_timeout_seconds << " s\n"
       << "  workers             " << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
       << "\n"

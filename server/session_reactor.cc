@@ -91,7 +91,7 @@ void SessionReactor::HandleFrame(Clock::time_point received) {
 void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
   // The engine is used only here and only while busy_, so never concurrently.
   QueryFrame query;
-  grpc::Status status = ToQueryFrame(frame, env_.catalogue.variant(), &query);
+  grpc::Status status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
   v1::SessionUpdate update;
   if (status.ok()) {
     try {

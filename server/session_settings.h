@@ -21,6 +21,13 @@ struct ServerLimits {
   // (frame, state, object), so 1024 bounds a session at about 10 MB per 1000 enrolled objects
   // (the defaults, 8 x 8, use 64; the unchecked extreme, 64 x 360, would be 230 MB).
   int max_hmm_cells = 1024;
+  // width x height of an uploaded image (Frame.image, View.image), read from its header before
+  // decoding (server/image_budget.h). 4096 x 4096 passes a 12 MP phone photo (4032 x 3024), a 4K
+  // frame (3840 x 2160) and anything smaller, while a decoded image stays under 128 MiB (at most
+  // 8 bytes a pixel: 4 channels of 16 bits; 48 MiB for a colour JPEG) and about 0.3 s of CPU;
+  // CEDD needs far fewer pixels than that. Unchecked, a 1.2 MB PNG could claim 20000 x 20000 and
+  // cost 1.2 GB and 7 s.
+  int max_image_pixels = 4096 * 4096;
 };
 
 struct SessionSettings {

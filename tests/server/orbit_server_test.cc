@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <signal.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <fstream>
@@ -682,6 +683,45 @@ TEST(Server, SigtermEndsOpenSessionsCleanlyAndExitsZero) {
   const grpc::Status s = stream->Finish();
   EXPECT_EQ(s.error_code(), grpc::UNAVAILABLE) << s.error_message();
   EXPECT_EQ(exit_code.get(), 0);
+}
+
+// Issue 13, A: an image whose header claims 30000x30000 pixels (2.7 GB decoded) in 18 KB is
+// refused from its header, before any decoding, and the server carries on.
+TEST(Server, RefusesADecompressionBombFromItsHeaderAndKeepsServing) {
+  ServerProcess server;
+  EXPECT_NE(server.Log().find("images <= 16777216 pixels"), std::string::npos) << server.Log();
+  Client client(server.address());
+  v1::ObjectInfo info;
+  ASSERT_TRUE(client.Enroll("obj9", 9, &info).ok());
+
+  // A real 128x128 COIL-100 PNG whose header (IHDR, CRC fixed) claims 30000x30000.
+  std::ifstream file(testing::DataDir() / "coil-100" / "obj9__30.png", std::ios::binary);
+  const std::string png((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());
+  ASSERT_GT(png.size(), 33u);
+  std::string bomb = png;
+  for (int field : {16, 20}) {  // width, height
+    for (int i = 0; i < 4; ++i) bomb[field + i] = static_cast<char>(30000 >> (24 - 8 * i));
+  }
+  const auto crc = crc32(0, reinterpret_cast<const Bytef*>(bomb.data() + 12), 4 + 13);
+  for (int i = 0; i < 4; ++i) bomb[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+
+  v1::SessionRequest bomb_frame;
+  bomb_frame.mutable_frame()->set_image(bomb);
+  bomb_frame.mutable_frame()->set_azimuth_deg(30);
+  const auto refused = client.Session(v1::SessionOptions(), {bomb_frame});
+  EXPECT_EQ(refused.status.error_code(), grpc::RESOURCE_EXHAUSTED)
+      << refused.status.error_message();
+  EXPECT_EQ(refused.status.error_message(),
+            "frame.image is 30000x30000 pixels; at most 16777216 pixels (4096x4096) are decoded");
+  EXPECT_TRUE(refused.updates.empty());
+
+  // Another session on the same server is answered, from the genuine image.
+  v1::SessionRequest frame = bomb_frame;
+  frame.mutable_frame()->set_image(png);
+  const auto answered = client.Session(v1::SessionOptions(), {frame});
+  ASSERT_TRUE(answered.status.ok()) << answered.status.error_message();
+  ASSERT_EQ(answered.updates.size(), 1u);
+  EXPECT_EQ(answered.updates[0].candidates(0).name(), "obj9");
 }
 
 }  // namespace

@@ -1,8 +1,13 @@
 // Requests read into core values (server/request_reading.h): what a frame or a view becomes,
-// and every refusal as INVALID_ARGUMENT naming the field.
+// and every refusal naming the field: INVALID_ARGUMENT, or RESOURCE_EXHAUSTED for an image above
+// the server's pixel limit.
 #include "server/request_reading.h"
 
+#include <zlib.h>
+
+#include <chrono>
 #include <cmath>
+#include <future>
 #include <limits>
 #include <vector>
 
@@ -12,6 +17,7 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/view_description.h"
+#include "server/image_budget.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::server {
@@ -19,6 +25,7 @@ namespace {
 
 constexpr auto kLire = DescriptorVariant::kCeddLire;
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+const ServerLimits kLimits;  // the defaults: images up to 4096x4096
 
 cv::Mat CoilImage() {
   return ReadImageFile((orbit::testing::DataDir() / "coil-100" / "obj9__30.png").string());
@@ -28,6 +35,22 @@ std::string Png(const cv::Mat& image) {
   std::vector<std::uint8_t> bytes;
   cv::imencode(".png", image, bytes);
   return std::string(bytes.begin(), bytes.end());
+}
+
+std::string Jpeg(const cv::Mat& image) {
+  std::vector<std::uint8_t> bytes;
+  cv::imencode(".jpg", image, bytes);
+  return std::string(bytes.begin(), bytes.end());
+}
+
+// A decompression bomb: a real PNG of width x 1 black pixels (a few hundred bytes) whose header
+// (IHDR, with its CRC fixed) claims `height` rows.
+std::string PngBomb(int width, std::uint32_t height) {
+  std::string png = Png(cv::Mat::zeros(1, width, CV_8UC3));
+  for (int i = 0; i < 4; ++i) png[20 + i] = static_cast<char>(height >> (24 - 8 * i));
+  const auto crc = crc32(0, reinterpret_cast<const Bytef*>(png.data() + 12), 4 + 13);
+  for (int i = 0; i < 4; ++i) png[29 + i] = static_cast<char>(crc >> (24 - 8 * i));
+  return png;
 }
 
 std::string Cedd(std::uint8_t fill) { return std::string(kDescriptorSize, static_cast<char>(fill)); }
@@ -42,7 +65,7 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
   frame.set_cedd(Cedd(3));
   frame.set_azimuth_deg(-725.5);  // any finite value
   QueryFrame query;
-  ASSERT_TRUE(ToQueryFrame(frame, kLire, &query).ok());
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
   EXPECT_EQ(query.azimuth, -725.5);
   EXPECT_EQ(query.descriptor.values[100], 3);
   EXPECT_EQ(query.descriptor.variant, kLire);
@@ -55,7 +78,7 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
   frame.mutable_region()->set_y(20);
   frame.mutable_region()->set_width(60);
   frame.mutable_region()->set_height(50);
-  ASSERT_TRUE(ToQueryFrame(frame, DescriptorVariant::kCeddFull, &query).ok());
+  ASSERT_TRUE(ToQueryFrame(frame, DescriptorVariant::kCeddFull, kLimits, &query).ok());
   EXPECT_EQ(query.descriptor.values,
             ExtractCedd(image(cv::Rect(10, 20, 60, 50)), DescriptorVariant::kCeddFull).values);
 }
@@ -63,31 +86,31 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
 TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   QueryFrame query;
   v1::Frame frame;
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "a frame needs exactly one of cedd and image");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "a frame needs exactly one of cedd and image");
   frame.set_cedd(Cedd(1));
   frame.set_image("x");
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "a frame needs exactly one of cedd and image");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "a frame needs exactly one of cedd and image");
   frame.clear_image();
   frame.set_cedd(Cedd(8));
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "frame.cedd value 8 at index 0 is outside 0..7");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.cedd value 8 at index 0 is outside 0..7");
   frame.set_cedd("abc");
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "frame.cedd has 3 values, expected 144");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.cedd has 3 values, expected 144");
   frame.set_cedd(Cedd(1));
   frame.set_azimuth_deg(kNaN);
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "frame.azimuth_deg must be a finite number");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.azimuth_deg must be a finite number");
   frame.set_azimuth_deg(0);
   frame.set_elevation_deg(INFINITY);
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query), "frame.elevation_deg must be a finite number");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.elevation_deg must be a finite number");
   frame.clear_elevation_deg();
   frame.clear_cedd();
   frame.set_image("not an image");
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query),
-                "image is not a PNG, JPEG or other image OpenCV can decode");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.image is not a PNG or JPEG image (the formats this server decodes)");
   frame.set_image(Png(CoilImage()));
   frame.mutable_region()->set_x(100);
   frame.mutable_region()->set_width(40);
   frame.mutable_region()->set_height(10);
-  ExpectInvalid(ToQueryFrame(frame, kLire, &query),
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
                 "region must be non-empty and inside the 128x128 image");
 }
 
@@ -100,7 +123,7 @@ TEST(RequestReadingTest, ViewFromAnImageIsDescribedAsEveryEnrollmentPathDoesIt) 
   view.set_thumbnail("thumb");
   ModelView stored;
   std::string thumbnail;
-  ASSERT_TRUE(ToModelView(view, kLire, &stored, &thumbnail).ok());
+  ASSERT_TRUE(ToModelView(view, kLire, kLimits, &stored, &thumbnail).ok());
   const ViewDescription expected = DescribeView(image, kLire);
   EXPECT_EQ(stored.descriptor, expected.descriptor);
   EXPECT_EQ(stored.typical_distance, expected.typical_distance);
@@ -115,22 +138,115 @@ TEST(RequestReadingTest, ViewWithCeddKeepsItsTypicalDistanceAndRefusesBadOnes) {
   view.set_azimuth_deg(400);
   ModelView stored;
   std::string thumbnail;
-  ASSERT_TRUE(ToModelView(view, kLire, &stored, &thumbnail).ok());
+  ASSERT_TRUE(ToModelView(view, kLire, kLimits, &stored, &thumbnail).ok());
   EXPECT_EQ(stored.typical_distance, 0);  // unknown
   view.set_typical_distance(0.3);
-  ASSERT_TRUE(ToModelView(view, kLire, &stored, &thumbnail).ok());
+  ASSERT_TRUE(ToModelView(view, kLire, kLimits, &stored, &thumbnail).ok());
   EXPECT_EQ(stored.typical_distance, 0.3);
   view.set_typical_distance(1.5);
-  ExpectInvalid(ToModelView(view, kLire, &stored, &thumbnail),
+  ExpectInvalid(ToModelView(view, kLire, kLimits, &stored, &thumbnail),
                 "view.typical_distance must be in [0, 1]");
   view.set_typical_distance(0.3);
   view.set_thumbnail(std::string(64 * 1024 + 1, 'x'));
-  ExpectInvalid(ToModelView(view, kLire, &stored, &thumbnail),
+  ExpectInvalid(ToModelView(view, kLire, kLimits, &stored, &thumbnail),
                 "view.thumbnail is 65537 bytes; at most 65536");
   view.clear_thumbnail();
   view.set_cedd(Cedd(9));
-  ExpectInvalid(ToModelView(view, kLire, &stored, &thumbnail),
+  ExpectInvalid(ToModelView(view, kLire, kLimits, &stored, &thumbnail),
                 "view.cedd value 9 at index 0 is outside 0..7");
+}
+
+TEST(RequestReadingTest, ImagesAboveTheServersPixelLimitAreRefusedBeforeDecoding) {
+  // The bomb: 20000x20000 pixels (1.2 GB decoded) in a few hundred bytes.
+  v1::Frame frame;
+  frame.set_image(PngBomb(20000, 20000));
+  QueryFrame query;
+  grpc::Status s = ToQueryFrame(frame, kLire, kLimits, &query);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(s.error_message(),
+            "frame.image is 20000x20000 pixels; at most 16777216 pixels (4096x4096) are decoded");
+  v1::View view;
+  view.set_image(frame.image());
+  ModelView stored;
+  std::string thumbnail;
+  s = ToModelView(view, kLire, kLimits, &stored, &thumbnail);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(s.error_message(),
+            "view.image is 20000x20000 pixels; at most 16777216 pixels (4096x4096) are decoded");
+
+  // The limit is the server's: a 128x128 image passes at 128 x 128 pixels, not one below.
+  ServerLimits limits;
+  limits.max_image_pixels = 128 * 128;
+  frame.set_image(Png(CoilImage()));
+  EXPECT_TRUE(ToQueryFrame(frame, kLire, limits, &query).ok());
+  limits.max_image_pixels = 128 * 128 - 1;
+  s = ToQueryFrame(frame, kLire, limits, &query);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(s.error_message(), "frame.image is 128x128 pixels; at most 16383 pixels are decoded");
+  view.set_image(Jpeg(CoilImage()));
+  s = ToModelView(view, kLire, limits, &stored, &thumbnail);
+  EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(s.error_message(), "view.image is 128x128 pixels; at most 16383 pixels are decoded");
+}
+
+TEST(RequestReadingTest, OnlyPngAndJpegImagesAreDecoded) {
+  const cv::Mat image = CoilImage();
+  v1::Frame frame;
+  QueryFrame query;
+  const std::string jpeg = Jpeg(image);
+  frame.set_image(jpeg);
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_EQ(query.descriptor.values,
+            ExtractCedd(cv::imdecode(std::vector<std::uint8_t>(jpeg.begin(), jpeg.end()),
+                                     cv::IMREAD_UNCHANGED),
+                        kLire)
+                .values);
+
+  // OpenCV decodes BMP, but the server reads no BMP header, so it decodes none.
+  std::vector<std::uint8_t> bmp;
+  cv::imencode(".bmp", image, bmp);
+  frame.set_image(std::string(bmp.begin(), bmp.end()));
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.image is not a PNG or JPEG image (the formats this server decodes)");
+  // A sound header over broken data.
+  frame.set_image(Png(image).substr(0, 100));
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.image cannot be decoded: its PNG data is corrupt or truncated");
+  v1::View view;
+  view.set_image(jpeg.substr(0, jpeg.find("\xff\xc4")));  // up to the frame header, no scan
+  ModelView stored;
+  std::string thumbnail;
+  ExpectInvalid(ToModelView(view, kLire, kLimits, &stored, &thumbnail),
+                "view.image cannot be decoded: its JPEG data is corrupt or truncated");
+}
+
+TEST(RequestReadingTest, ImageDecodesWaitForAFreeDecodeSlotAndRefusalsDoNot) {
+  std::future<grpc::Status> decoding;  // declared first: joined after the slots are given back
+  v1::Frame frame;
+  frame.set_image(Png(CoilImage()));
+  QueryFrame query;
+  {
+    std::vector<DecodeSlots::Slot> every_slot;
+    for (int i = 0; i < ProcessDecodeSlots().capacity(); ++i) {
+      every_slot.push_back(ProcessDecodeSlots().Acquire());
+    }
+    decoding = std::async(std::launch::async,
+                          [&frame, &query] { return ToQueryFrame(frame, kLire, kLimits, &query); });
+    // Every slot is taken, so the image waits, however long it is given.
+    EXPECT_EQ(decoding.wait_for(std::chrono::milliseconds(200)), std::future_status::timeout);
+    // Meanwhile a bomb is refused from its header and a descriptor needs no slot.
+    v1::Frame other;
+    QueryFrame other_query;
+    other.set_image(PngBomb(20000, 20000));
+    EXPECT_EQ(ToQueryFrame(other, kLire, kLimits, &other_query).error_code(),
+              grpc::StatusCode::RESOURCE_EXHAUSTED);
+    other.set_cedd(Cedd(2));
+    other.clear_image();
+    EXPECT_TRUE(ToQueryFrame(other, kLire, kLimits, &other_query).ok());
+  }
+  const grpc::Status s = decoding.get();
+  EXPECT_TRUE(s.ok()) << s.error_message();
+  EXPECT_EQ(query.descriptor.values, ExtractCedd(CoilImage(), kLire).values);
 }
 
 TEST(RequestReadingTest, CheckVariantAcceptsUnsetOrTheServersOwn) {
