@@ -13,8 +13,9 @@ SessionReactor::SessionReactor(const SessionEnvironment& environment,
                                grpc::CallbackServerContext* context)
     : env_(environment),
       context_(context),
-      allowance_(2 * environment.limits.max_frames_per_second),
-      allowance_time_(Clock::now()),
+      rate_limit_(environment.limits.max_frames_per_second, Clock::now()),
+      read_started_(Clock::now()),
+      previous_read_done_(read_started_),
       last_activity_(Clock::now().time_since_epoch().count()) {
   std::lock_guard lock(mutex_);
   const grpc::Status admitted = env_.registry.Add(this);
@@ -33,6 +34,9 @@ void SessionReactor::OnReadDone(bool ok) {
     FinishOnce(grpc::Status::OK);
     return;
   }
+  const Clock::time_point now = Clock::now();
+  const Clock::time_point previous_read_done = previous_read_done_;
+  previous_read_done_ = now;
   switch (request_.kind_case()) {
     case v1::SessionRequest::kOpen:
       HandleOpen(request_.open());
@@ -46,7 +50,7 @@ void SessionReactor::OnReadDone(bool ok) {
       ReadNext();
       return;
     case v1::SessionRequest::kFrame:
-      HandleFrame(Clock::now());
+      HandleFrame(now, previous_read_done);
       return;
     default:
       FinishOnce({grpc::StatusCode::INVALID_ARGUMENT,
@@ -70,15 +74,14 @@ void SessionReactor::HandleOpen(const v1::SessionOptions& options) {
   ReadNext();
 }
 
-void SessionReactor::HandleFrame(Clock::time_point received) {
+void SessionReactor::HandleFrame(Clock::time_point received,
+                                 Clock::time_point previous_read_done) {
   if (!engine_) {
     FinishOnce({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"});
     return;
   }
-  if (!TakeFrameAllowance(received)) {
-    FinishOnce({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                "more than " + std::to_string(env_.limits.max_frames_per_second) +
-                    " frames per second"});
+  if (!rate_limit_.Take(received, previous_read_done, read_started_)) {
+    FinishOnce({grpc::StatusCode::RESOURCE_EXHAUSTED, rate_limit_.RefusalMessage()});
     return;
   }
   last_activity_ = received.time_since_epoch().count();
@@ -152,22 +155,15 @@ std::chrono::steady_clock::time_point SessionReactor::last_activity() const {
   return Clock::time_point(Clock::duration(last_activity_.load()));
 }
 
-void SessionReactor::ReadNext() { StartRead(&request_); }
+void SessionReactor::ReadNext() {
+  read_started_ = Clock::now();
+  StartRead(&request_);
+}
 
 void SessionReactor::FinishOnce(const grpc::Status& status) {
   if (finished_) return;
   finished_ = true;
   Finish(status);
-}
-
-bool SessionReactor::TakeFrameAllowance(Clock::time_point now) {
-  const double rate = env_.limits.max_frames_per_second;
-  const double elapsed = std::chrono::duration<double>(now - allowance_time_).count();
-  allowance_ = std::min(2 * rate, allowance_ + elapsed * rate);
-  allowance_time_ = now;
-  if (allowance_ < 1) return false;
-  allowance_ -= 1;
-  return true;
 }
 
 }  // namespace orbit::server

@@ -17,6 +17,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "server/frame_rate_limit.h"
 #include "server/model_catalogue.h"
 #include "server/session_engine.h"
 #include "server/session_registry.h"
@@ -57,10 +58,11 @@ class SessionReactor final
 
   // REQUIRES: mutex_ held. Each handles the request just read.
   void HandleOpen(const v1::SessionOptions& options);
-  void HandleFrame(Clock::time_point received);
+  // `previous_read_done`: when the read before this frame's completed (the rate limit counts
+  // the time the server held the stream since as the device's, not as a burst).
+  void HandleFrame(Clock::time_point received, Clock::time_point previous_read_done);
   void ReadNext();
   void FinishOnce(const grpc::Status& status);
-  bool TakeFrameAllowance(Clock::time_point now);
 
   // Runs on the worker pool.
   void Process(v1::Frame frame, Clock::time_point received);
@@ -79,9 +81,9 @@ class SessionReactor final
   std::optional<Clock::time_point> write_started_;  // while an update is being written
   bool finished_ = false;  // Finish has been called
   std::optional<grpc::Status> pending_close_;  // Close() while busy: applied when idle
-  // Frame-rate limit: a token bucket holding up to 2 s of frames.
-  double allowance_ = 0;
-  Clock::time_point allowance_time_;
+  FrameRateLimit rate_limit_;
+  Clock::time_point read_started_;        // when the outstanding read was started
+  Clock::time_point previous_read_done_;  // when the read before it completed
   std::atomic<Clock::rep> last_activity_;
 };
 

@@ -132,14 +132,21 @@ TEST(RecognitionSession, AServerRefusalEndsTheSessionWithItsStatus) {
   const grpc::Status status = session->Close();
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
 
-  // top-k beyond the API's 1..100, likewise; a window beyond the server's limit is
-  // RESOURCE_EXHAUSTED; and the server still serves others.
+  // top-k beyond the API's 1..100 and a window beyond its 1..64, likewise; an HMM larger than
+  // the server's limit (64 x 360 cells) is RESOURCE_EXHAUSTED; and the server still serves
+  // others.
   auto too_many = RecognitionSession::Open(connection, testing::TopK(101));
   EXPECT_EQ(too_many->Close().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   SessionOptions wide;
   wide.window = 65;
   auto too_wide = RecognitionSession::Open(connection, wide);
-  EXPECT_EQ(too_wide->Close().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_EQ(too_wide->Close().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  SessionOptions big_hmm;
+  big_hmm.engine = v1::ENGINE_HMM;
+  big_hmm.window = 64;
+  big_hmm.hmm_states = 360;
+  auto too_big = RecognitionSession::Open(connection, big_hmm);
+  EXPECT_EQ(too_big->Close().error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   auto good = RecognitionSession::Open(connection, {});
   good->Push(CoilImage(1, 5), 5);
   EXPECT_TRUE(good->NextUpdate().has_value());
