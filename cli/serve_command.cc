@@ -132,6 +132,11 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "seconds without a frame before a session is closed")
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  cmd->add_option("--bulk-workers", c.bulk_worker_threads,
+                  "worker threads for image frames and enrollments, apart from the descriptor\n"
+                  "frames of every session (0: half the cores, at least one)")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
   cmd->add_option("--workers", c.worker_threads, "worker threads (0: one per core)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();

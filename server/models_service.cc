@@ -86,7 +86,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
       if (context_->IsCancelled()) {
         Finish({grpc::StatusCode::CANCELLED, "the enrollment stream broke; nothing was stored"});
       } else {
-        env_.pool.Post([this] { Finish(Commit()); });
+        env_.bulk_pool.Post([this] { Finish(Commit()); });
       }
       return;
     }
@@ -176,7 +176,7 @@ grpc::ServerReadReactor<v1::EnrollRequest>* ModelsService::Enroll(
 grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* context,
                                                   const v1::AddViewsRequest* request,
                                                   v1::ObjectInfo* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.pool, [this, request, response] {
+  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.bulk_pool, [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     if (request->views().empty()) return InvalidArgument("views is empty");
     std::vector<ModelView> views;

@@ -18,7 +18,8 @@ namespace orbit::server {
 
 struct ModelsEnvironment {
   ModelCatalogue& catalogue;
-  WorkerPool& pool;
+  WorkerPool& pool;       // short calls: list, get, delete, server info
+  WorkerPool& bulk_pool;  // enrollments and added views: describing images, the store's fsync
   const AccessControl& access;
   const ServerLimits& limits;
   const SessionSettings& defaults;

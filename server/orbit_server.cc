@@ -9,6 +9,7 @@
 #include <grpcpp/health_check_service_interface.h>
 
 #include "orbit/version.h"
+#include "core/parallel_for.h"
 #include "server/model_catalogue.h"
 #include "server/models_service.h"
 #include "server/recognition_service.h"
@@ -54,16 +55,18 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   store_options.create_if_missing = true;
   store_ = std::make_unique<SqliteModelStore>(config_.database, store_options);
   catalogue_ = std::make_unique<ModelCatalogue>(*store_, config_.variant, config_.index);
-  const int threads = config_.worker_threads > 0
-                          ? config_.worker_threads
-                          : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
-  pool_ = std::make_unique<WorkerPool>(threads);
+  const int cpus = AvailableCpus();
+  pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);
+  bulk_pool_ = std::make_unique<WorkerPool>(
+      config_.bulk_worker_threads > 0 ? config_.bulk_worker_threads : std::max(1, cpus / 2));
   registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
   recognition_ = std::make_unique<RecognitionService>(
-      SessionEnvironment{*catalogue_, *pool_, *registry_, config_.limits, config_.session_defaults},
+      SessionEnvironment{*catalogue_, *pool_, *bulk_pool_, *registry_, config_.limits,
+                         config_.session_defaults},
       access_);
   models_ = std::make_unique<ModelsService>(ModelsEnvironment{
-      *catalogue_, *pool_, access_, config_.limits, config_.session_defaults, kOrbitVersion});
+      *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
+      kOrbitVersion});
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -113,6 +116,7 @@ void OrbitServer::Shutdown() {
     server_->Shutdown(std::chrono::system_clock::now() +
                       std::chrono::seconds(config_.shutdown_grace_seconds));
     pool_.reset();  // runs what is queued (calls already cancelled finish harmlessly)
+    bulk_pool_.reset();
   });
 }
 

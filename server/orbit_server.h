@@ -60,6 +60,7 @@ class OrbitServer {
   std::unique_ptr<ModelStore> store_;
   std::unique_ptr<ModelCatalogue> catalogue_;
   std::unique_ptr<WorkerPool> pool_;
+  std::unique_ptr<WorkerPool> bulk_pool_;
   std::unique_ptr<SessionRegistry> registry_;
   std::unique_ptr<RecognitionService> recognition_;
   std::unique_ptr<ModelsService> models_;

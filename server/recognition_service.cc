@@ -1,5 +1,6 @@
 #include "server/recognition_service.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "api/conversion.h"
@@ -31,7 +32,11 @@ grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionServi
 grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerContext* context,
                                                         const v1::RecognizeRequest* request,
                                                         v1::RecognizeResponse* response) {
-  return RunUnaryCall(context, access_, Role::kRecognize, env_.pool, [this, request, response] {
+  // A batch with an image takes the image workers, like a session's image frame.
+  const bool has_image = std::any_of(request->frames().begin(), request->frames().end(),
+                                     [](const v1::Frame& frame) { return !frame.image().empty(); });
+  WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
+  return RunUnaryCall(context, access_, Role::kRecognize, workers, [this, request, response] {
     using Clock = std::chrono::steady_clock;
     if (request->frames().empty()) {
       return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "frames is empty");

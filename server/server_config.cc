@@ -58,6 +58,8 @@ std::string ServerConfig::Describe() const {
       << limits.max_image_pixels << " pixels, idle "
       << limits.idle_timeout_seconds << " s\n"
       << "  workers             " << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
+      << ", for images and enrollments "
+      << (bulk_worker_threads > 0 ? std::to_string(bulk_worker_threads) : "half the cores")
       << "\n"
       << "  shutdown grace      " << shutdown_grace_seconds << " s\n";
   return out.str();

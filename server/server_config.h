@@ -24,7 +24,11 @@ struct ServerConfig {
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;
-  int worker_threads = 0;          // engine and store work; 0: one per core
+  int worker_threads = 0;          // descriptor frames and short calls; 0: one per core
+  // Work that may take long: frames and views sent as images (decoding), enrollments and added
+  // views (describing, the store's fsync). On workers of its own, so that it never delays
+  // another session's descriptor frames. 0: half the cores, at least one.
+  int bulk_worker_threads = 0;
   int shutdown_grace_seconds = 5;  // SIGTERM: time open calls get to end cleanly
 
   // Multi-line, human-readable account of the configuration in force (no secrets: token and

@@ -86,7 +86,8 @@ void SessionReactor::HandleFrame(Clock::time_point received,
   }
   last_activity_ = received.time_since_epoch().count();
   busy_ = true;
-  env_.pool.Post([this, frame = std::move(*request_.mutable_frame()), received]() mutable {
+  WorkerPool& workers = request_.frame().image().empty() ? env_.pool : env_.bulk_pool;
+  workers.Post([this, frame = std::move(*request_.mutable_frame()), received]() mutable {
     Process(std::move(frame), received);
   });
 }

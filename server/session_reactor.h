@@ -29,7 +29,8 @@ namespace orbit::server {
 // What every session of a server shares.
 struct SessionEnvironment {
   ModelCatalogue& catalogue;
-  WorkerPool& pool;
+  WorkerPool& pool;       // descriptor frames
+  WorkerPool& bulk_pool;  // image frames (decoding), so they never delay descriptor frames
   SessionRegistry& registry;
   const ServerLimits& limits;
   const SessionSettings& defaults;

@@ -70,7 +70,7 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   owns_database_ = !options.database.has_value();
   database_ = options.database.value_or(temp_dir_ / "models.db");
   std::vector<std::string> args = {"serve", "--db", database_.string(), "--listen", options.listen,
-                                   "--workers", "2"};
+                                   "--workers", std::to_string(options.workers)};
   if (options.tokens_file) args.insert(args.end(), {"--tokens", options.tokens_file->string()});
   if (options.tls_cert) args.insert(args.end(), {"--tls-cert", options.tls_cert->string()});
   if (options.tls_key) args.insert(args.end(), {"--tls-key", options.tls_key->string()});

@@ -21,6 +21,7 @@ struct ServerProcessOptions {
   // The model store; a fresh file in a temporary folder when unset (removed afterwards).
   std::optional<std::filesystem::path> database = std::nullopt;
   std::string listen = "127.0.0.1:0";  // port 0: the server picks a free one
+  int workers = 2;  // --workers
   std::optional<std::filesystem::path> tokens_file = std::nullopt;
   std::optional<std::filesystem::path> tls_cert = std::nullopt;
   std::optional<std::filesystem::path> tls_key = std::nullopt;
