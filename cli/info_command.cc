@@ -48,7 +48,9 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
         {"max_window", l.max_window()},
         {"max_message_bytes", l.max_message_bytes()},
         {"max_views_per_object", l.max_views_per_object()},
-        {"idle_timeout_seconds", l.idle_timeout_seconds()}}},
+        {"idle_timeout_seconds", l.idle_timeout_seconds()},
+        {"max_image_pixels", l.max_image_pixels()},
+        {"max_hmm_cells", l.max_hmm_cells()}}},
   };
 }
 
@@ -71,7 +73,9 @@ int RunInfo(const InfoOptions& options) {
             << "limits    " << l["max_sessions"] << " sessions, " << l["max_frames_per_second"]
             << " frames/s per session, window <= " << l["max_window"] << ", messages <= "
             << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
-            << " views per object, idle timeout " << l["idle_timeout_seconds"] << " s\n";
+            << " views per object, idle timeout " << l["idle_timeout_seconds"] << " s, images <= "
+            << l["max_image_pixels"] << " pixels, HMM window x states <= " << l["max_hmm_cells"]
+            << "\n";
   return 0;
 }
 

@@ -267,6 +267,8 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
     limits->set_max_message_bytes(env_.limits.max_message_bytes);
     limits->set_max_views_per_object(static_cast<int>(kMaxViewsPerObject));
     limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
+    limits->set_max_image_pixels(env_.limits.max_image_pixels);
+    limits->set_max_hmm_cells(env_.limits.max_hmm_cells);
     return grpc::Status::OK;
   });
 }

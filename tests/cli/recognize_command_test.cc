@@ -44,6 +44,8 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_EQ(info_json["objects"], 3);
   EXPECT_EQ(info_json["views"], 54);
   EXPECT_EQ(info_json["variant"], "cedd-lire");
+  EXPECT_EQ(info_json["limits"]["max_image_pixels"], 16777216);
+  EXPECT_EQ(info_json["limits"]["max_hmm_cells"], 1024);
 
   // Object 2 between its enrolled views, the compass 90 degrees off.
   const std::string frames = CoilImageArguments(2, {30, 50, 70, 90}, 90);

@@ -242,6 +242,8 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
   EXPECT_EQ(info.view_count(), 4 * 72 + static_cast<int>(AzimuthsAwayFrom(100, 130).size()));
   EXPECT_EQ(info.session_defaults().window(), 8);
   EXPECT_EQ(info.session_defaults().engine(), v1::ENGINE_HMM);
+  EXPECT_EQ(info.limits().max_image_pixels(), 4096 * 4096);
+  EXPECT_EQ(info.limits().max_hmm_cells(), 1024);
 
   for (const v1::Engine engine : {v1::ENGINE_VCI, v1::ENGINE_HMM, v1::ENGINE_VCI_HMM}) {
     v1::SessionOptions options;
