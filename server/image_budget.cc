@@ -5,8 +5,8 @@
 #include <cstddef>
 #include <optional>
 #include <string>
-#include <thread>
 
+#include "core/parallel_for.h"
 #include "server/error_status.h"
 
 namespace orbit::server {
@@ -263,7 +263,7 @@ DecodeSlots::Slot::~Slot() {
 }
 
 DecodeSlots& ProcessDecodeSlots() {
-  static DecodeSlots slots(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
+  static DecodeSlots slots(AvailableCpus());
   return slots;
 }
 
