@@ -5,6 +5,9 @@
 //                                    (ViewIndexSnapshot::SimilarityToEveryView)
 //   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
 //                                    kd-tree index, default options
+//   frame-after-model-change/<engine>/<objects>[/first-session]
+//                                    the same, on a snapshot that gained or lost a 72-view object
+//                                    since the session's previous frame (BM_FrameAfterModelChange)
 //   kd-search/coil100, exact-search/coil100
 //                                    one retrieval list (N_L = 4) over COIL-100's views at
 //                                    multiples of 10 degrees, queried with the views in between;
@@ -33,6 +36,7 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/recognition_engine.h"
+#include "core/sector_similarity_table.h"
 #include "core/view_index.h"
 
 namespace orbit {
@@ -167,6 +171,57 @@ void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objec
   state.counters["top1"] = answered > 0 ? static_cast<double>(correct) / answered : 0;
 }
 
+// One frame of a session whose window is full, on a snapshot that differs from its previous
+// frame's by one enrolled (even iterations) or deleted (odd) object of 72 views: what an
+// enrollment costs each open session (issue 13, defect E). `shared_work_done` builds the
+// snapshot's shared state first (the HMM's sector table, built once per snapshot by the first
+// session to see it), as for every session but one; otherwise the session pays for it.
+void BM_FrameAfterModelChange(benchmark::State& state, std::string engine_name, int objects,
+                              bool shared_work_done) {
+  struct ChangingSet {
+    std::unique_ptr<SyntheticObjects> source;
+    std::unique_ptr<ViewIndex> index;
+    ObjectModel enrolled;  // enrolled and deleted in turn
+  };
+  static std::map<int, ChangingSet> sets;
+  ChangingSet& set = sets[objects];
+  if (!set.index) {
+    set.source = std::make_unique<SyntheticObjects>(objects + 1);
+    std::vector<ObjectModel> models = set.source->Models();
+    set.enrolled = std::move(models.back());
+    models.pop_back();
+    set.index = std::make_unique<ViewIndex>(std::move(models),
+                                            ViewIndexOptions{.search = SearchMode::kKdTree});
+  }
+  const std::unique_ptr<ViewIndex>& index = set.index;
+  const ObjectModel& enrolled = set.enrolled;
+  SyntheticObjects* const source = set.source.get();
+  const auto engine = CreateEngine(engine_name);
+  const int window = engine->options().window;
+  const std::vector<QueryFrame> frames = source->Frames(0, 0.0, 4 * window);
+  for (int k = 0; k < window; ++k) engine->Observe(index->Snapshot(), frames[k]);
+  std::size_t next = window;
+  bool present = false;
+  for (auto _ : state) {
+    state.PauseTiming();
+    if (present) {
+      index->Remove(enrolled.id);
+    } else {
+      index->Add(enrolled);
+    }
+    present = !present;
+    const auto snapshot = index->Snapshot();
+    if (shared_work_done && engine_name == "hmm") {
+      benchmark::DoNotOptimize(SectorSimilarityTable::Of(*snapshot, engine->options().hmm_states));
+    }
+    state.ResumeTiming();
+    const FrameUpdate update = engine->Observe(snapshot, frames[next]);
+    benchmark::DoNotOptimize(update.ranking.data());
+    next = next + 1 < frames.size() ? next + 1 : window;
+  }
+  if (present) index->Remove(enrolled.id);
+}
+
 // COIL-100 descriptors (cedd-lire), extracted on first use: views at multiples of 10 degrees as
 // the model, the others as queries.
 struct CoilSplit {
@@ -233,6 +288,18 @@ int RegisterEngineBenchmarks() {
           ("session-frame/" + std::string(engine) + "/" + std::to_string(objects)).c_str(),
           BM_SessionFrame, std::string(engine), objects)
           ->Unit(benchmark::kMicrosecond);
+    }
+  }
+  for (const char* engine : {"vci", "hmm"}) {
+    for (const int objects : {100, 1000}) {
+      for (const bool shared : {true, false}) {
+        benchmark::RegisterBenchmark(("frame-after-model-change/" + std::string(engine) + "/" +
+                                      std::to_string(objects) + (shared ? "" : "/first-session"))
+                                         .c_str(),
+                                     BM_FrameAfterModelChange, std::string(engine), objects, shared)
+            ->Unit(benchmark::kMicrosecond);
+        if (std::string(engine) != "hmm") break;  // only the HMM has shared per-snapshot work
+      }
     }
   }
   benchmark::RegisterBenchmark("exact-search/coil100", BM_CoilSearch, SearchMode::kExact)

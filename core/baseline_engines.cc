@@ -1,9 +1,11 @@
 #include "core/baseline_engines.h"
 
 #include <deque>
+#include <unordered_map>
 #include <vector>
 
 #include "core/angles.h"
+#include "core/similarity.h"
 
 namespace orbit {
 namespace {
@@ -20,6 +22,28 @@ class BaselineEngine final : public RecognitionEngine {
   }
   void DropOldest() override { similarities_.pop_front(); }
   void Clear() override { similarities_.clear(); }
+
+  // Kept objects' similarities move to their new slots; added objects' views are scored.
+  void Rebase(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after,
+              const SnapshotChange&, std::span<const QueryFrame> window) override {
+    std::unordered_map<const IndexedObject*, std::size_t> before_first_slot;
+    for (const ObjectSlot& slot : before.objects()) before_first_slot[slot.object] = slot.first_slot;
+    for (std::size_t t = 0; t < similarities_.size(); ++t) {
+      std::vector<float> moved(after.slot_count(), 0.0f);
+      for (const ObjectSlot& slot : after.objects()) {
+        const auto kept = before_first_slot.find(slot.object);
+        const int views = slot.object->view_count();
+        for (int v = 0; v < views; ++v) {
+          moved[slot.first_slot + v] =
+              kept != before_first_slot.end()
+                  ? similarities_[t][kept->second + v]
+                  : static_cast<float>(Tanimoto(window[t].descriptor.values,
+                                                slot.object->model().views[v].descriptor));
+        }
+      }
+      similarities_[t] = std::move(moved);
+    }
+  }
 
   std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
                                  std::span<const QueryFrame> window) override {

@@ -1,9 +1,11 @@
 #include "core/hough_voter.h"
 
+#include <algorithm>
 #include <deque>
 #include <limits>
 #include <stdexcept>
 #include <unordered_map>
+#include <unordered_set>
 
 #include "core/angles.h"
 #include "core/similarity.h"
@@ -96,6 +98,35 @@ class HoughVoter final : public RecognitionEngine {
   void Clear() override {
     lists_.clear();
     most_similar_.clear();
+  }
+
+  // A list that held a removed object is searched again (a view beyond its end may now belong
+  // in it); any other list only merges the added objects' views that beat its entries. Equal
+  // similarities keep the index's order: kept objects before added ones (added last).
+  void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
+              const SnapshotChange& change, std::span<const QueryFrame> window) override {
+    std::unordered_set<ObjectId> removed;
+    for (const IndexedObject* object : change.removed) removed.insert(object->id());
+    const auto was_removed = [&](const ViewMatch& m) { return removed.contains(m.object); };
+    for (std::size_t k = 0; k < lists_.size(); ++k) {
+      const DescriptorValues& query = window[k].descriptor.values;
+      for (const ObjectId id : removed) most_similar_[k].erase(id);
+      std::vector<ViewMatch>& list = lists_[k];
+      if (std::any_of(list.begin(), list.end(), was_removed)) {
+        list = after.Search(query, options().list_length);
+        continue;
+      }
+      for (const ObjectSlot& slot : change.added) {
+        const auto& views = slot.object->model().views;
+        for (int v = 0; v < static_cast<int>(views.size()); ++v) {
+          list.push_back({slot.object->id(), v, views[v].azimuth, Tanimoto(query, views[v].descriptor)});
+        }
+      }
+      std::stable_sort(list.begin(), list.end(), [](const ViewMatch& a, const ViewMatch& b) {
+        return a.similarity > b.similarity;
+      });
+      if (static_cast<int>(list.size()) > options().list_length) list.resize(options().list_length);
+    }
   }
 
   std::vector<Assessment> Assess(const ViewIndexSnapshot& index,

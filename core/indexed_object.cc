@@ -28,14 +28,18 @@ double GeneralisedTanimoto(const Q& q, const C& c) {
 // Circular distance between two azimuths, in [0, 180].
 double CircularDistance(double a, double b) { return std::abs(AzimuthChange(b, a)); }
 
-MeanDescriptor MeanOf(const ObjectModel& model, const std::vector<int>& views) {
-  std::array<double, kDescriptorSize> sum{};
+ViewSum SumOf(const ObjectModel& model, const std::vector<int>& views) {
+  ViewSum sum{};
   for (const int v : views) {
     for (int i = 0; i < kDescriptorSize; ++i) sum[i] += model.views[v].descriptor[i];
   }
+  return sum;
+}
+
+MeanDescriptor MeanOf(const ViewSum& sum, std::size_t count) {
   MeanDescriptor mean{};
   for (int i = 0; i < kDescriptorSize; ++i) {
-    mean[i] = static_cast<float>(sum[i] / static_cast<double>(views.size()));
+    mean[i] = static_cast<float>(sum[i] / static_cast<double>(count));
   }
   return mean;
 }
@@ -76,7 +80,8 @@ SectorViews ComputeSectorViews(const ObjectModel& model, int count) {
       }
     }
     sectors.views[s] = members;
-    sectors.descriptor.push_back(MeanOf(model, members));
+    sectors.sum.push_back(SumOf(model, members));
+    sectors.descriptor.push_back(MeanOf(sectors.sum.back(), members.size()));
     const MeanDescriptor& d = sectors.descriptor.back();
     double norm = 0;
     for (const float x : d) norm += static_cast<double>(x) * x;

@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -21,6 +22,8 @@ namespace orbit {
 
 // A real-valued descriptor: the mean of several CEDD descriptors.
 using MeanDescriptor = std::array<float, kDescriptorSize>;
+// The exact sum of several CEDD descriptors, bin by bin.
+using ViewSum = std::array<std::int32_t, kDescriptorSize>;
 
 // TC generalised to real values, q.c / (q.q + c.c - q.c), with the same conventions as
 // Tanimoto() for zero vectors. Equal to Tanimoto() on integer-valued inputs.
@@ -34,6 +37,7 @@ double Tanimoto(const MeanDescriptor& q, const MeanDescriptor& c);
 struct SectorViews {
   int count = 0;
   std::vector<MeanDescriptor> descriptor;        // [count]
+  std::vector<ViewSum> sum;                      // [count]: descriptor * (views in the mean)
   std::vector<double> squared_norm;              // [count]: descriptor . descriptor
   // [count]: the model views the mean was taken over (the sector's own, or the stand-ins)
   std::vector<std::vector<int>> views;

@@ -160,20 +160,9 @@ class OrientationHmm final : public RecognitionEngine {
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
-    if (!table_) {
-      table_ = std::make_unique<SectorSimilarityTable>(index, states_);
-      for (std::size_t o = 0; o < index.object_count(); ++o) {
-        positions_[index.objects()[o].object] = o;
-      }
-    }
-    const std::size_t objects = table_->object_count();
+    if (!table_) UseSnapshot(index);
     WindowFrame stored;
-    stored.similarity.resize(objects * states_);
-    stored.emission.resize(objects * states_);
-    table_->Compute(frame.descriptor.values, stored.similarity);
-    std::vector<float> sum(objects);
-    EmissionsFromSimilarities(stored.similarity.data(), states_, sum.data(),
-                              stored.emission.data(), objects);
+    Score(*table_, frame.descriptor.values, stored);
     if (previous_azimuth_) {
       stored.step = MakeSparseTransitions(sectors_, AzimuthChange(*previous_azimuth_, frame.azimuth));
     }
@@ -186,6 +175,52 @@ class OrientationHmm final : public RecognitionEngine {
     previous_azimuth_.reset();
     positions_.clear();
     table_.reset();
+  }
+
+  // Objects kept move their columns to their new positions; objects added are scored against
+  // the kept frames with a table of their own; removed ones are dropped. Each object's
+  // similarities and emissions depend on that object alone, so the state equals a re-append.
+  void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
+              const SnapshotChange& change, std::span<const QueryFrame> window) override {
+    const std::unordered_map<const IndexedObject*, std::size_t> before_positions =
+        std::move(positions_);
+    const std::size_t before_objects = table_->object_count();
+    UseSnapshot(after);
+    const std::size_t objects = table_->object_count();
+
+    std::vector<const IndexedObject*> added_objects;
+    for (const ObjectSlot& slot : change.added) added_objects.push_back(slot.object);
+    const SectorSimilarityTable added(added_objects, states_);
+    // Where each object's column comes from: its position before, or (kFromAdded + j) for the
+    // j-th added object.
+    constexpr std::size_t kFromAdded = std::size_t{1} << 62;
+    std::vector<std::size_t> source(objects);
+    std::size_t next_added = 0;
+    for (std::size_t o = 0; o < objects; ++o) {
+      const auto kept = before_positions.find(after.objects()[o].object);
+      source[o] = kept != before_positions.end() ? kept->second : kFromAdded + next_added++;
+    }
+
+    WindowFrame scored;
+    for (std::size_t t = 0; t < frames_.size(); ++t) {
+      WindowFrame& frame = frames_[t];
+      if (!added_objects.empty()) Score(added, window[t].descriptor.values, scored);
+      std::vector<float> similarity(objects * states_), emission(objects * states_);
+      for (int i = 0; i < states_; ++i) {
+        const std::size_t row = static_cast<std::size_t>(i) * objects;
+        for (std::size_t o = 0; o < objects; ++o) {
+          const std::size_t from =
+              source[o] >= kFromAdded
+                  ? static_cast<std::size_t>(i) * added_objects.size() + (source[o] - kFromAdded)
+                  : static_cast<std::size_t>(i) * before_objects + source[o];
+          const WindowFrame& origin = source[o] >= kFromAdded ? scored : frame;
+          similarity[row + o] = origin.similarity[from];
+          emission[row + o] = origin.emission[from];
+        }
+      }
+      frame.similarity = std::move(similarity);
+      frame.emission = std::move(emission);
+    }
   }
 
   std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
@@ -237,10 +272,31 @@ class OrientationHmm final : public RecognitionEngine {
     SparseTransitions step;         // from the previous frame (empty for the first)
   };
 
+  // The snapshot's shared sector table, and every object's position in it.
+  void UseSnapshot(const ViewIndexSnapshot& index) {
+    table_ = SectorSimilarityTable::Of(index, states_);
+    positions_.clear();
+    for (std::size_t o = 0; o < index.object_count(); ++o) {
+      positions_[index.objects()[o].object] = o;
+    }
+  }
+
+  // The similarities and emissions of one frame for the objects of `table`.
+  void Score(const SectorSimilarityTable& table, const DescriptorValues& descriptor,
+             WindowFrame& frame) const {
+    const std::size_t objects = table.object_count();
+    frame.similarity.resize(objects * states_);
+    frame.emission.resize(objects * states_);
+    table.Compute(descriptor, frame.similarity);
+    std::vector<float> sum(objects);
+    EmissionsFromSimilarities(frame.similarity.data(), states_, sum.data(), frame.emission.data(),
+                              objects);
+  }
+
   const int states_;
   const std::vector<Arc> sectors_;
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
-  std::unique_ptr<SectorSimilarityTable> table_;  // for the current index snapshot
+  std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::unordered_map<const IndexedObject*, std::size_t> positions_;  // object -> position
   std::deque<WindowFrame> frames_;
   std::optional<double> previous_azimuth_;

@@ -66,6 +66,12 @@ RecognitionEngine::RecognitionEngine(std::string_view name, const EngineOptions&
 
 RecognitionEngine::~RecognitionEngine() = default;
 
+void RecognitionEngine::Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
+                               const SnapshotChange&, std::span<const QueryFrame> window) {
+  Clear();
+  for (const QueryFrame& frame : window) Append(after, frame);
+}
+
 void RecognitionEngine::Complete(const ViewIndexSnapshot&, std::span<const QueryFrame>,
                                  Assessment&) {}
 
@@ -94,10 +100,13 @@ FrameUpdate RecognitionEngine::Observe(std::shared_ptr<const ViewIndexSnapshot> 
                                        const QueryFrame& frame) {
   Validate(index.get(), frame);
   if (index != index_) {
-    // A new model set: redo the per-frame work of the frames still in the window.
-    Clear();
+    // A new model set: bring the frames still in the window to it.
+    if (window_.empty()) {
+      Clear();
+    } else {
+      Rebase(*index_, *index, CompareSnapshots(*index_, *index), window_);
+    }
     index_ = std::move(index);
-    for (const QueryFrame& kept : window_) Append(*index_, kept);
   }
   Push(frame);
   return Answer();

@@ -30,8 +30,12 @@
 // by the same constant leaves every update unchanged, and sequences may cross 0/360.
 //
 // Index updates: each call takes the snapshot to answer from; when it differs from the previous
-// call's, the engine recomputes its per-frame state for the frames still in its window, so
-// objects enrolled or deleted since are seen from this frame on.
+// call's, the engine brings its per-frame state for the frames still in its window to the new
+// snapshot (Rebase), so objects enrolled or deleted since are seen from this frame on. The
+// work is proportional to the change, not to the index: an enrolled object's views are scored
+// against the kept frames, a deleted object's state is dropped (issue: an enrollment must not
+// stall every open session). The answer is the one a fresh session given the same window on the
+// new snapshot would give.
 //
 // Thread safety: an engine (a session) must be used by one thread at a time; different engines
 // may run concurrently on the same snapshot.
@@ -151,8 +155,13 @@ class RecognitionEngine {
   virtual void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) = 0;
   // The frame at window position 0 left.
   virtual void DropOldest() = 0;
-  // Forget every per-frame state (Reset, or a new snapshot before the window is re-appended).
+  // Forget every per-frame state (Reset).
   virtual void Clear() = 0;
+  // The model set changed from `before` to `after` by `change` while the frames of `window`
+  // (oldest first, not empty) were in the window: bring their per-frame state to `after`.
+  // Default: Clear(), then Append() each frame again on `after` (work proportional to the index).
+  virtual void Rebase(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after,
+                      const SnapshotChange& change, std::span<const QueryFrame> window);
   // Every candidate object's assessment for the window, any order; `matched` and
   // `latest_azimuth` may be left for Complete(). `window` is not empty.
   virtual std::vector<Assessment> Assess(const ViewIndexSnapshot& index,

@@ -36,8 +36,32 @@ __attribute__((target_clones("avx2", "default"))) void TanimotoFromSums(
 
 }  // namespace
 
+namespace {
+
+std::vector<const IndexedObject*> ObjectsOf(const ViewIndexSnapshot& index) {
+  std::vector<const IndexedObject*> objects;
+  objects.reserve(index.object_count());
+  for (const ObjectSlot& slot : index.objects()) objects.push_back(slot.object);
+  return objects;
+}
+
+}  // namespace
+
 SectorSimilarityTable::SectorSimilarityTable(const ViewIndexSnapshot& index, int states)
-    : objects_(index.object_count()), states_(states) {
+    : SectorSimilarityTable(ObjectsOf(index), states) {}
+
+std::shared_ptr<const SectorSimilarityTable> SectorSimilarityTable::Of(
+    const ViewIndexSnapshot& index, int states) {
+  if (states < 1) throw std::invalid_argument("an HMM needs at least one state");
+  return std::static_pointer_cast<const SectorSimilarityTable>(
+      index.Derived({"sector-similarity-table", states}, [&]() -> std::shared_ptr<const void> {
+        return std::make_shared<const SectorSimilarityTable>(index, states);
+      }));
+}
+
+SectorSimilarityTable::SectorSimilarityTable(std::span<const IndexedObject* const> objects,
+                                             int states)
+    : objects_(objects.size()), states_(states) {
   if (states < 1) throw std::invalid_argument("an HMM needs at least one state");
   const std::size_t count = objects_ * static_cast<std::size_t>(states_);
   stride_ = (count + kRowAlignment - 1) / kRowAlignment * kRowAlignment;
@@ -45,7 +69,7 @@ SectorSimilarityTable::SectorSimilarityTable(const ViewIndexSnapshot& index, int
   inverse_counts_.assign(stride_, 0.0f);
   squared_norms_.assign(stride_, 0.0f);
   for (std::size_t o = 0; o < objects_; ++o) {
-    const IndexedObject& object = *index.objects()[o].object;
+    const IndexedObject& object = *objects[o];
     const SectorViews& sectors = object.Sectors(states_);
     for (int i = 0; i < states_; ++i) {
       const std::size_t s = static_cast<std::size_t>(i) * objects_ + o;
@@ -56,11 +80,11 @@ SectorSimilarityTable::SectorSimilarityTable(const ViewIndexSnapshot& index, int
         wide_states_.emplace_back(s, &sectors.descriptor[i]);
         continue;
       }
-      for (const int v : members) {
-        const DescriptorValues& values = object.model().views[v].descriptor;
-        for (int d = 0; d < kDescriptorSize; ++d) {
-          bin_sums_[static_cast<std::size_t>(d) * stride_ + s] += values[d];
-        }
+      // The object's sums are computed once for its life (IndexedObject::Sectors), so a new
+      // snapshot's table costs one write per bin and state.
+      const ViewSum& sum = sectors.sum[i];
+      for (int d = 0; d < kDescriptorSize; ++d) {
+        bin_sums_[static_cast<std::size_t>(d) * stride_ + s] = static_cast<std::int16_t>(sum[d]);
       }
     }
   }

@@ -11,11 +11,15 @@
 // Layout of the result: similarity[state * object_count + object], state-major, the layout
 // BatchViterbi reads (objects in SIMD lanes). Objects are in the index snapshot's order.
 //
+// Sharing: a table holds 2 bytes per bin, state and object (2.3 MB for 1000 objects of 8
+// states), so the sessions on one index snapshot share one (Of), built by the first of them.
+//
 // Thread safety: immutable after construction; Compute may be called from many threads.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <span>
 #include <vector>
 
@@ -29,6 +33,13 @@ class SectorSimilarityTable {
   // The states of every object of `index`, `states` equal sectors each (IndexedObject::Sectors).
   // Throws std::invalid_argument when states < 1.
   SectorSimilarityTable(const ViewIndexSnapshot& index, int states);
+  // The states of `objects`, in this order (an HMM session's objects added by an enrollment).
+  SectorSimilarityTable(std::span<const IndexedObject* const> objects, int states);
+
+  // The table of `index` for `states`, shared by every caller with the same snapshot
+  // (ViewIndexSnapshot::Derived). Throws as the constructor.
+  static std::shared_ptr<const SectorSimilarityTable> Of(const ViewIndexSnapshot& index,
+                                                         int states);
 
   std::size_t object_count() const { return objects_; }
   int states() const { return states_; }

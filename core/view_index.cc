@@ -273,6 +273,31 @@ std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored
   return matches;
 }
 
+std::shared_ptr<const void> ViewIndexSnapshot::Derived(
+    DerivedKey key, const std::function<std::shared_ptr<const void>()>& build) const {
+  const std::lock_guard lock(derived_mutex_);
+  std::shared_ptr<const void>& derived = derived_[key];
+  if (!derived) derived = build();
+  return derived;
+}
+
+SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after) {
+  std::unordered_set<const IndexedObject*> in_after;
+  in_after.reserve(after.object_count());
+  for (const ObjectSlot& slot : after.objects()) in_after.insert(slot.object);
+  SnapshotChange change;
+  std::unordered_set<const IndexedObject*> in_before;
+  in_before.reserve(before.object_count());
+  for (const ObjectSlot& slot : before.objects()) {
+    in_before.insert(slot.object);
+    if (!in_after.contains(slot.object)) change.removed.push_back(slot.object);
+  }
+  for (const ObjectSlot& slot : after.objects()) {
+    if (!in_before.contains(slot.object)) change.added.push_back(slot);
+  }
+  return change;
+}
+
 void ViewIndexSnapshot::SimilarityToEveryView(const DescriptorValues& query,
                                               std::vector<float>& similarities) const {
   const WideQuery wide(query);

@@ -29,8 +29,11 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -156,6 +159,14 @@ class ViewIndexSnapshot {
   void SimilarityToEveryView(const DescriptorValues& query, std::vector<float>& similarities) const;
   std::size_t slot_count() const { return slot_count_; }
 
+  // Data derived from this snapshot once and shared by all its readers (the HMM's sector table,
+  // SectorSimilarityTable::Of): the first call with `key` runs `build` and keeps its result for
+  // the snapshot's life; every later call returns the same object. A caller that arrives during
+  // a build waits for it. `key` names the derivation and its parameter, e.g. {"sectors", 8}.
+  using DerivedKey = std::pair<std::string_view, int>;
+  std::shared_ptr<const void> Derived(DerivedKey key,
+                                      const std::function<std::shared_ptr<const void>()>& build) const;
+
  private:
   std::vector<ViewMatch> SearchKdTree(const DescriptorValues& query, int count) const;
   std::vector<ViewMatch> Best(const std::vector<std::pair<double, std::size_t>>& scored,
@@ -171,8 +182,22 @@ class ViewIndexSnapshot {
   std::vector<std::int32_t> view_of_slot_;      // view index within its object
   std::size_t view_count_ = 0;
   std::size_t slot_count_ = 0;
+  mutable std::mutex derived_mutex_;
+  mutable std::map<DerivedKey, std::shared_ptr<const void>> derived_;
 
   friend class ViewIndex;
 };
+
+// What changed between two snapshots, object by object. An object's version is one
+// IndexedObject, so an object that gained views (ViewIndex::Replace) is both removed and added.
+struct SnapshotChange {
+  std::vector<const IndexedObject*> removed;  // in `before` and not in `after`, in before's order
+  std::vector<ObjectSlot> added;              // in `after` and not in `before`, in after's order
+  bool empty() const { return removed.empty() && added.empty(); }
+};
+
+// O(objects). The engines use it to bring a session's per-frame state to a new snapshot with
+// work proportional to the change (RecognitionEngine, "Index updates").
+SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after);
 
 }  // namespace orbit

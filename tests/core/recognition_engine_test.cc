@@ -1,6 +1,7 @@
 #include "core/recognition_engine.h"
 
 #include <cmath>
+#include <functional>
 #include <map>
 #include <numbers>
 #include <stdexcept>
@@ -16,6 +17,7 @@
 namespace orbit {
 namespace {
 
+using testing::CoilObject;
 using testing::CoilObjects;
 using testing::CoilView;
 using testing::EvenView;
@@ -236,6 +238,46 @@ TEST(RecognitionEngineTest, SessionsSeeEnrolmentsAndDeletionsFromTheNextFrame) {
       const FrameUpdate gone = engine->Observe(index.Snapshot(), frames[3]);
       for (const RankedObject& r : gone.ranking) EXPECT_NE(r.object, 4) << name;
       EXPECT_EQ(gone.frame_index, 3);
+    }
+  }
+}
+
+// An enrollment, an object gaining views, a deletion, and two changes at once, each while a
+// session's window is full: the session's next answer is the one a fresh session given the same
+// window on the new index gives (the engines bring only the changed objects' state up to date,
+// so this checks that nothing stale survives and nothing is missed). Exact search, so that the
+// VCI lists are exact too.
+TEST(RecognitionEngineTest, AModelChangeGivesTheAnswerOfAFreshSessionOnTheNewIndex) {
+  std::vector<ObjectModel> models = CoilObjects(1, 10, EvenView);
+  const ObjectModel four = models[3];
+  models.erase(models.begin() + 3);
+  const ObjectModel three_complete = CoilObject(3);  // 72 views where the index has 36
+  // Frames of object 3 (in the index, then replaced) and of object 4 (enrolled later).
+  std::vector<QueryFrame> frames = Frames(3, {205, 215, 225, 235}, 11);
+  for (const QueryFrame& frame : Frames(4, {25, 35, 45, 55, 65, 75}, -40)) frames.push_back(frame);
+  constexpr int kWindow = 4;
+  for (const std::string_view name : EngineNames()) {
+    ViewIndex index(models, {.search = SearchMode::kExact});
+    const auto session = CreateEngine(name, {.window = kWindow});
+    // Before frame k, change the index as listed.
+    const std::map<std::size_t, std::function<void()>> changes = {
+        {4, [&] { index.Add(four); }},                     // enrolled: the frames' object
+        {5, [&] { index.Replace(three_complete); }},       // views added to a seen object
+        {6, [&] { ASSERT_TRUE(index.Remove(2)); }},        // deleted
+        {8, [&] {                                          // two changes between frames
+           ASSERT_TRUE(index.Remove(4));
+           index.Add(CoilObjects(11, 11, EvenView)[0]);
+         }},
+    };
+    for (std::size_t k = 0; k < frames.size(); ++k) {
+      if (const auto change = changes.find(k); change != changes.end()) change->second();
+      const FrameUpdate update = session->Observe(index.Snapshot(), frames[k]);
+      const std::size_t first = k + 1 > kWindow ? k + 1 - kWindow : 0;
+      const auto fresh = CreateEngine(name, {.window = kWindow});
+      FrameUpdate expected = fresh->ObserveSequence(
+          index.Snapshot(), std::span(frames).subspan(first, k + 1 - first));
+      expected.frame_index = static_cast<std::int64_t>(k);
+      ExpectSameUpdate(update, expected, std::string(name) + " frame " + std::to_string(k));
     }
   }
 }
