@@ -17,5 +17,6 @@ void AddDeleteCommand(CLI::App& app, int& exit_code);
 void AddBackupCommand(CLI::App& app, int& exit_code);
 void AddEvalCommand(CLI::App& app, int& exit_code);
 void AddServeCommand(CLI::App& app, int& exit_code);
+void AddLoadtestCommand(CLI::App& app, int& exit_code);
 
 }  // namespace orbit::cli

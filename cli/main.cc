@@ -26,11 +26,15 @@ int main(int argc, char** argv) {
   orbit::cli::AddBackupCommand(app, exit_code);
   orbit::cli::AddEvalCommand(app, exit_code);
   orbit::cli::AddServeCommand(app, exit_code);
+  orbit::cli::AddLoadtestCommand(app, exit_code);
 
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; a usage error (unknown flag, bad value, missing or
+    // conflicting options) is printed and exits 2, as for most command-line tools, so that a
+    // script can tell it from a command that ran and failed (1).
+    return app.exit(e) == 0 ? 0 : 2;
   } catch (const std::exception& e) {
     std::cerr << "orbit: " << e.what() << "\n";
     return 1;

@@ -44,6 +44,10 @@ int RunServe(ServeOptions& o) {
 
   std::cerr << config.Describe();
   server::OrbitServer server(config);
+  if (!server.metrics_address().empty()) {
+    std::cerr << "orbit serve: metrics on http://" << server.metrics_address() << "/metrics"
+              << std::endl;
+  }
   std::cerr << "orbit serve: listening on " << server.address() << std::endl;
 
   int received = 0;
@@ -137,9 +141,15 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "frames of every session (0: half the cores, at least one)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  cmd->add_option("--workers", c.worker_threads, "worker threads (0: one per core)")
+  cmd->add_option("--workers", c.worker_threads, "worker threads for unary calls (Recognize, list, get, delete);\n"
+                 "a session's descriptor frames run on gRPC's threads (0: one per core)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
+  cmd->add_option("--metrics-listen", c.metrics_listen,
+                  "HOST:PORT to serve Prometheus metrics on, at http://HOST:PORT/metrics\n"
+                  "(IPv4 address or host name; port 0: any free port). No TLS and no tokens:\n"
+                  "use loopback or a management network. Off when not given")
+      ->envname("ORBIT_METRICS_LISTEN");
   cmd->add_option("--shutdown-grace", c.shutdown_grace_seconds,
                   "seconds open calls get to finish on SIGTERM")
       ->check(CLI::Range(0, 600))

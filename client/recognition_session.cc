@@ -36,7 +36,9 @@ std::chrono::microseconds ReplayInterval(const v1::ServerInfoResponse& info) {
   return std::chrono::microseconds(static_cast<std::int64_t>(1e6 / max_fps) + 1);
 }
 
-v1::SessionOptions ToProto(const SessionOptions& options, DescriptorVariant variant) {
+}  // namespace
+
+v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, DescriptorVariant variant) {
   v1::SessionOptions open;
   open.set_engine(options.engine);
   open.set_top_k(options.top_k);
@@ -48,8 +50,6 @@ v1::SessionOptions ToProto(const SessionOptions& options, DescriptorVariant vari
   open.set_variant(ToProtoVariant(variant));
   return open;
 }
-
-}  // namespace
 
 std::unique_ptr<RecognitionSession> RecognitionSession::Open(const Connection& connection,
                                                              SessionOptions options) {
@@ -97,7 +97,7 @@ bool RecognitionSession::StartStream() {
   connection_.PrepareStreamingCall(*context_);
   stream_ = stub_->Session(context_.get());
   v1::SessionRequest open;
-  *open.mutable_open() = ToProto(options_, variant_);
+  *open.mutable_open() = ToProtoSessionOptions(options_, variant_);
   return stream_->Write(open);
 }
 

@@ -71,6 +71,10 @@ struct SessionOptions {
   std::function<void(const v1::SessionUpdate&)> on_update;
 };
 
+// The `open` message of a session with `options` whose frames are in `variant`: unset fields
+// stay unset, so the server fills in its defaults.
+v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, DescriptorVariant variant);
+
 class RecognitionSession {
  public:
   // Asks the server for its variant and defaults, then opens the stream. `connection` must

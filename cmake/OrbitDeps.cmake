@@ -27,3 +27,13 @@ set_target_properties(flann::flann PROPERTIES
 # gRPC and Protobuf (Debian ships gRPC's CMake config; Protobuf is found by CMake's module).
 find_package(Protobuf REQUIRED)
 find_package(gRPC CONFIG REQUIRED)
+
+# civetweb: the HTTP server of `orbit serve --metrics-listen` (server/metrics_endpoint.h). Found
+# by hand: the CMake config in libcivetweb-dev also imports the `civetweb` program, which that
+# package does not install, so find_package(civetweb) fails without the `civetweb` package.
+find_path(CIVETWEB_INCLUDE_DIR civetweb.h REQUIRED)
+find_library(CIVETWEB_LIBRARY civetweb REQUIRED)
+add_library(civetweb::civetweb UNKNOWN IMPORTED)
+set_target_properties(civetweb::civetweb PROPERTIES
+  IMPORTED_LOCATION "${CIVETWEB_LIBRARY}"
+  INTERFACE_INCLUDE_DIRECTORIES "${CIVETWEB_INCLUDE_DIR}")

@@ -41,12 +41,18 @@ void ProportionalBlocks(int size, std::vector<int>& edges, std::vector<int>& fir
 }
 
 // acc[i] += row[i] for n bytes: the one loop that reads every pixel. Compiled for AVX2 as well as
-// the baseline, chosen at load time by the CPU (GCC function multi-versioning), since it is
-// memory-bound work that AVX2 halves.
-template <typename Acc>
+// the baseline, chosen at load time by the CPU (function multi-versioning), since it is
+// memory-bound work that AVX2 halves. One overload per accumulator type rather than a template:
+// clang (the fuzz build) does not multi-version function templates.
 __attribute__((target_clones("avx2", "default"))) void AddRow(const std::uint8_t* __restrict row,
-                                                               Acc* __restrict acc, int n) {
-  for (int i = 0; i < n; ++i) acc[i] = static_cast<Acc>(acc[i] + row[i]);
+                                                               std::uint16_t* __restrict acc,
+                                                               int n) {
+  for (int i = 0; i < n; ++i) acc[i] = static_cast<std::uint16_t>(acc[i] + row[i]);
+}
+__attribute__((target_clones("avx2", "default"))) void AddRow(const std::uint8_t* __restrict row,
+                                                               std::uint32_t* __restrict acc,
+                                                               int n) {
+  for (int i = 0; i < n; ++i) acc[i] = acc[i] + row[i];
 }
 
 // Adds the image rows [y0, y1) into acc (one entry per byte of a row), then adds acc's runs

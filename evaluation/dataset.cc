@@ -19,7 +19,7 @@ namespace orbit {
 namespace {
 
 // A selection names objects one by one; a million is far beyond any dataset and keeps a typo
-// such as "1-1000000000" from exhausting memory.
+// such as "1-1000000000" (or many ranges together) from exhausting memory.
 constexpr int kMaxRangeSpan = 1'000'000;
 
 std::string_view Trim(std::string_view text) {
@@ -128,7 +128,7 @@ std::optional<std::vector<int>> ParseOptionalRange(const std::string& text) {
 
 std::vector<int> ParseObjectRange(std::string_view text) {
   if (Trim(text).empty()) throw std::invalid_argument("object selection is empty");
-  std::set<int> selected;
+  std::vector<std::pair<int, int>> ranges;  // [first, last] of each item, as given
   std::size_t start = 0;
   while (start <= text.size()) {
     const std::size_t comma = std::min(text.find(',', start), text.size());
@@ -139,7 +139,8 @@ std::vector<int> ParseObjectRange(std::string_view text) {
     }
     const std::size_t dash = item.find('-');
     if (dash == std::string_view::npos) {
-      selected.insert(ParsePositive(item, item));
+      const int number = ParsePositive(item, item);
+      ranges.emplace_back(number, number);
     } else {
       const int first = ParsePositive(Trim(item.substr(0, dash)), item);
       const int last = ParsePositive(Trim(item.substr(dash + 1)), item);
@@ -151,11 +152,28 @@ std::vector<int> ParseObjectRange(std::string_view text) {
         throw std::invalid_argument("object selection: range \"" + std::string(item) +
                                     "\" is too large");
       }
-      for (int n = first; n <= last; ++n) selected.insert(n);
+      ranges.emplace_back(first, last);
     }
     start = comma + 1;
   }
-  return {selected.begin(), selected.end()};
+  // The ranges in order, overlaps merged, each number written once. Nothing here computes
+  // last + 1, which overflows for a range ending at the largest int.
+  std::sort(ranges.begin(), ranges.end());
+  std::vector<int> selected;
+  for (const auto& [first, last] : ranges) {
+    if (!selected.empty() && selected.back() >= last) continue;
+    int n = selected.empty() ? first : std::max(first, selected.back() + 1);
+    if (selected.size() + static_cast<std::size_t>(last - n) >=
+        static_cast<std::size_t>(kMaxRangeSpan)) {
+      throw std::invalid_argument("object selection \"" + std::string(text) +
+                                  "\" selects more than a million objects");
+    }
+    for (;; ++n) {
+      selected.push_back(n);
+      if (n == last) break;
+    }
+  }
+  return selected;
 }
 
 std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,

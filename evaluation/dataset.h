@@ -33,8 +33,9 @@ struct DatasetImage {
 // Returns the selected numbers sorted ascending, each once (overlapping items are merged).
 //
 // Throws std::invalid_argument, quoting the offending item, for empty text, an empty item, a
-// non-number, 0, a reversed range ("5-1"), a range of a million numbers or more, or a number
-// too large for int.
+// non-number, 0, a reversed range ("5-1"), a range of more than a million numbers, or a number
+// too large for int; and quoting the text when its items together select more than a million
+// numbers.
 std::vector<int> ParseObjectRange(std::string_view text);
 
 // Lists the COIL-100 images in `dir`: every file named objN__A.png (N >= 1 and A integers),

@@ -31,4 +31,21 @@ grpc::Status StatusFromException(const std::exception& error) {
   return {grpc::StatusCode::INTERNAL, error.what()};
 }
 
+RefusalReason RefusalReasonOf(const std::exception& error) {
+  if (dynamic_cast<const std::invalid_argument*>(&error) != nullptr) {
+    return RefusalReason::kInvalidField;
+  }
+  if (const auto* store = dynamic_cast<const StoreError*>(&error)) {
+    switch (store->code()) {
+      case StoreError::Code::kNotFound:
+        return RefusalReason::kUnknownObject;
+      case StoreError::Code::kAlreadyExists:
+        return RefusalReason::kDuplicateName;
+      default:
+        return RefusalReason::kStore;
+    }
+  }
+  return RefusalReason::kInternal;
+}
+
 }  // namespace orbit::server

@@ -7,6 +7,8 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include "server/refusal_reason.h"
+
 namespace orbit::server {
 
 // INVALID_ARGUMENT with `message`, which names the field and what is wrong with it.
@@ -17,5 +19,11 @@ grpc::Status InvalidArgument(std::string message);
 // ALREADY_EXISTS, full -> RESOURCE_EXHAUSTED, busy -> UNAVAILABLE, else INTERNAL); anything else
 // INTERNAL. The message is the exception's.
 grpc::Status StatusFromException(const std::exception& error);
+
+// The reason a refusal for `error` is counted under (server/refusal_reason.h), beside
+// StatusFromException's code: std::invalid_argument -> invalid_field; StoreError kNotFound ->
+// unknown_object, kAlreadyExists -> duplicate_name, any other code -> store; anything else ->
+// internal.
+RefusalReason RefusalReasonOf(const std::exception& error);
 
 }  // namespace orbit::server

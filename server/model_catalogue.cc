@@ -1,15 +1,29 @@
 #include "server/model_catalogue.h"
 
+#include <chrono>
 #include <stdexcept>
 
 #include "storage/store_error.h"
 #include "storage/view_index_loading.h"
 
 namespace orbit::server {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// A store write that returned, begun at `start`: its duration, in `seconds` when there is one.
+void ObserveWrite(Histogram* seconds, Clock::time_point start) {
+  if (seconds == nullptr) return;
+  seconds->Observe(std::chrono::duration<double>(Clock::now() - start).count());
+}
+
+}  // namespace
 
 ModelCatalogue::ModelCatalogue(ModelStore& store, DescriptorVariant variant,
-                               ViewIndexOptions index_options)
-    : store_(store), index_(LoadViewIndex(store, variant, index_options)) {}
+                               ViewIndexOptions index_options, StoreWriteHistograms write_seconds)
+    : store_(store),
+      index_(LoadViewIndex(store, variant, index_options)),
+      write_seconds_(write_seconds) {}
 
 ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
   if (enrollment.variant != variant()) {
@@ -17,13 +31,18 @@ ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
                                 " differs from the server's " + std::string(VariantName(variant())));
   }
   std::lock_guard lock(write_mutex_);
-  return Reindex(store_.Enroll(enrollment));
+  const Clock::time_point start = Clock::now();
+  const ObjectId id = store_.Enroll(enrollment);
+  ObserveWrite(write_seconds_.enroll, start);
+  return Reindex(id);
 }
 
 ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>& views,
                                        const std::vector<std::string>& thumbnails) {
   std::lock_guard lock(write_mutex_);
+  const Clock::time_point start = Clock::now();
   store_.AddViews(id, views, thumbnails);
+  ObserveWrite(write_seconds_.add_views, start);
   return Reindex(id);
 }
 
@@ -31,7 +50,9 @@ ObjectSummary ModelCatalogue::Delete(ObjectId id) {
   std::lock_guard lock(write_mutex_);
   std::optional<StoredObject> object = store_.Get(id);
   if (!object) throw StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
+  const Clock::time_point start = Clock::now();
   store_.Delete(id);
+  ObserveWrite(write_seconds_.remove, start);
   index_->Remove(id);
   return object->summary;
 }

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/view_index.h"
+#include "server/server_metrics.h"
 #include "storage/model_store.h"
 
 namespace orbit::server {
@@ -23,8 +24,10 @@ class ModelCatalogue {
  public:
   // Indexes every object of `store` in one pass (storage/view_index_loading.h). Throws StoreError
   // kIncompatible when the store holds an object of another variant than `variant` (naming it),
-  // and as ModelStore::LoadAll.
-  ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options);
+  // and as ModelStore::LoadAll. Each committed store write is observed, in seconds, in the
+  // histogram of `write_seconds` for its operation (none when null); a write that throws is not.
+  ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options,
+                 StoreWriteHistograms write_seconds = {});
 
   // Each throws as the ModelStore method of the same name (StoreError kNotFound for an unknown
   // id), std::invalid_argument when the enrollment's variant is not the catalogue's, and
@@ -47,6 +50,7 @@ class ModelCatalogue {
 
   ModelStore& store_;
   std::unique_ptr<ViewIndex> index_;
+  const StoreWriteHistograms write_seconds_;
   std::mutex write_mutex_;
 };
 

@@ -1,12 +1,15 @@
 #include "server/models_service.h"
 
+#include <chrono>
 #include <memory>
 #include <mutex>
 #include <vector>
 
 #include "api/conversion.h"
+#include "server/enrollment_stream.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"
+#include "server/server_metrics.h"
 #include "server/unary_call.h"
 #include "storage/model_validation.h"
 #include "storage/store_error.h"
@@ -16,8 +19,6 @@ namespace {
 
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
-// All the views of one enrollment together (encoded images can be large).
-constexpr std::size_t kMaxEnrollmentBytes = 256u << 20;
 
 v1::ObjectInfo ToObjectInfo(const ObjectSummary& summary) {
   v1::ObjectInfo info;
@@ -47,27 +48,6 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
   }
 }
 
-// Converts wire views to store views, on the worker pool. Views sent as images are described
-// by the seed rule of core/view_description.h, which depends on the image alone: the same
-// image stores the same numbers whichever object, position or path enrolls it.
-grpc::Status ConvertViews(const std::vector<v1::View>& wire, DescriptorVariant variant,
-                          const ServerLimits& limits, std::vector<ModelView>* views,
-                          std::vector<std::string>* thumbnails) {
-  bool any_thumbnail = false;
-  for (std::size_t i = 0; i < wire.size(); ++i) {
-    ModelView view;
-    std::string thumbnail;
-    if (grpc::Status s = ToModelView(wire[i], variant, limits, &view, &thumbnail); !s.ok()) {
-      return grpc::Status(s.error_code(), "view " + std::to_string(i) + ": " + s.error_message());
-    }
-    any_thumbnail = any_thumbnail || !thumbnail.empty();
-    views->push_back(view);
-    thumbnails->push_back(std::move(thumbnail));
-  }
-  if (!any_thumbnail) thumbnails->clear();
-  return grpc::Status::OK;
-}
-
 // One Enroll stream: a header, then views, committed when the client closes its side.
 class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
  public:
@@ -75,7 +55,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
                 const ModelsEnvironment& env)
       : context_(context), response_(response), env_(env) {
     if (grpc::Status allowed = env_.access.Authorize(*context, Role::kAdmin); !allowed.ok()) {
-      Finish(allowed);
+      Answer(allowed, RefusalReason::kAccess);
       return;
     }
     StartRead(&request_);
@@ -84,14 +64,27 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
   void OnReadDone(bool ok) override {
     if (!ok) {
       if (context_->IsCancelled()) {
+        env_.metrics.CountEnrollment(EnrollmentOutcome::kCancelled);
         Finish({grpc::StatusCode::CANCELLED, "the enrollment stream broke; nothing was stored"});
       } else {
-        env_.bulk_pool.Post([this] { Finish(Commit()); });
+        stream_ended_ = Clock::now();
+        env_.bulk_pool.Post([this] {
+          grpc::Status status;
+          RefusalReason reason;
+          try {
+            status = Commit();
+            reason = ReasonOfCheck(status, RefusalReason::kImageBudget);
+          } catch (const std::exception& e) {  // from the catalogue: a duplicate name, the store
+            status = StatusFromException(e);
+            reason = RefusalReasonOf(e);
+          }
+          Answer(status, reason);
+        });
       }
       return;
     }
-    if (grpc::Status s = Accept(); !s.ok()) {
-      Finish(s);
+    if (grpc::Status s = stream_.Accept(&request_); !s.ok()) {
+      Answer(s, ReasonOfCheck(s, RefusalReason::kRequestSize));
       return;
     }
     StartRead(&request_);
@@ -100,59 +93,31 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
   void OnDone() override { delete this; }
 
  private:
-  grpc::Status Accept() {
-    if (request_.kind_case() == v1::EnrollRequest::kHeader) {
-      if (have_header_) return InvalidArgument("the header may be sent only once");
-      const v1::EnrollHeader& header = request_.header();
-      if (auto s = CheckVariant(header.variant(), env_.catalogue.variant(), "header.variant");
-          !s.ok()) {
-        return s;
-      }
-      try {
-        ValidateObjectName(header.name());
-        ValidateMetadata(header.metadata_json().empty() ? "{}" : header.metadata_json());
-      } catch (const std::exception& e) {
-        return StatusFromException(e);
-      }
-      header_ = header;
-      have_header_ = true;
-      return grpc::Status::OK;
+  using Clock = std::chrono::steady_clock;
+
+  // Ends the call with `status`, counting the enrollment by its outcome: the time since the
+  // stream ended when it was stored, the refusal under `reason` when it was not.
+  void Answer(const grpc::Status& status, RefusalReason reason) {
+    ServerMetrics& metrics = env_.metrics;
+    if (status.ok()) {
+      metrics.CountEnrollment(EnrollmentOutcome::kStored);
+      metrics.enrollment_seconds().Observe(
+          std::chrono::duration<double>(Clock::now() - stream_ended_).count());
+    } else {
+      metrics.CountRefusal(status.error_code(), reason);
+      metrics.CountEnrollment(reason == RefusalReason::kStore || reason == RefusalReason::kInternal
+                                  ? EnrollmentOutcome::kFailed
+                                  : EnrollmentOutcome::kRefused);
     }
-    if (request_.kind_case() != v1::EnrollRequest::kView) {
-      return InvalidArgument("empty request: set header or view");
-    }
-    if (!have_header_) return InvalidArgument("the first message must be the header");
-    if (views_.size() >= kMaxViewsPerObject) {
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-              "more than " + std::to_string(kMaxViewsPerObject) + " views for one object"};
-    }
-    bytes_ += request_.view().ByteSizeLong();
-    if (bytes_ > kMaxEnrollmentBytes) {
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED, "enrollment larger than 256 MiB"};
-    }
-    views_.push_back(std::move(*request_.mutable_view()));
-    return grpc::Status::OK;
+    Finish(status);
   }
 
-  // On the worker pool, after the client closed its side.
+  // On the worker pool, after the client closed its side. Throws what the catalogue's Enroll
+  // throws.
   grpc::Status Commit() {
-    if (!have_header_) return InvalidArgument("no header: nothing to enroll");
-    if (views_.empty()) return InvalidArgument("no views: an object needs at least one");
     Enrollment enrollment;
-    enrollment.name = header_.name();
-    enrollment.variant = env_.catalogue.variant();
-    enrollment.metadata = header_.metadata_json().empty() ? "{}" : header_.metadata_json();
-    if (grpc::Status s =
-            ConvertViews(views_, enrollment.variant, env_.limits, &enrollment.views,
-                         &enrollment.thumbnails);
-        !s.ok()) {
-      return s;
-    }
-    try {
-      *response_ = ToObjectInfo(env_.catalogue.Enroll(enrollment));
-    } catch (const std::exception& e) {
-      return StatusFromException(e);
-    }
+    if (grpc::Status s = stream_.ToEnrollment(env_.limits, &enrollment); !s.ok()) return s;
+    *response_ = ToObjectInfo(env_.catalogue.Enroll(enrollment));
     return grpc::Status::OK;
   }
 
@@ -160,10 +125,8 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
   v1::ObjectInfo* const response_;
   const ModelsEnvironment& env_;
   v1::EnrollRequest request_;
-  v1::EnrollHeader header_;
-  bool have_header_ = false;
-  std::vector<v1::View> views_;
-  std::size_t bytes_ = 0;
+  Clock::time_point stream_ended_;  // when the client closed its side
+  EnrollmentStream stream_{env_.catalogue.variant()};
 };
 
 }  // namespace
@@ -176,16 +139,19 @@ grpc::ServerReadReactor<v1::EnrollRequest>* ModelsService::Enroll(
 grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* context,
                                                   const v1::AddViewsRequest* request,
                                                   v1::ObjectInfo* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.bulk_pool, [this, request, response] {
+  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.bulk_pool, env_.metrics,
+                      [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-    if (request->views().empty()) return InvalidArgument("views is empty");
+    if (request->views().empty()) {
+      return env_.metrics.Refuse(InvalidArgument("views is empty"), RefusalReason::kInvalidField);
+    }
     std::vector<ModelView> views;
     std::vector<std::string> thumbnails;
     const std::vector<v1::View> wire(request->views().begin(), request->views().end());
     if (grpc::Status s =
-            ConvertViews(wire, env_.catalogue.variant(), env_.limits, &views, &thumbnails);
+            ToModelViews(wire, env_.catalogue.variant(), env_.limits, &views, &thumbnails);
         !s.ok()) {
-      return s;
+      return env_.metrics.Refuse(s, ReasonOfCheck(s, RefusalReason::kImageBudget));
     }
     *response = ToObjectInfo(env_.catalogue.AddViews(id, views, thumbnails));
     return grpc::Status::OK;
@@ -195,10 +161,14 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
 grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext* context,
                                                      const v1::ListObjectsRequest* request,
                                                      v1::ListObjectsResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, [this, request, response] {
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+                      [this, request, response] {
     ListRequest page;
     page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    if (page.limit < 1 || page.limit > kMaxPageSize) return InvalidArgument("page_size must be 1..1000");
+    if (page.limit < 1 || page.limit > kMaxPageSize) {
+      return env_.metrics.Refuse(InvalidArgument("page_size must be 1..1000"),
+                                 RefusalReason::kInvalidField);
+    }
     if (!request->page_token().empty()) {
       std::size_t used = 0;
       try {
@@ -207,7 +177,8 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
         used = 0;
       }
       if (used != request->page_token().size() || page.after_id < 0) {
-        return InvalidArgument("page_token is not one this server gave");
+        return env_.metrics.Refuse(InvalidArgument("page_token is not one this server gave"),
+                                   RefusalReason::kInvalidField);
       }
     }
     const std::vector<ObjectSummary> objects = env_.catalogue.store().List(page);
@@ -222,10 +193,14 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* context,
                                                    const v1::GetObjectRequest* request,
                                                    v1::GetObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, [this, request, response] {
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+                      [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
-    if (!object) return grpc::Status(grpc::StatusCode::NOT_FOUND, "object deleted meanwhile");
+    if (!object) {
+      return env_.metrics.Refuse({grpc::StatusCode::NOT_FOUND, "object deleted meanwhile"},
+                                 RefusalReason::kUnknownObject);
+    }
     *response->mutable_object() = ToObjectInfo(object->summary);
     if (request->include_views()) {
       for (std::size_t i = 0; i < object->views.size(); ++i) {
@@ -243,7 +218,8 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
 grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContext* context,
                                                       const v1::DeleteObjectRequest* request,
                                                       v1::DeleteObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.pool, [this, request, response] {
+  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.pool, env_.metrics,
+                      [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     *response->mutable_deleted() = ToObjectInfo(env_.catalogue.Delete(id));
     return grpc::Status::OK;
@@ -253,7 +229,8 @@ grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContex
 grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext* context,
                                                     const v1::ServerInfoRequest* /*request*/,
                                                     v1::ServerInfoResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, [this, response] {
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+                      [this, response] {
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     response->set_version(env_.version);
     response->set_variant(ToProtoVariant(env_.catalogue.variant()));

@@ -11,6 +11,7 @@
 #include "orbit/v1/models.grpc.pb.h"
 #include "server/access_control.h"
 #include "server/model_catalogue.h"
+#include "server/server_metrics.h"
 #include "server/session_settings.h"
 #include "server/worker_pool.h"
 
@@ -24,6 +25,7 @@ struct ModelsEnvironment {
   const ServerLimits& limits;
   const SessionSettings& defaults;
   std::string version;
+  ServerMetrics& metrics;  // enrollments and refusals are counted here
 };
 
 class ModelsService final : public v1::Models::CallbackService {

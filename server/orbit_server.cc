@@ -10,9 +10,11 @@
 
 #include "orbit/version.h"
 #include "core/parallel_for.h"
+#include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
 #include "server/models_service.h"
 #include "server/recognition_service.h"
+#include "server/server_metrics.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
 #include "storage/sqlite_model_store.h"
@@ -51,10 +53,12 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
         " without tokens: anyone reaching it could enroll and delete objects. Give --tokens FILE,"
         " listen on 127.0.0.1, or pass --allow-remote-without-tokens if you really mean it");
   }
+  metrics_ = std::make_unique<ServerMetrics>();
   SqliteModelStoreOptions store_options;
   store_options.create_if_missing = true;
   store_ = std::make_unique<SqliteModelStore>(config_.database, store_options);
-  catalogue_ = std::make_unique<ModelCatalogue>(*store_, config_.variant, config_.index);
+  catalogue_ = std::make_unique<ModelCatalogue>(*store_, config_.variant, config_.index,
+                                                metrics_->store_writes());
   const int cpus = AvailableCpus();
   pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);
   bulk_pool_ = std::make_unique<WorkerPool>(
@@ -62,11 +66,22 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
   recognition_ = std::make_unique<RecognitionService>(
       SessionEnvironment{*catalogue_, *pool_, *bulk_pool_, *registry_, config_.limits,
-                         config_.session_defaults},
+                         config_.session_defaults, *metrics_},
       access_);
   models_ = std::make_unique<ModelsService>(ModelsEnvironment{
       *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
-      kOrbitVersion});
+      kOrbitVersion, *metrics_});
+  metrics_->WatchSessions(*registry_);
+  metrics_->WatchIndex(*catalogue_);
+  metrics_->WatchWorkers(*pool_, *bulk_pool_);
+  if (!config_.metrics_listen.empty()) {  // before gRPC: a bad address serves nothing at all
+    try {
+      metrics_endpoint_ =
+          std::make_unique<MetricsEndpoint>(config_.metrics_listen, metrics_->registry());
+    } catch (const std::exception& e) {
+      throw std::runtime_error(std::string("--metrics-listen: ") + e.what());
+    }
+  }
 
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
@@ -94,6 +109,10 @@ std::string OrbitServer::address() const {
   return listen.substr(0, listen.rfind(':')) + ":" + std::to_string(port_);
 }
 
+std::string OrbitServer::metrics_address() const {
+  return metrics_endpoint_ ? metrics_endpoint_->address() : std::string();
+}
+
 void OrbitServer::SweepIdleSessions() {
   const auto timeout = std::chrono::seconds(config_.limits.idle_timeout_seconds);
   std::unique_lock lock(sweeper_mutex_);
@@ -115,6 +134,7 @@ void OrbitServer::Shutdown() {
     sweeper_.join();
     server_->Shutdown(std::chrono::system_clock::now() +
                       std::chrono::seconds(config_.shutdown_grace_seconds));
+    metrics_endpoint_.reset();  // its scrapes read the pools
     pool_.reset();  // runs what is queued (calls already cancelled finish harmlessly)
     bulk_pool_.reset();
   });

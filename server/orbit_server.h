@@ -1,6 +1,7 @@
 // OrbitServer: the recognition service, assembled: the model store and its index, the Recognition
 // and Models services, health checking (grpc.health.v1), server reflection, limits, access
-// control, TLS, the idle-session sweeper, and a graceful shutdown.
+// control, TLS, the idle-session sweeper, metrics (with their Prometheus endpoint when
+// config.metrics_listen is set), and a graceful shutdown.
 //
 //   OrbitServer server(config);      // serving once constructed
 //   ... wait for SIGTERM ...
@@ -24,9 +25,11 @@
 
 namespace orbit::server {
 
+class MetricsEndpoint;
 class ModelCatalogue;
 class ModelsService;
 class RecognitionService;
+class ServerMetrics;
 class SessionRegistry;
 class WorkerPool;
 
@@ -36,7 +39,8 @@ class OrbitServer {
   // Throws std::invalid_argument as ValidateServerConfig (server_config.h), and
   // std::runtime_error with a message for the operator when the configuration is unsafe
   // (no tokens on a non-loopback address), a file cannot be read, the store cannot be opened, or
-  // the address cannot be bound.
+  // the address cannot be bound; a metrics address that is malformed or cannot be bound is a
+  // std::runtime_error beginning "--metrics-listen: ". Nothing is served then.
   explicit OrbitServer(const ServerConfig& config);
   ~OrbitServer();
 
@@ -47,9 +51,12 @@ class OrbitServer {
   int port() const { return port_; }
   // The address clients should use, HOST:PORT with the bound port.
   std::string address() const;
+  // The metrics endpoint's HOST:PORT with the bound port; "" without config.metrics_listen.
+  std::string metrics_address() const;
 
   // Health goes NOT_SERVING, new sessions are refused, open sessions end with UNAVAILABLE, and
-  // gRPC stops after letting calls finish for up to shutdown_grace_seconds.
+  // gRPC stops after letting calls finish for up to shutdown_grace_seconds; the metrics endpoint
+  // stops before the workers do.
   void Shutdown();
 
  private:
@@ -57,6 +64,7 @@ class OrbitServer {
 
   ServerConfig config_;
   AccessControl access_;
+  std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<ModelStore> store_;
   std::unique_ptr<ModelCatalogue> catalogue_;
   std::unique_ptr<WorkerPool> pool_;
@@ -64,6 +72,8 @@ class OrbitServer {
   std::unique_ptr<SessionRegistry> registry_;
   std::unique_ptr<RecognitionService> recognition_;
   std::unique_ptr<ModelsService> models_;
+  // Reads the registry, sessions, catalogue and pools when scraped: destroyed (stopped) first.
+  std::unique_ptr<MetricsEndpoint> metrics_endpoint_;
   std::unique_ptr<grpc::Server> server_;
   int port_ = 0;
 

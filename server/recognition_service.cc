@@ -24,7 +24,7 @@ class RefusedSession final : public grpc::ServerBidiReactor<v1::SessionRequest, 
 grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionService::Session(
     grpc::CallbackServerContext* context) {
   if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize); !allowed.ok()) {
-    return new RefusedSession(allowed);
+    return new RefusedSession(env_.metrics.Refuse(allowed, RefusalReason::kAccess));
   }
   return new SessionReactor(env_, context);
 }
@@ -36,31 +36,41 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
   const bool has_image = std::any_of(request->frames().begin(), request->frames().end(),
                                      [](const v1::Frame& frame) { return !frame.image().empty(); });
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
-  return RunUnaryCall(context, access_, Role::kRecognize, workers, [this, request, response] {
+  return RunUnaryCall(context, access_, Role::kRecognize, workers, env_.metrics,
+                      [this, request, response] {
     using Clock = std::chrono::steady_clock;
+    ServerMetrics& metrics = env_.metrics;
     if (request->frames().empty()) {
-      return grpc::Status(grpc::StatusCode::INVALID_ARGUMENT, "frames is empty");
+      return metrics.Refuse(InvalidArgument("frames is empty"), RefusalReason::kInvalidField);
     }
     if (request->frames_size() > kMaxWindow) {
-      return grpc::Status(grpc::StatusCode::RESOURCE_EXHAUSTED,
-                          "at most 64 frames per Recognize call; stream longer sequences");
+      return metrics.Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                             "at most 64 frames per Recognize call; stream longer sequences"},
+                            RefusalReason::kRequestSize);
     }
     SessionSettings settings;
     grpc::Status status = ResolveSessionSettings(request->options(), env_.defaults,
                                                  env_.catalogue.variant(), env_.limits, &settings);
-    if (!status.ok()) return status;
+    if (!status.ok()) {
+      return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kSessionLimit));
+    }
     SessionEngine engine(settings);
+    const FrameMetrics frame_metrics = metrics.ForEngine(settings.engine);
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     for (const v1::Frame& frame : request->frames()) {
       const Clock::time_point start = Clock::now();
       QueryFrame query;
       status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
-      if (!status.ok()) return status;
+      if (!status.ok()) {
+        return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kImageBudget));
+      }
       v1::SessionUpdate* update = response->add_updates();
       *update = ToSessionUpdate(engine.Observe(index, query), *index);
       if (frame.has_timestamp_us()) update->set_timestamp_us(frame.timestamp_us());
+      const Clock::duration spent = Clock::now() - start;
       update->set_processing_time_us(
-          std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - start).count());
+          std::chrono::duration_cast<std::chrono::microseconds>(spent).count());
+      frame_metrics.Record(frame.image().empty() ? FrameInput::kCedd : FrameInput::kImage, spent);
     }
     return grpc::Status::OK;
   });

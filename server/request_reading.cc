@@ -4,13 +4,11 @@
 #include <optional>
 #include <stdexcept>
 
-#include <opencv2/imgcodecs.hpp>
-
 #include "api/conversion.h"
 #include "core/cedd.h"
 #include "core/view_description.h"
 #include "server/error_status.h"
-#include "server/image_budget.h"
+#include "server/image_decoding.h"
 #include "storage/model_validation.h"
 
 namespace orbit::server {
@@ -30,40 +28,21 @@ grpc::Status CheckFinite(double value, std::string_view field) {
   return grpc::Status::OK;
 }
 
-// An uploaded image, decoded, with the decode slot it holds: members are destroyed in reverse
-// order, so the slot is given back only once the pixels are freed.
-struct DecodedImage {
-  DecodeSlots::Slot slot;
-  cv::Mat pixels;
+// An uploaded image, decoded, and its region of interest.
+struct RequestImage {
+  DecodedImage decoded;
   std::optional<cv::Rect> roi;  // the request's region, when it has one
 };
 
-// Decodes the encoded image `bytes` (the request's `field`) and resolves its region of interest.
-// The image budget (server/image_budget.h: limits.max_image_pixels, kMaxJpegScans) is checked on
-// the header first; only then does the decode wait for one of the process's decode slots, which
-// out->slot holds until *out is destroyed.
-grpc::Status DecodeImage(const std::string& bytes, std::string_view field,
-                         const ServerLimits& limits, const v1::Region& region, bool has_region,
-                         DecodedImage* out) {
-  ImageHeader header;
-  if (auto s = ReadImageHeader(bytes, field, &header); !s.ok()) return s;
-  if (auto s = CheckImageBudget(header, limits.max_image_pixels, field); !s.ok()) return s;
-  out->slot = ProcessDecodeSlots().Acquire();
-  cv::Mat& image = out->pixels;
-  // The request's bytes, read in place (imdecode does not write to its input): no copy.
-  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U,
-                        const_cast<char*>(bytes.data()));
-  try {
-    image = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    image.release();
+// Decodes the encoded image `bytes` (the request's `field`) within limits.max_image_pixels
+// (server/image_decoding.h) and resolves its region of interest.
+grpc::Status ReadRequestImage(const std::string& bytes, std::string_view field,
+                              const ServerLimits& limits, const v1::Region& region,
+                              bool has_region, RequestImage* out) {
+  if (auto s = DecodeImage(bytes, field, limits.max_image_pixels, &out->decoded); !s.ok()) {
+    return s;
   }
-  if (image.empty()) {
-    return InvalidArgument(std::string(field) + " cannot be decoded: its " +
-                           (header.format == ImageFormat::kPng ? "PNG" : "JPEG") +
-                           " data is corrupt or truncated");
-  }
-  if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 256);
+  const cv::Mat& image = out->decoded.pixels;
   if (has_region) {
     const cv::Rect rect(region.x(), region.y(), region.width(), region.height());
     if (rect.width <= 0 || rect.height <= 0 ||
@@ -100,14 +79,14 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
   if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");
   if (has_cedd) return ReadCedd(frame.cedd(), "frame.cedd", &out->descriptor.values);
-  DecodedImage image;
-  if (auto s = DecodeImage(frame.image(), "frame.image", limits, frame.region(),
-                           frame.has_region(), &image);
+  RequestImage image;
+  if (auto s = ReadRequestImage(frame.image(), "frame.image", limits, frame.region(),
+                                frame.has_region(), &image);
       !s.ok()) {
     return s;
   }
   try {
-    out->descriptor = ExtractCedd(image.pixels, variant, image.roi);
+    out->descriptor = ExtractCedd(image.decoded.pixels, variant, image.roi);
   } catch (const std::exception& e) {
     return StatusFromException(e);
   }
@@ -139,20 +118,39 @@ grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
     }
     return ReadCedd(view.cedd(), "view.cedd", &out->descriptor);
   }
-  DecodedImage image;
-  if (auto s = DecodeImage(view.image(), "view.image", limits, view.region(), view.has_region(),
-                           &image);
+  RequestImage image;
+  if (auto s = ReadRequestImage(view.image(), "view.image", limits, view.region(),
+                                view.has_region(), &image);
       !s.ok()) {
     return s;
   }
   try {
+    const cv::Mat& pixels = image.decoded.pixels;
     const ViewDescription described =
-        DescribeView(image.roi ? image.pixels(*image.roi) : image.pixels, variant);
+        DescribeView(image.roi ? pixels(*image.roi) : pixels, variant);
     out->descriptor = described.descriptor;
     out->typical_distance = described.typical_distance;
   } catch (const std::exception& e) {
     return StatusFromException(e);
   }
+  return grpc::Status::OK;
+}
+
+grpc::Status ToModelViews(const std::vector<v1::View>& wire, DescriptorVariant variant,
+                          const ServerLimits& limits, std::vector<ModelView>* views,
+                          std::vector<std::string>* thumbnails) {
+  bool any_thumbnail = false;
+  for (std::size_t i = 0; i < wire.size(); ++i) {
+    ModelView view;
+    std::string thumbnail;
+    if (grpc::Status s = ToModelView(wire[i], variant, limits, &view, &thumbnail); !s.ok()) {
+      return grpc::Status(s.error_code(), "view " + std::to_string(i) + ": " + s.error_message());
+    }
+    any_thumbnail = any_thumbnail || !thumbnail.empty();
+    views->push_back(view);
+    thumbnails->push_back(std::move(thumbnail));
+  }
+  if (!any_thumbnail) thumbnails->clear();
   return grpc::Status::OK;
 }
 

@@ -8,6 +8,7 @@
 
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <grpcpp/grpcpp.h>
 
@@ -40,5 +41,12 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
 // most 64 KiB).
 grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
                          const ServerLimits& limits, ModelView* out, std::string* thumbnail);
+
+// The views of an enrollment or of AddViews, each read by ToModelView and appended to *views;
+// *thumbnails receives one per view, or none when no view has one. The first refusal is
+// returned with "view I: " before its message (I counting from 0).
+grpc::Status ToModelViews(const std::vector<v1::View>& wire, DescriptorVariant variant,
+                          const ServerLimits& limits, std::vector<ModelView>* views,
+                          std::vector<std::string>* thumbnails);
 
 }  // namespace orbit::server

@@ -61,7 +61,11 @@ std::string ServerConfig::Describe() const {
       << ", for images and enrollments "
       << (bulk_worker_threads > 0 ? std::to_string(bulk_worker_threads) : "half the cores")
       << "\n"
-      << "  shutdown grace      " << shutdown_grace_seconds << " s\n";
+      << "  shutdown grace      " << shutdown_grace_seconds << " s\n"
+      << "  metrics             "
+      << (metrics_listen.empty() ? std::string("off")
+                                 : "http://" + metrics_listen + "/metrics (Prometheus)")
+      << "\n";
   return out.str();
 }
 

@@ -30,6 +30,9 @@ struct ServerConfig {
   // another session's descriptor frames. 0: half the cores, at least one.
   int bulk_worker_threads = 0;
   int shutdown_grace_seconds = 5;  // SIGTERM: time open calls get to end cleanly
+  // HOST:PORT of the Prometheus metrics endpoint, http://HOST:PORT/metrics
+  // (server/metrics_endpoint.h); empty: none. Metrics are counted either way.
+  std::string metrics_listen;
 
   // Multi-line, human-readable account of the configuration in force (no secrets: token and
   // key files are named, not read), printed once at start-up.

@@ -1,9 +1,12 @@
 // SessionReactor: one Recognition.Session stream (proto/orbit/v1/recognition.proto).
 //
-// Frames are handled strictly one after another: read a request, process it on the worker
-// pool (decode, engine update), write its update, then read the next. So there is never more
-// than one read and one write in flight, reactions stay short, and engine work never runs on a
-// gRPC thread. Any bad request ends this stream alone with the status SPEC.md names.
+// Frames are handled strictly one after another: read a request, process it (engine update),
+// write its update, then read the next, so there is never more than one read and one write in
+// flight. A descriptor frame is processed in the read's reaction, on gRPC's thread: handing it
+// to a worker thread and the update back cost two thread wake-ups per frame, more CPU than the
+// HMM's work on 100 objects (docs/results/load.md). An image frame is decoded on the bulk
+// workers, so that a large image never delays another session's descriptor frames. Any bad
+// request ends this stream alone with the status SPEC.md names.
 //
 // Lifetime: created by RecognitionService for each call, deleted in OnDone.
 #pragma once
@@ -19,6 +22,8 @@
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "server/frame_rate_limit.h"
 #include "server/model_catalogue.h"
+#include "server/refusal_reason.h"
+#include "server/server_metrics.h"
 #include "server/session_engine.h"
 #include "server/session_registry.h"
 #include "server/session_settings.h"
@@ -29,11 +34,12 @@ namespace orbit::server {
 // What every session of a server shares.
 struct SessionEnvironment {
   ModelCatalogue& catalogue;
-  WorkerPool& pool;       // descriptor frames
+  WorkerPool& pool;       // Recognize calls of descriptors (a session's run in its reactions)
   WorkerPool& bulk_pool;  // image frames (decoding), so they never delay descriptor frames
   SessionRegistry& registry;
   const ServerLimits& limits;
   const SessionSettings& defaults;
+  ServerMetrics& metrics;
 };
 
 class SessionReactor final
@@ -61,11 +67,15 @@ class SessionReactor final
   void HandleOpen(const v1::SessionOptions& options);
   // `previous_read_done`: when the read before this frame's completed (the rate limit counts
   // the time the server held the stream since as the device's, not as a burst).
-  void HandleFrame(Clock::time_point received, Clock::time_point previous_read_done);
+  // Returns true when the caller must Process() the frame in request_ once it has released
+  // mutex_.
+  bool HandleFrame(Clock::time_point received, Clock::time_point previous_read_done);
   void ReadNext();
   void FinishOnce(const grpc::Status& status);
+  // FinishOnce with a refusal, counted under `reason` unless the stream has already finished.
+  void Refuse(const grpc::Status& status, RefusalReason reason);
 
-  // Runs on the worker pool.
+  // Runs in the read's reaction (descriptor frames) or on the bulk workers (image frames).
   void Process(v1::Frame frame, Clock::time_point received);
 
   // A write not taken by the device for this long, when the session is closed, is abandoned.
@@ -77,11 +87,13 @@ class SessionReactor final
   v1::SessionRequest request_;
   v1::SessionUpdate update_;
   std::unique_ptr<SessionEngine> engine_;  // set by the open request
+  FrameMetrics frame_metrics_;             // of the engine_'s engine, set with it
   bool registered_ = false;
   bool busy_ = false;      // a frame is being processed or its update written
   std::optional<Clock::time_point> write_started_;  // while an update is being written
   bool finished_ = false;  // Finish has been called
   std::optional<grpc::Status> pending_close_;  // Close() while busy: applied when idle
+  RefusalReason pending_reason_ = RefusalReason::kInternal;  // of pending_close_
   FrameRateLimit rate_limit_;
   Clock::time_point read_started_;        // when the outstanding read was started
   Clock::time_point previous_read_done_;  // when the read before it completed

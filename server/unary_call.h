@@ -1,6 +1,8 @@
 // Runs a unary call's work on the worker pool after checking the caller's role, and finishes
 // the call with the work's status (exceptions become statuses via StatusFromException). Keeps
-// store reads and writes (fsync) off gRPC's threads.
+// store reads and writes (fsync) off gRPC's threads. Refusals are counted in `metrics`: the
+// caller's role and exceptions here, the statuses the work returns by the work itself
+// (ServerMetrics::Refuse), since only it knows which rule refused.
 #pragma once
 
 #include <exception>
@@ -10,6 +12,7 @@
 
 #include "server/access_control.h"
 #include "server/error_status.h"
+#include "server/server_metrics.h"
 #include "server/worker_pool.h"
 
 namespace orbit::server {
@@ -19,18 +22,18 @@ namespace orbit::server {
 template <typename Work>
 grpc::ServerUnaryReactor* RunUnaryCall(grpc::CallbackServerContext* context,
                                        const AccessControl& access, Role role, WorkerPool& pool,
-                                       Work work) {
+                                       ServerMetrics& metrics, Work work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   if (grpc::Status allowed = access.Authorize(*context, role); !allowed.ok()) {
-    reactor->Finish(allowed);
+    reactor->Finish(metrics.Refuse(allowed, RefusalReason::kAccess));
     return reactor;
   }
-  pool.Post([reactor, work = std::move(work)]() mutable {
+  pool.Post([reactor, metrics = &metrics, work = std::move(work)]() mutable {
     grpc::Status status;
     try {
       status = work();
     } catch (const std::exception& e) {
-      status = StatusFromException(e);
+      status = metrics->Refuse(StatusFromException(e), RefusalReasonOf(e));
     }
     reactor->Finish(status);
   });

@@ -24,6 +24,11 @@ void WorkerPool::Post(std::function<void()> task) {
   wake_.notify_one();
 }
 
+int WorkerPool::queued() const {
+  std::lock_guard lock(mutex_);
+  return static_cast<int>(tasks_.size());
+}
+
 void WorkerPool::Run() {
   for (;;) {
     std::function<void()> task;

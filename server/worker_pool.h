@@ -28,10 +28,13 @@ class WorkerPool {
 
   int size() const { return static_cast<int>(threads_.size()); }
 
+  // The tasks posted but not yet started (the pool's queue depth). Takes the pool's lock.
+  int queued() const;
+
  private:
   void Run();
 
-  std::mutex mutex_;
+  mutable std::mutex mutex_;
   std::condition_variable wake_;
   std::deque<std::function<void()>> tasks_;
   bool stopping_ = false;

@@ -29,6 +29,23 @@ TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
   EXPECT_THAT(ParseObjectRange(" 9, 3-4 ,4,2 - 3"), ElementsAre(2, 3, 4, 9));
 }
 
+TEST(ParseObjectRangeTest, RangesUpToTheLargestIntAndAMillionNumbers) {
+  // A range ending at INT_MAX once counted past it (signed overflow; in practice an endless
+  // loop filling memory). Found by fuzz/manifest_fuzzer.cc.
+  EXPECT_THAT(ParseObjectRange("2147483647-2147483647"), ElementsAre(2147483647));
+  EXPECT_THAT(ParseObjectRange("2147483645-2147483647, 2147483646"),
+              ElementsAre(2147483645, 2147483646, 2147483647));
+  // A million numbers is the most a selection holds, in one range or in several.
+  const std::vector<int> million = ParseObjectRange("1-1000000");
+  ASSERT_EQ(million.size(), 1000000u);
+  EXPECT_EQ(million.front(), 1);
+  EXPECT_EQ(million.back(), 1000000);
+  EXPECT_EQ(ParseObjectRange("1-600000,400001-1000000").size(), 1000000u);
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-600000,600001-1000001"); }),
+              HasSubstr("selects more than a million objects"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000001"); }), HasSubstr("too large"));
+}
+
 TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange(""); }), HasSubstr("empty"));
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1,,3"); }),

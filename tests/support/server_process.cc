@@ -74,6 +74,7 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   if (options.tokens_file) args.insert(args.end(), {"--tokens", options.tokens_file->string()});
   if (options.tls_cert) args.insert(args.end(), {"--tls-cert", options.tls_cert->string()});
   if (options.tls_key) args.insert(args.end(), {"--tls-key", options.tls_key->string()});
+  if (options.metrics) args.insert(args.end(), {"--metrics-listen", "127.0.0.1:0"});
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
   pid_ = Spawn(args, log_file_);
 
@@ -84,6 +85,12 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
     if (const auto at = log.find(marker); at != std::string::npos && log.find('\n', at) != std::string::npos) {
       address_ = log.substr(at + marker.size(), log.find('\n', at) - at - marker.size());
       port_ = std::stoi(address_.substr(address_.rfind(':') + 1));
+      // Printed before "listening on", as "metrics on http://HOST:PORT/metrics".
+      const std::string metrics_marker = "metrics on http://";
+      if (const auto m = log.find(metrics_marker); m != std::string::npos) {
+        const auto begin = m + metrics_marker.size();
+        metrics_address_ = log.substr(begin, log.find("/metrics", begin) - begin);
+      }
       return;
     }
     const int code = WaitExit(pid_, std::chrono::milliseconds(0));

@@ -25,6 +25,8 @@ struct ServerProcessOptions {
   std::optional<std::filesystem::path> tokens_file = std::nullopt;
   std::optional<std::filesystem::path> tls_cert = std::nullopt;
   std::optional<std::filesystem::path> tls_key = std::nullopt;
+  // --metrics-listen 127.0.0.1:0: the Prometheus endpoint on a free loopback port.
+  bool metrics = false;
   std::vector<std::string> extra_args = {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };
 
@@ -57,6 +59,8 @@ class ServerProcess {
   const std::string& address() const { return address_; }
   int port() const { return port_; }
   const std::filesystem::path& database() const { return database_; }
+  // "127.0.0.1:PORT" of the metrics endpoint (with options.metrics), "" without.
+  const std::string& metrics_address() const { return metrics_address_; }
   pid_t pid() const { return pid_; }
 
   // Sends `signal` and waits up to `timeout` for the process to exit. Returns its exit code, or
@@ -71,6 +75,7 @@ class ServerProcess {
   std::filesystem::path database_;
   std::filesystem::path log_file_;
   std::string address_;
+  std::string metrics_address_;
   int port_ = 0;
   pid_t pid_ = -1;
   bool owns_database_ = false;

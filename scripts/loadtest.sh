@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# Measures the load table of docs/results/load.md with `orbit loadtest` and prints it as Markdown.
+#
+#   scripts/loadtest.sh [BUILD_DIR]        # default build/, which ./scripts/build.sh makes (Release)
+#
+# A server (`orbit serve`, pinned to CPU $SERVER_CPU) on a copy of a SQLite store holding all 100
+# COIL-100 objects (imported once into $DB, about a minute), then one `orbit loadtest` (pinned to
+# CPU $LOAD_CPU) per row, $DURATION seconds each, in the order of the table. Every run's JSON goes
+# to $OUT; the Markdown table to stdout, progress to stderr.
+#
+# Environment: ORBIT_DATA (default ../shared/data), DURATION (15), PORT (50151), SERVER_CPU (0),
+# LOAD_CPU (1), DB (BUILD_DIR/loadtest/coil100.db), OUT (BUILD_DIR/loadtest/<time>), COMMIT (the
+# commit BUILD_DIR was built from, for the table's heading; default the checkout's HEAD).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+build=${1:-build}
+orbit="$build/orbit"
+data=${ORBIT_DATA:-../shared/data}
+duration=${DURATION:-15}
+port=${PORT:-50151}
+server_cpu=${SERVER_CPU:-0}
+load_cpu=${LOAD_CPU:-1}
+db=${DB:-$build/loadtest/coil100.db}
+out=${OUT:-$build/loadtest/$(date -u +%Y%m%dT%H%M%SZ)}
+
+[ -x "$orbit" ] || { echo "no $orbit: build first (./scripts/build.sh)" >&2; exit 1; }
+build_type=$(sed -n 's/^CMAKE_BUILD_TYPE:STRING=//p' "$build/CMakeCache.txt" 2>/dev/null || true)
+[ "$build_type" = Release ] || echo "warning: $build is a '$build_type' build, not Release" >&2
+command -v jq >/dev/null || { echo "jq is needed to read the reports (apt-get install jq)" >&2; exit 1; }
+mkdir -p "$out" "$(dirname "$db")"
+
+if [ ! -f "$db" ]; then
+  echo "importing COIL-100 (100 objects x 72 views) into $db ..." >&2
+  "$orbit" import --db "$db.partial" --layout coil100 --data "$data/coil-100" >/dev/null
+  mv "$db.partial" "$db"
+fi
+# The server works on a copy: the enrollments of the last row are deleted afterwards, but ids and
+# the file's pages would still drift from run to run.
+cp "$db" "$out/models.db"
+
+# --max-fps: a closed-loop session sends thousands of frames per second, far above the default 60.
+taskset -c "$server_cpu" "$orbit" serve --db "$out/models.db" --listen "127.0.0.1:$port" \
+  --max-fps 1000000 2>"$out/serve.log" &
+server=$!
+trap 'kill "$server" 2>/dev/null || true; wait "$server" 2>/dev/null || true' EXIT
+for _ in $(seq 100); do
+  grep -q "listening on" "$out/serve.log" && break
+  kill -0 "$server" 2>/dev/null || { cat "$out/serve.log" >&2; exit 1; }
+  sleep 0.2
+done
+grep -q "listening on" "$out/serve.log" || { echo "the server did not start" >&2; exit 1; }
+
+# run NAME ARGS...: one loadtest, its JSON in $out/NAME.json, the load average before it in
+# $out/NAME.load.
+run() {
+  local name=$1
+  shift
+  echo "== $name: $* ($(uptime | sed 's/.*load average: //'))" >&2
+  uptime | sed 's/.*load average: //; s/,.*//' >"$out/$name.load"
+  taskset -c "$load_cpu" "$orbit" loadtest --json --server "127.0.0.1:$port" --server-pid "$server" \
+    --data "$data/coil-100" --duration "$duration" "$@" >"$out/$name.json"
+}
+
+run open-64-hmm --engine hmm --sessions 64 --rate 10
+run open-256-hmm --engine hmm --sessions 256 --rate 10
+run closed-8-hmm --engine hmm --sessions 8 --closed-loop
+run closed-64-hmm --engine hmm --sessions 64 --closed-loop
+run closed-8-vci --engine vci --sessions 8 --closed-loop
+run closed-64-vci --engine vci --sessions 64 --closed-loop
+run open-1-hmm --engine hmm --sessions 1 --rate 10
+run open-64-hmm-enroll --engine hmm --sessions 64 --rate 10 --enroll-count 20
+
+# One Markdown row per run.
+row() {
+  local name=$1 load
+  load=$(cat "$out/$name.load")
+  jq -r --arg load "$load" '
+    def n(x): if x == null then "-" else (x | tostring) end;
+    def mode: if .config.mode == "open-loop" then "\(.config.rate_per_session) fps" else "closed" end;
+    def errors: if (.errors | length) == 0 then "0" else (.errors | to_entries | map("\(.key) \(.value)") | join(", ")) end;
+    def enrollments: if .enrollments then " + \(.enrollments.done) enrollments" else "" end;
+    "| \(.config.sessions) x \(mode)\(enrollments) | \(.config.engine) | \(.frames_per_second) | \(.rtt_ms.p50) | \(.rtt_ms.p90) | \(.rtt_ms.p99) | \(.rtt_ms.max) | \(.server.processing_time_us.p50) / \(.server.processing_time_us.p99) | \(n(.server.cpu_us_per_frame)) (\(n(.server.cpu_percent))%) | \(.generator.cpu_us_per_frame) (\(.generator.cpu_percent)%) | \(n(.server.rss_mb_start)) -> \(n(.server.rss_mb_end)) | \(errors) | \($load) |"
+  ' "$out/$name.json"
+}
+
+if [ -n "${COMMIT:-}" ]; then
+  commit=$COMMIT dirty=""
+else
+  commit=$(git rev-parse --short HEAD)
+  dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (working tree has uncommitted changes)" || true)
+fi
+echo "Commit $commit$dirty, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row; JSON in $out."
+echo
+echo "| load | engine | frames/s | RTT p50 (ms) | p90 | p99 | max | server processing p50 / p99 (us) | server CPU per frame (us) | generator CPU per frame (us) | server RSS start -> end (MB) | errors | load avg before |"
+echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: |"
+for name in open-64-hmm open-256-hmm closed-8-hmm closed-64-hmm closed-8-vci closed-64-vci open-1-hmm open-64-hmm-enroll; do
+  row "$name"
+done
+echo
+jq -r '"During \(.enrollments.done) back-to-back enrollments of \(.enrollments.views) views (64 x 10 fps HMM): RTT p50 \(.enrollments.rtt_ms_during.p50) ms, p90 \(.enrollments.rtt_ms_during.p90), p99 \(.enrollments.rtt_ms_during.p99), max \(.enrollments.rtt_ms_during.max) over \(.enrollments.rtt_ms_during.count) frames; enrollment latency p50 \(.enrollments.latency_ms.p50) ms, p99 \(.enrollments.latency_ms.p99), max \(.enrollments.latency_ms.max); \(.enrollments.deleted) deleted afterwards."' \
+  "$out/open-64-hmm-enroll.json"

@@ -1,0 +1,119 @@
+// ServerMetrics: what `orbit serve` measures about itself, exposed for Prometheus at
+// --metrics-listen (server/metrics_endpoint.h; every metric is described in docs/service.md,
+// "Metrics"). The metrics' names, help texts, labels and buckets are written here once; the
+// children the hot paths update are resolved when the server starts, so that a frame costs a
+// counter increment and a histogram observation (bench/metrics_bench.cc measures it).
+//
+// Thread-safe.
+#pragma once
+
+#include <grpcpp/grpcpp.h>
+
+#include <array>
+#include <chrono>
+
+#include "orbit/v1/recognition.pb.h"
+#include "server/metrics.h"
+#include "server/refusal_reason.h"
+
+namespace orbit::server {
+
+class ModelCatalogue;
+class SessionRegistry;
+class WorkerPool;
+
+// How a frame reached the server (the `input` label): Frame.cedd or Frame.image.
+enum class FrameInput { kCedd, kImage };
+
+// What a processed frame updates, for one engine: resolved once per session (or Recognize
+// call), then used for each of its frames.
+class FrameMetrics {
+ public:
+  // Updates nothing; REQUIRES assignment from ServerMetrics::ForEngine before Record.
+  FrameMetrics() = default;
+
+  // One frame processed in `spent` on the server (from its read to its update being ready). A
+  // relaxed add to the engine's frame counter and one histogram observation: no lock, no
+  // allocation, no lookup.
+  void Record(FrameInput input, std::chrono::steady_clock::duration spent) const noexcept {
+    frames_->Increment();
+    seconds_[static_cast<int>(input)]->Observe(std::chrono::duration<double>(spent).count());
+  }
+
+ private:
+  friend class ServerMetrics;
+  Counter* frames_ = nullptr;
+  std::array<Histogram*, 2> seconds_{};  // by FrameInput
+};
+
+// How an Enroll call ended (the `outcome` label).
+enum class EnrollmentOutcome {
+  kStored,     // stored: answered OK; the object is durable and indexed
+  kRefused,    // refused: a bad request, a limit or a duplicate name (orbit_refusals_total says
+               // which)
+  kFailed,     // failed: the store or the server failed (reason store or internal)
+  kCancelled,  // cancelled: the client's stream broke before it closed; nothing was stored
+};
+
+// Where ModelCatalogue reports how long each committed store write took.
+struct StoreWriteHistograms {
+  Histogram* enroll = nullptr;     // Enroll: the object and its views
+  Histogram* add_views = nullptr;  // AddViews
+  Histogram* remove = nullptr;     // Delete
+};
+
+class ServerMetrics {
+ public:
+  // Registers every metric, each labelled child at zero.
+  ServerMetrics();
+
+  ServerMetrics(const ServerMetrics&) = delete;
+  ServerMetrics& operator=(const ServerMetrics&) = delete;
+
+  const MetricsRegistry& registry() const { return registry_; }
+
+  // The frame metrics of sessions running `engine`. REQUIRES: a resolved engine (not
+  // ENGINE_UNSPECIFIED); any other value is counted under engine="unknown".
+  FrameMetrics ForEngine(v1::Engine engine);
+
+  // Counts a refusal with `status`'s code and `reason`, and returns `status` (so that a refusal
+  // reads `return metrics.Refuse(status, reason);`). Nothing is counted for an OK status.
+  grpc::Status Refuse(grpc::Status status, RefusalReason reason);
+  void CountRefusal(grpc::StatusCode code, RefusalReason reason);
+
+  void CountEnrollment(EnrollmentOutcome outcome);
+  // Seconds from the end of an Enroll stream to its answer, for enrollments stored.
+  Histogram& enrollment_seconds() { return *enrollment_seconds_; }
+
+  StoreWriteHistograms store_writes() const { return store_writes_; }
+
+  // Gauges read at each scrape: the open sessions, the index's size, the tasks waiting for each
+  // pool's workers. Each object must outlive every later exposition of the registry.
+  void WatchSessions(const SessionRegistry& sessions);
+  void WatchIndex(const ModelCatalogue& catalogue);
+  void WatchWorkers(const WorkerPool& workers, const WorkerPool& bulk_workers);
+
+ private:
+  static constexpr int kStatusCodes = 17;  // OK .. UNAUTHENTICATED
+
+  MetricsRegistry registry_;
+  Family<Counter>& frames_family_;
+  Family<Histogram>& frame_seconds_family_;
+  Family<Gauge>& open_sessions_family_;
+  Family<Counter>& refusals_family_;
+  Family<Counter>& enrollments_family_;
+  Family<Histogram>& enrollment_seconds_family_;
+  Family<Gauge>& index_objects_family_;
+  Family<Gauge>& index_views_family_;
+  Family<Histogram>& store_write_seconds_family_;
+  Family<Gauge>& queue_depth_family_;
+  std::array<Counter*, v1::Engine_ARRAYSIZE> frames_{};
+  std::array<Histogram*, 2> frame_seconds_{};
+  // refusals_[code][reason], for the pairs of kRefusalKinds; others are found when counted.
+  std::array<std::array<Counter*, kRefusalReasonCount>, kStatusCodes> refusals_{};
+  std::array<Counter*, 4> enrollments_{};  // by EnrollmentOutcome
+  Histogram* enrollment_seconds_;
+  StoreWriteHistograms store_writes_;
+};
+
+}  // namespace orbit::server

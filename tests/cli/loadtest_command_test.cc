@@ -1,0 +1,150 @@
+// orbit loadtest (cli/loadtest_command.cc, cli/load_session.cc) against real `orbit serve`
+// processes holding COIL-100 objects, as an engineer runs it.
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "tests/support/server_process.h"
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using ::testing::HasSubstr;
+using testing::CoilDir;
+using testing::RunOrbit;
+using testing::ScratchDir;
+using testing::ServerProcess;
+
+// A model store holding COIL-100 objects 1 and 2 (72 views each), made with orbit import.
+std::filesystem::path CoilStore(const ScratchDir& dir) {
+  const std::filesystem::path db = dir / "models.db";
+  const testing::CommandResult imported = RunOrbit(
+      "import --db " + db.string() + " --layout coil100 --data " + CoilDir() + " --objects 1-2");
+  EXPECT_EQ(imported.exit_code, 0) << imported.err;
+  return db;
+}
+
+// `orbit loadtest --json` on `server` with `arguments`; its report.
+nlohmann::json Loadtest(const ServerProcess& server, const std::string& arguments) {
+  const testing::CommandResult run =
+      RunOrbit("loadtest --json --server " + server.address() + " --data " + CoilDir() +
+               " --objects 1-2 " + arguments);
+  EXPECT_EQ(run.exit_code, 0) << run.err;
+  if (run.exit_code != 0) return nlohmann::json::object();
+  return nlohmann::json::parse(run.out);
+}
+
+void ExpectOrderedRoundTrips(const nlohmann::json& rtt) {
+  EXPECT_GT(rtt["p50"].get<double>(), 0) << rtt;
+  EXPECT_LE(rtt["p50"].get<double>(), rtt["p90"].get<double>()) << rtt;
+  EXPECT_LE(rtt["p90"].get<double>(), rtt["p99"].get<double>()) << rtt;
+  EXPECT_LE(rtt["p99"].get<double>(), rtt["max"].get<double>()) << rtt;
+}
+
+TEST(LoadtestCommandTest, OpenLoopAnswersEveryFrameOnScheduleWithoutErrors) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir)});
+  const nlohmann::json report =
+      Loadtest(server, "--sessions 3 --rate 20 --duration 2 --server-pid " +
+                           std::to_string(server.pid()));
+  // 3 sessions x 20 frames/s x 2 s, every frame answered.
+  EXPECT_EQ(report["frames"]["sent"], 120) << report;
+  EXPECT_EQ(report["frames"]["answered"], 120) << report;
+  EXPECT_GT(report["frames_per_second"].get<double>(), 0);
+  ExpectOrderedRoundTrips(report["rtt_ms"]);
+  EXPECT_EQ(report["rtt_ms"]["count"], 120);
+  EXPECT_EQ(report["errors"], nlohmann::json::object());
+  EXPECT_EQ(report["sessions"]["opened"], 3);
+  EXPECT_EQ(report["sessions"]["failed"], 0);
+  EXPECT_EQ(report["config"]["engine"], "hmm");  // the server's default
+  EXPECT_EQ(report["config"]["mode"], "open-loop");
+  // The server's own figures: its processing times and, through its pid, CPU and memory.
+  EXPECT_GT(report["server"]["processing_time_us"]["p50"].get<double>(), 0);
+  EXPECT_LE(report["server"]["processing_time_us"]["p50"].get<double>(),
+            report["server"]["processing_time_us"]["p99"].get<double>());
+  EXPECT_GE(report["server"]["cpu_seconds"].get<double>(), 0);
+  EXPECT_GT(report["server"]["rss_mb_start"].get<double>(), 1);
+  EXPECT_GT(report["server"]["rss_mb_end"].get<double>(), 1);
+  EXPECT_TRUE(report["generator"].contains("cpu_us_per_frame"));
+}
+
+TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-fps", "100000"}});
+  const nlohmann::json closed = Loadtest(server, "--sessions 2 --closed-loop --duration 1 --engine vci");
+  EXPECT_EQ(closed["config"]["mode"], "closed-loop");
+  EXPECT_EQ(closed["config"]["engine"], "vci");
+  EXPECT_GT(closed["frames"]["answered"].get<int>(), 2);
+  EXPECT_EQ(closed["frames"]["answered"], closed["frames"]["sent"]);
+  EXPECT_EQ(closed["errors"], nlohmann::json::object());
+  ExpectOrderedRoundTrips(closed["rtt_ms"]);
+
+  const nlohmann::json images = Loadtest(server, "--sessions 2 --rate 10 --duration 1 --image-frames");
+  EXPECT_EQ(images["config"]["frames"], "image");
+  EXPECT_EQ(images["frames"]["sent"], 20);
+  EXPECT_EQ(images["frames"]["answered"], 20);
+  EXPECT_EQ(images["errors"], nlohmann::json::object());
+}
+
+TEST(LoadtestCommandTest, SessionsBeyondTheServersLimitAreCountedAsResourceExhausted) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-sessions", "2"}});
+  const nlohmann::json report = Loadtest(server, "--sessions 4 --rate 10 --duration 1");
+  EXPECT_EQ(report["errors"], (nlohmann::json{{"RESOURCE_EXHAUSTED", 2}})) << report;
+  EXPECT_EQ(report["sessions"]["opened"], 2);
+  EXPECT_EQ(report["sessions"]["failed"], 2);
+  // The two admitted sessions ran: 2 x 10 frames/s x 1 s.
+  EXPECT_EQ(report["frames"]["answered"], 20);
+}
+
+TEST(LoadtestCommandTest, EnrollmentsDuringTheLoadAreTimedAndDeletedAfterwards) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir)});
+  const nlohmann::json report =
+      Loadtest(server, "--sessions 2 --rate 10 --duration 2 --enroll-count 2");
+  ASSERT_TRUE(report.contains("enrollments")) << report;
+  EXPECT_EQ(report["enrollments"]["done"], 2);
+  EXPECT_EQ(report["enrollments"]["deleted"], 2);
+  EXPECT_EQ(report["enrollments"]["views"], 72);  // all of obj1's views
+  EXPECT_GT(report["enrollments"]["latency_ms"]["p50"].get<double>(), 0);
+  EXPECT_EQ(report["errors"], nlohmann::json::object());
+  EXPECT_EQ(report["frames"]["answered"], 40);
+
+  // Only the two imported objects are left.
+  const testing::CommandResult listed = RunOrbit("list --server " + server.address());
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_EQ(testing::OutputLines(listed.out).size(), 2u) << listed.out;
+}
+
+TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
+  const std::string at = "loadtest --server 127.0.0.1:1 ";
+  const testing::CommandResult neither = RunOrbit(at + "--sessions 2");
+  EXPECT_EQ(neither.exit_code, 2);
+  EXPECT_THAT(neither.err, HasSubstr("[--rate,--closed-loop]"));
+  const testing::CommandResult both = RunOrbit(at + "--rate 5 --closed-loop");
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_THAT(both.err, HasSubstr("2 were given"));
+  const testing::CommandResult engine = RunOrbit(at + "--rate 5 --engine nope");
+  EXPECT_EQ(engine.exit_code, 2);
+  EXPECT_THAT(engine.err, HasSubstr("--engine: nope not in {vci,hmm,"));
+  EXPECT_EQ(RunOrbit(at + "--rate 0").exit_code, 2);
+  EXPECT_EQ(RunOrbit(at + "--rate 5 --sessions 0").exit_code, 2);
+  EXPECT_EQ(RunOrbit(at + "--rate 5 --frobnicate").exit_code, 2);
+  // A server that is not there is not a bad flag: the command ran and failed.
+  const testing::CommandResult unreachable = RunOrbit(at + "--rate 5 --timeout 1");
+  EXPECT_EQ(unreachable.exit_code, 1);
+  EXPECT_THAT(unreachable.err, HasSubstr("UNAVAILABLE"));
+
+  const testing::CommandResult help = RunOrbit("loadtest --help");
+  EXPECT_EQ(help.exit_code, 0);
+  for (const char* text : {"frames per second per session", "seconds of load",
+                           "concurrent sessions", "--enroll-every", "--server-pid", "in ms"}) {
+    EXPECT_THAT(help.out, HasSubstr(text));
+  }
+}
+
+}  // namespace
+}  // namespace orbit
