@@ -28,12 +28,6 @@ set_target_properties(flann::flann PROPERTIES
 find_package(Protobuf REQUIRED)
 find_package(gRPC CONFIG REQUIRED)
 
-# civetweb: the HTTP server of `orbit serve --metrics-listen` (server/metrics_endpoint.h). Found
-# by hand: the CMake config in libcivetweb-dev also imports the `civetweb` program, which that
-# package does not install, so find_package(civetweb) fails without the `civetweb` package.
-find_path(CIVETWEB_INCLUDE_DIR civetweb.h REQUIRED)
-find_library(CIVETWEB_LIBRARY civetweb REQUIRED)
-add_library(civetweb::civetweb UNKNOWN IMPORTED)
-set_target_properties(civetweb::civetweb PROPERTIES
-  IMPORTED_LOCATION "${CIVETWEB_LIBRARY}"
-  INTERFACE_INCLUDE_DIRECTORIES "${CIVETWEB_INCLUDE_DIR}")
+# prometheus-cpp: the server's metrics (server/server_metrics.h) and their HTTP endpoint
+# (`orbit serve --metrics-listen`, server/metrics_endpoint.h: the pull library's Exposer).
+find_package(prometheus-cpp CONFIG REQUIRED)

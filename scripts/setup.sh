@@ -9,7 +9,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libcli11-dev nlohmann-json3-dev libsqlite3-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  libflann-dev liblz4-dev libeigen3-dev zlib1g-dev libcivetweb-dev
+  libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   python3-grpcio python3-protobuf
 )

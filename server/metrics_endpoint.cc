@@ -1,7 +1,7 @@
 #include "server/metrics_endpoint.h"
 
-#include <civetweb.h>
 #include <netdb.h>
+#include <prometheus/exposer.h>
 #include <sys/socket.h>
 #include <unistd.h>
 
@@ -11,38 +11,35 @@
 #include <string_view>
 #include <thread>
 
-#include "server/metrics.h"
+#include "server/server_metrics.h"
 
 namespace orbit::server {
 namespace {
 
-constexpr const char* kContentType = "text/plain; version=0.0.4; charset=utf-8";
-
-// Splits "HOST:PORT", checking what civetweb's listening_ports would read differently: a list
-// (","), an IPv6 address ("[...]"), or a port with civetweb's suffixes ("9464s" serves TLS).
-void SplitAddress(const std::string& host_and_port, std::string* host, std::string* port) {
+// Checks "HOST:PORT" for what civetweb's listening_ports would read differently: a list (","),
+// an IPv6 address ("[...]"), or a port with civetweb's suffixes ("9464s" serves TLS).
+void CheckAddress(const std::string& host_and_port) {
   const auto colon = host_and_port.rfind(':');
   const std::string_view text = host_and_port;
   const bool ok = [&] {
     if (colon == std::string::npos || colon == 0) return false;
-    const std::string_view h = text.substr(0, colon), p = text.substr(colon + 1);
-    if (h.find_first_of(":[], \t") != std::string_view::npos) return false;
-    if (p.empty() || p.size() > 5 || p.find_first_not_of("0123456789") != std::string_view::npos) {
+    const std::string_view host = text.substr(0, colon), port = text.substr(colon + 1);
+    if (host.find_first_of(":[], \t") != std::string_view::npos) return false;
+    if (port.empty() || port.size() > 5 ||
+        port.find_first_not_of("0123456789") != std::string_view::npos) {
       return false;
     }
-    return std::stoi(std::string(p)) <= 65535;
+    return std::stoi(std::string(port)) <= 65535;
   }();
   if (!ok) {
     throw std::invalid_argument("'" + host_and_port +
                                 "' is not HOST:PORT with an IPv4 address or host name and a "
                                 "port 0..65535 (IPv6 is not supported for metrics)");
   }
-  *host = host_and_port.substr(0, colon);
-  *port = host_and_port.substr(colon + 1);
 }
 
-// Opens and closes one TCP connection to host:port (0.0.0.0 reached through 127.0.0.1), to
-// wake civetweb's listening thread; whether it connects does not matter.
+// Opens and closes one TCP connection to host:port (0.0.0.0 reached through 127.0.0.1), to wake
+// civetweb's listening thread; whether it connects does not matter.
 void Knock(const std::string& host, int port) {
   addrinfo hints{};
   hints.ai_family = AF_INET;
@@ -58,53 +55,32 @@ void Knock(const std::string& host, int port) {
   freeaddrinfo(found);
 }
 
-void InitCivetwebOnce() {
-  static std::once_flag once;
-  std::call_once(once, [] { mg_init_library(0); });
-}
-
 }  // namespace
 
-MetricsEndpoint::MetricsEndpoint(const std::string& host_and_port, const MetricsRegistry& registry)
-    : host_(host_and_port.substr(0, host_and_port.rfind(':'))), registry_(registry) {
-  std::string host, port;
-  SplitAddress(host_and_port, &host, &port);
-  InitCivetwebOnce();
-  const std::string listening = host + ":" + port;
-  const char* options[] = {"listening_ports", listening.c_str(),  //
-                           "num_threads", "2",  // Prometheus scrapes one request at a time
-                           "request_timeout_ms", "10000",  //
-                           nullptr};
-  mg_callbacks callbacks{};
-  callbacks.log_message = &MetricsEndpoint::LogMessage;
-  mg_init_data init{&callbacks, this, options};
-  char error_text[256] = "";
-  unsigned error_code = 0;
-  mg_error_data error{&error_code, error_text, sizeof error_text};
-  context_ = mg_start2(&init, &error);
-  std::lock_guard lock(log_mutex_);
-  started_ = true;
-  if (context_ == nullptr) {
-    // civetweb's log names the cause ("cannot bind to ...: 98 (Address already in use)") before
-    // its summary ("Failed to setup server ports"); the first line is the useful one.
-    const std::string cause =
-        log_.empty() ? std::string(error_text) : log_.substr(0, log_.find('\n'));
-    throw std::runtime_error(cause);
+MetricsEndpoint::MetricsEndpoint(const std::string& host_and_port, const ServerMetrics& metrics)
+    : host_(host_and_port.substr(0, host_and_port.rfind(':'))) {
+  CheckAddress(host_and_port);
+  try {
+    // Two threads: Prometheus scrapes one request at a time, and a second keeps a slow client
+    // from blocking it.
+    exposer_ = std::make_unique<prometheus::Exposer>(host_and_port, 2);
+  } catch (const std::exception&) {
+    // civetweb says only "null context when constructing CivetServer".
+    throw std::runtime_error("cannot listen on " + host_and_port +
+                             " (address in use, or not an address of this machine?)");
   }
-  mg_server_port ports[1];
-  if (mg_get_server_ports(context_, 1, ports) == 1) port_ = ports[0].port;
-  mg_set_request_handler(context_, "/metrics$", &MetricsEndpoint::ServeMetrics, this);
+  for (const auto& collectable : metrics.collectables()) exposer_->RegisterCollectable(collectable);
+  const std::vector<int> ports = exposer_->GetListeningPorts();
+  if (!ports.empty()) port_ = ports.front();
 }
 
 MetricsEndpoint::~MetricsEndpoint() {
-  if (context_ == nullptr) return;
-  // mg_stop returns once civetweb's listening thread has seen the stop, which it looks for only
-  // when its poll() returns: every 2 s, or as soon as a connection arrives. Knocking until the
-  // stop is done makes it take milliseconds instead of up to 2 s (a server's shutdown waits
-  // for it).
+  // civetweb's listening thread sees the stop only when its poll() returns: every 2 s, or as
+  // soon as a connection arrives. Knocking until the exposer is gone makes a server's shutdown
+  // take milliseconds instead of up to 2 s.
   std::atomic<bool> stopped = false;
   std::thread stopper([this, &stopped] {
-    mg_stop(context_);
+    exposer_.reset();
     stopped = true;
   });
   while (!stopped) {
@@ -112,39 +88,6 @@ MetricsEndpoint::~MetricsEndpoint() {
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
   stopper.join();
-}
-
-std::string MetricsEndpoint::address() const { return host_ + ":" + std::to_string(port_); }
-
-int MetricsEndpoint::LogMessage(const mg_connection* connection, const char* message) {
-  const mg_context* context = connection != nullptr ? mg_get_context(connection) : nullptr;
-  auto* endpoint =
-      context != nullptr ? static_cast<MetricsEndpoint*>(mg_get_user_data(context)) : nullptr;
-  if (endpoint != nullptr) {
-    std::lock_guard lock(endpoint->log_mutex_);
-    if (!endpoint->started_) endpoint->log_ += std::string(message) + "\n";
-  }
-  return 1;  // handled: civetweb prints nothing itself
-}
-
-int MetricsEndpoint::ServeMetrics(mg_connection* connection, void* endpoint) {
-  const std::string_view method = mg_get_request_info(connection)->request_method;
-  if (method != "GET" && method != "HEAD") {
-    mg_printf(connection,
-              "HTTP/1.1 405 Method Not Allowed\r\nAllow: GET, HEAD\r\nContent-Length: 0\r\n"
-              "Connection: close\r\n\r\n");
-    return 405;
-  }
-  std::string text;
-  try {
-    text = static_cast<const MetricsEndpoint*>(endpoint)->registry_.Expose();
-  } catch (const std::exception& e) {
-    mg_send_http_error(connection, 500, "%s", e.what());
-    return 500;
-  }
-  mg_send_http_ok(connection, kContentType, static_cast<long long>(text.size()));
-  if (method == "GET") mg_write(connection, text.data(), text.size());
-  return 200;
 }
 
 }  // namespace orbit::server

@@ -12,7 +12,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A store write that returned, begun at `start`: its duration, in `seconds` when there is one.
-void ObserveWrite(Histogram* seconds, Clock::time_point start) {
+void ObserveWrite(prometheus::Histogram* seconds, Clock::time_point start) {
   if (seconds == nullptr) return;
   seconds->Observe(std::chrono::duration<double>(Clock::now() - start).count());
 }

@@ -77,7 +77,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   if (!config_.metrics_listen.empty()) {  // before gRPC: a bad address serves nothing at all
     try {
       metrics_endpoint_ =
-          std::make_unique<MetricsEndpoint>(config_.metrics_listen, metrics_->registry());
+          std::make_unique<MetricsEndpoint>(config_.metrics_listen, *metrics_);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("--metrics-listen: ") + e.what());
     }

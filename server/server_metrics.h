@@ -1,19 +1,29 @@
-// ServerMetrics: what `orbit serve` measures about itself, exposed for Prometheus at
-// --metrics-listen (server/metrics_endpoint.h; every metric is described in docs/service.md,
-// "Metrics"). The metrics' names, help texts, labels and buckets are written here once; the
-// children the hot paths update are resolved when the server starts, so that a frame costs a
-// counter increment and a histogram observation (bench/metrics_bench.cc measures it).
+// ServerMetrics: what `orbit serve` measures about itself, in Prometheus' data model with
+// Debian's prometheus-cpp, exposed at --metrics-listen (server/metrics_endpoint.h; every metric
+// is described in docs/service.md, "Metrics"). The metrics' names, help texts, labels and
+// buckets are written here once; the children the hot paths update are resolved when the server
+// starts, so that a frame costs a counter increment and a histogram observation
+// (bench/metrics_bench.cc measures it). The gauges (open sessions, index size, queue depths) are
+// read from the server's own state at each scrape, so no hot path updates them.
 //
 // Thread-safe.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
 
+#include <prometheus/collectable.h>
+#include <prometheus/counter.h>
+#include <prometheus/family.h>
+#include <prometheus/histogram.h>
+#include <prometheus/registry.h>
+
 #include <array>
 #include <chrono>
+#include <memory>
+#include <string>
+#include <vector>
 
 #include "orbit/v1/recognition.pb.h"
-#include "server/metrics.h"
 #include "server/refusal_reason.h"
 
 namespace orbit::server {
@@ -32,9 +42,9 @@ class FrameMetrics {
   // Updates nothing; REQUIRES assignment from ServerMetrics::ForEngine before Record.
   FrameMetrics() = default;
 
-  // One frame processed in `spent` on the server (from its read to its update being ready). A
-  // relaxed add to the engine's frame counter and one histogram observation: no lock, no
-  // allocation, no lookup.
+  // One frame processed in `spent` on the server (from its read to its update being ready): an
+  // atomic add to the engine's frame counter and one histogram observation (prometheus-cpp
+  // takes the histogram's mutex); no allocation, no label lookup.
   void Record(FrameInput input, std::chrono::steady_clock::duration spent) const noexcept {
     frames_->Increment();
     seconds_[static_cast<int>(input)]->Observe(std::chrono::duration<double>(spent).count());
@@ -42,8 +52,8 @@ class FrameMetrics {
 
  private:
   friend class ServerMetrics;
-  Counter* frames_ = nullptr;
-  std::array<Histogram*, 2> seconds_{};  // by FrameInput
+  prometheus::Counter* frames_ = nullptr;
+  std::array<prometheus::Histogram*, 2> seconds_{};  // by FrameInput
 };
 
 // How an Enroll call ended (the `outcome` label).
@@ -57,9 +67,9 @@ enum class EnrollmentOutcome {
 
 // Where ModelCatalogue reports how long each committed store write took.
 struct StoreWriteHistograms {
-  Histogram* enroll = nullptr;     // Enroll: the object and its views
-  Histogram* add_views = nullptr;  // AddViews
-  Histogram* remove = nullptr;     // Delete
+  prometheus::Histogram* enroll = nullptr;     // Enroll: the object and its views
+  prometheus::Histogram* add_views = nullptr;  // AddViews
+  prometheus::Histogram* remove = nullptr;     // Delete
 };
 
 class ServerMetrics {
@@ -70,7 +80,11 @@ class ServerMetrics {
   ServerMetrics(const ServerMetrics&) = delete;
   ServerMetrics& operator=(const ServerMetrics&) = delete;
 
-  const MetricsRegistry& registry() const { return registry_; }
+  // What a scrape collects, in order: the counters and histograms, then the gauges read from
+  // the watched state. Each stays valid while this object lives (an exposer holds them weakly).
+  std::vector<std::weak_ptr<prometheus::Collectable>> collectables() const;
+  // Every metric in the text exposition format 0.0.4, as a scrape reads it.
+  std::string Expose() const;
 
   // The frame metrics of sessions running `engine`. REQUIRES: a resolved engine (not
   // ENGINE_UNSPECIFIED); any other value is counted under engine="unknown".
@@ -83,12 +97,13 @@ class ServerMetrics {
 
   void CountEnrollment(EnrollmentOutcome outcome);
   // Seconds from the end of an Enroll stream to its answer, for enrollments stored.
-  Histogram& enrollment_seconds() { return *enrollment_seconds_; }
+  prometheus::Histogram& enrollment_seconds() { return *enrollment_seconds_; }
 
   StoreWriteHistograms store_writes() const { return store_writes_; }
 
   // Gauges read at each scrape: the open sessions, the index's size, the tasks waiting for each
-  // pool's workers. Each object must outlive every later exposition of the registry.
+  // pool's workers. Each object must outlive every later scrape. Until watched, a gauge is not
+  // exposed.
   void WatchSessions(const SessionRegistry& sessions);
   void WatchIndex(const ModelCatalogue& catalogue);
   void WatchWorkers(const WorkerPool& workers, const WorkerPool& bulk_workers);
@@ -96,23 +111,22 @@ class ServerMetrics {
  private:
   static constexpr int kStatusCodes = 17;  // OK .. UNAUTHENTICATED
 
-  MetricsRegistry registry_;
-  Family<Counter>& frames_family_;
-  Family<Histogram>& frame_seconds_family_;
-  Family<Gauge>& open_sessions_family_;
-  Family<Counter>& refusals_family_;
-  Family<Counter>& enrollments_family_;
-  Family<Histogram>& enrollment_seconds_family_;
-  Family<Gauge>& index_objects_family_;
-  Family<Gauge>& index_views_family_;
-  Family<Histogram>& store_write_seconds_family_;
-  Family<Gauge>& queue_depth_family_;
-  std::array<Counter*, v1::Engine_ARRAYSIZE> frames_{};
-  std::array<Histogram*, 2> frame_seconds_{};
+  class WatchedGauges;
+
+  std::shared_ptr<prometheus::Registry> registry_;
+  std::shared_ptr<WatchedGauges> gauges_;
+  prometheus::Family<prometheus::Counter>& frames_family_;
+  prometheus::Family<prometheus::Histogram>& frame_seconds_family_;
+  prometheus::Family<prometheus::Counter>& refusals_family_;
+  prometheus::Family<prometheus::Counter>& enrollments_family_;
+  prometheus::Family<prometheus::Histogram>& enrollment_seconds_family_;
+  prometheus::Family<prometheus::Histogram>& store_write_seconds_family_;
+  std::array<prometheus::Counter*, v1::Engine_ARRAYSIZE> frames_{};
+  std::array<prometheus::Histogram*, 2> frame_seconds_{};
   // refusals_[code][reason], for the pairs of kRefusalKinds; others are found when counted.
-  std::array<std::array<Counter*, kRefusalReasonCount>, kStatusCodes> refusals_{};
-  std::array<Counter*, 4> enrollments_{};  // by EnrollmentOutcome
-  Histogram* enrollment_seconds_;
+  std::array<std::array<prometheus::Counter*, kRefusalReasonCount>, kStatusCodes> refusals_{};
+  std::array<prometheus::Counter*, 4> enrollments_{};  // by EnrollmentOutcome
+  prometheus::Histogram* enrollment_seconds_;
   StoreWriteHistograms store_writes_;
 };
 

@@ -46,7 +46,7 @@ const std::string kInvalidField =
 
 TEST(ServerMetricsTest, EveryMetricIsExposedFromTheStartWithItsChildrenAtZero) {
   ServerMetrics metrics;
-  const std::string text = metrics.registry().Expose();
+  const std::string text = metrics.Expose();
   for (const char* family :
        {"orbit_frames_processed_total counter", "orbit_frame_processing_seconds histogram",
         "orbit_refusals_total counter", "orbit_enrollments_total counter",
@@ -79,7 +79,7 @@ TEST(ServerMetricsTest, AFrameCountsForItsEngineAndItsInput) {
   hmm.Record(FrameInput::kCedd, std::chrono::microseconds(20));  // bucket le=2.5e-05
   hmm.Record(FrameInput::kCedd, std::chrono::microseconds(30));  // le=5e-05
   metrics.ForEngine(v1::ENGINE_VCI).Record(FrameInput::kImage, std::chrono::milliseconds(3));
-  const std::string text = metrics.registry().Expose();
+  const std::string text = metrics.Expose();
   EXPECT_EQ(Sample(text, R"(orbit_frames_processed_total{engine="hmm"})"), 2);
   EXPECT_EQ(Sample(text, R"(orbit_frames_processed_total{engine="vci"})"), 1);
   EXPECT_EQ(Sample(text, R"(orbit_frame_processing_seconds_bucket{input="cedd",le="1e-05"})"), 0);
@@ -92,7 +92,7 @@ TEST(ServerMetricsTest, AFrameCountsForItsEngineAndItsInput) {
   // A value outside the proto's engines is still counted, apart.
   metrics.ForEngine(static_cast<v1::Engine>(99)).Record(FrameInput::kCedd, {});
   EXPECT_EQ(
-      Sample(metrics.registry().Expose(), R"(orbit_frames_processed_total{engine="unknown"})"), 1);
+      Sample(metrics.Expose(), R"(orbit_frames_processed_total{engine="unknown"})"), 1);
 }
 
 TEST(ServerMetricsTest, RefuseCountsByCodeAndReasonAndPassesTheStatusOn) {
@@ -104,7 +104,7 @@ TEST(ServerMetricsTest, RefuseCountsByCodeAndReasonAndPassesTheStatusOn) {
   EXPECT_EQ(refused.error_message(), "more than 60 frames per second");
   EXPECT_TRUE(metrics.Refuse(grpc::Status::OK, RefusalReason::kInternal).ok());  // not counted
   metrics.CountRefusal(grpc::StatusCode::ABORTED, RefusalReason::kStore);  // outside kRefusalKinds
-  const std::string text = metrics.registry().Expose();
+  const std::string text = metrics.Expose();
   EXPECT_EQ(Sample(text, R"(orbit_refusals_total{code="RESOURCE_EXHAUSTED",reason="frame_rate"})"),
             1);
   EXPECT_EQ(Sample(text, R"(orbit_refusals_total{code="ABORTED",reason="store"})"), 1);
@@ -123,7 +123,7 @@ std::string Descriptor(int seed) {
 std::string Scrape(const std::string& address) {
   const testing::HttpResponse response = HttpRequest(address, "GET", "/metrics");
   EXPECT_EQ(response.status, 200);
-  EXPECT_EQ(response.headers.at("content-type"), "text/plain; version=0.0.4; charset=utf-8");
+  EXPECT_THAT(response.headers.at("content-type"), HasSubstr("text/plain"));
   return response.body;
 }
 
@@ -257,13 +257,12 @@ TEST(ServerMetricsTest, ServeRefusesToStartOnABadOrBusyMetricsAddress) {
   EXPECT_THAT(malformed.log, HasSubstr("--metrics-listen: 'localhost' is not HOST:PORT"));
   EXPECT_THAT(malformed.log, ::testing::Not(HasSubstr("listening on")));
 
-  MetricsRegistry registry;
-  const MetricsEndpoint taken("127.0.0.1:0", registry);
+  const ServerMetrics metrics;
+  const MetricsEndpoint taken("127.0.0.1:0", metrics);
   const auto busy = testing::StartServerExpectingRefusal(
       {"serve", "--db", db, "--listen", "127.0.0.1:0", "--metrics-listen", taken.address()});
   EXPECT_NE(busy.exit_code, 0);
-  EXPECT_THAT(busy.log, HasSubstr("--metrics-listen: cannot bind to " + taken.address() +
-                                  ": 98 (Address already in use)"));
+  EXPECT_THAT(busy.log, HasSubstr("--metrics-listen: cannot listen on " + taken.address()));
   EXPECT_THAT(busy.log, ::testing::Not(HasSubstr("listening on")));
 
   const testing::CommandResult help = testing::RunOrbit("serve --help");
