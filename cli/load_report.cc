@@ -64,6 +64,8 @@ Json LoadReportJson(const LoadReport& report) {
   json["config"] = config;
   json["frames_per_second"] = Rounded(report.FramesPerSecond(), 1);
   json["rtt_ms"] = RoundTripJson(report.round_trip);
+  json["rtt_ms"]["worst_session_p99"] = Ms(report.worst_session_p99_us);
+  json["rtt_ms"]["sessions_p99_above_5ms"] = report.sessions_p99_above_5ms;
   json["errors"] = Json::object();
   for (const auto& [name, count] : report.errors) json["errors"][name] = count;
   json["sessions"] = {{"asked", report.sessions},
@@ -85,6 +87,13 @@ Json LoadReportJson(const LoadReport& report) {
     server["rss_mb_start"] = Megabytes(report.server_start->rss_bytes);
     server["rss_mb_end"] = Megabytes(report.server_end->rss_bytes);
   }
+  if (!report.server_rss_samples.empty()) {
+    Json samples = Json::array();
+    for (const auto& [seconds, bytes] : report.server_rss_samples) {
+      samples.push_back({Rounded(seconds, 1), Megabytes(bytes)});
+    }
+    server["rss_mb_samples"] = samples;  // [[seconds since the first frame, MB], ...]
+  }
   json["server"] = server;
   json["generator"] = CpuJson(report.generator_cpu_seconds, report);
 
@@ -93,6 +102,7 @@ Json LoadReportJson(const LoadReport& report) {
     json["enrollments"] = {
         {"done", report.enrollments_done},
         {"deleted", report.enrollments_deleted},
+        {"deleted_during_load", report.deleted_during},
         {"views", report.enrollment_views},
         {"latency_ms",
          {{"p50", Ms(e.Percentile(50))}, {"p99", Ms(e.Percentile(99))}, {"max", Ms(e.max())}}},
@@ -116,7 +126,12 @@ std::string LoadReportText(const LoadReport& report) {
   out << "frames       " << report.frames_sent << " sent, " << report.frames_answered
       << " answered in " << Format("%.2f", report.elapsed_seconds) << " s: "
       << Format("%.1f", report.FramesPerSecond()) << " frames/s\n";
-  out << "round trip   " << quantiles(report.round_trip) << "\n";
+  out << "round trip   " << quantiles(report.round_trip) << "; worst session's p99 "
+      << ms(report.worst_session_p99_us) << " ms";
+  if (report.sessions_p99_above_5ms > 0) {
+    out << " (" << report.sessions_p99_above_5ms << " sessions above 5 ms)";
+  }
+  out << "\n";
   out << "sessions     " << report.sessions_opened << " opened, " << report.sessions_failed
       << " failed";
   if (report.sessions_cancelled > 0) {
@@ -140,12 +155,18 @@ std::string LoadReportText(const LoadReport& report) {
         << Format("%.1f", json["server"]["rss_mb_start"].get<double>()) << " -> "
         << Format("%.1f", json["server"]["rss_mb_end"].get<double>()) << " MB";
   }
+  if (!report.server_rss_samples.empty()) {
+    out << "\nserver RSS  ";
+    for (const auto& [seconds, bytes] : report.server_rss_samples) {
+      out << " " << Format("%.0f", seconds) << "s " << Format("%.1f", Megabytes(bytes)) << " MB;";
+    }
+  }
   out << "\n";
   out << "generator    " << cpu_text(json["generator"]) << "\n";
   if (report.enrollments_run) {
     out << "enrollments  " << report.enrollments_done << " of " << report.enrollment_views
         << " views each: " << quantiles(report.enrollment) << "; " << report.enrollments_deleted
-        << " deleted afterwards\n";
+        << (report.deleted_during ? " deleted during the load\n" : " deleted afterwards\n");
     out << "  frames meanwhile  " << quantiles(report.round_trip_enrolling) << " ("
         << report.round_trip_enrolling.count() << " frames)\n";
   }

@@ -145,6 +145,11 @@ void LoadSession::AddTo(LoadReport& report, Clock::time_point& last_update) cons
   report.frames_sent += static_cast<std::uint64_t>(sent_);
   report.frames_answered += static_cast<std::uint64_t>(answered_);
   report.round_trip.Merge(round_trip_);
+  if (round_trip_.count() > 0) {
+    const double p99 = round_trip_.Percentile(99);
+    report.worst_session_p99_us = std::max(report.worst_session_p99_us, p99);
+    if (p99 > 5000) ++report.sessions_p99_above_5ms;
+  }
   report.processing.Merge(processing_);
   report.round_trip_enrolling.Merge(round_trip_enrolling_);
   if (answered_ > 0) ++report.sessions_opened;

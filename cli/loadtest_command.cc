@@ -66,6 +66,7 @@ struct LoadtestOptions {
   bool image_frames = false;
   double enroll_every = 0;  // seconds between enrollment starts; 0: back to back
   int enroll_count = 0;     // 0: as many as fit in the duration (with --enroll-every)
+  bool delete_during = false;  // delete each enrolled object once the next one is enrolled
   int server_pid = 0;
   bool json = false;
 };
@@ -105,17 +106,21 @@ std::vector<std::vector<TurntableView>> DescribeTurntables(const Dataset& datase
 
 // Enrollments beside the load: `count` objects (0: no limit) with the views of `images`, one
 // starting every `every` seconds (0: back to back) from clock.start until clock.end. Counts
-// enrollments in flight in `enrolling`; keeps the names enrolled for Delete.
+// enrollments in flight in `enrolling`; keeps the names enrolled for Delete. With
+// `delete_during`, each object is deleted as soon as the next one is enrolled, so the model set
+// gains and loses an object every `every` seconds while the sessions run (a soak's churn).
 class LoadEnrollments {
  public:
   // Describes the views now (as every enrollment path does, client/enroller.h), and asks the
   // server's variant, so that an enrollment during the load is the Enroll call alone.
   LoadEnrollments(const Connection& connection, const std::vector<EnrollmentImage>& images,
-                  double every, int count)
+                  double every, int count, bool delete_during)
       : enroller_(connection, {.threads = static_cast<unsigned>(AvailableCpus())}),
+        models_(connection),
         views_(enroller_.ComputeViews(images)),
         every_(every),
-        count_(count) {}
+        count_(count),
+        delete_during_(delete_during) {}
 
   void Run(const LoadClock& clock, std::atomic<int>& enrolling) {
     const std::string prefix = "loadtest-" + std::to_string(::getpid()) + "-";
@@ -138,25 +143,19 @@ class LoadEnrollments {
       } catch (const RpcError& e) {
         ++errors_[std::string(StatusCodeName(e.code()))];
       }
+      if (delete_during_ && enrolled_.size() > 1) DeleteEnrolled(enrolled_.size() - 2);
       --enrolling;
     }
   }
 
-  // Deletes every object Run enrolled.
-  void Delete(const Connection& connection) {
-    ModelsClient models(connection);
-    for (const std::string& name : enrolled_) {
-      try {
-        models.DeleteObject(ObjectByName(name));
-        ++deleted_;
-      } catch (const RpcError& e) {
-        ++errors_[std::string(StatusCodeName(e.code()))];
-      }
-    }
+  // Deletes every object Run enrolled and has not deleted yet.
+  void Delete() {
+    for (std::size_t i = 0; i < enrolled_.size(); ++i) DeleteEnrolled(i);
   }
 
   void AddTo(LoadReport& report) const {
     report.enrollments_run = true;
+    report.deleted_during = delete_during_;
     report.enrollments_done = static_cast<int>(enrolled_.size());
     report.enrollments_deleted = deleted_;
     report.enrollment_views = static_cast<int>(views_.size());
@@ -165,12 +164,28 @@ class LoadEnrollments {
   }
 
  private:
+  // Deletes enrolled_[i] unless it is already gone.
+  void DeleteEnrolled(std::size_t i) {
+    if (i < deleted_flags_.size() && deleted_flags_[i]) return;
+    deleted_flags_.resize(enrolled_.size(), false);
+    deleted_flags_[i] = true;
+    try {
+      models_.DeleteObject(ObjectByName(enrolled_[i]));
+      ++deleted_;
+    } catch (const RpcError& e) {
+      ++errors_[std::string(StatusCodeName(e.code()))];
+    }
+  }
+
   Enroller enroller_;
+  ModelsClient models_;
   const std::vector<v1::View> views_;
   const double every_;
   const int count_;
+  const bool delete_during_;
   LatencyHistogram latency_;
   std::vector<std::string> enrolled_;
+  std::vector<bool> deleted_flags_;  // per enrolled_, once DeleteEnrolled has run for it
   int deleted_ = 0;
   std::map<std::string, std::uint64_t> errors_;
 };
@@ -251,6 +266,22 @@ std::optional<ProcessUsage> SampleServer(int pid) {
   }
 }
 
+// The server's resident memory at every tenth of the load, from clock.start to clock.end, into
+// `samples` (seconds from the start, bytes); a server gone meanwhile ends the sampling.
+void SampleServerMemory(int pid, const LoadClock& clock,
+                        std::vector<std::pair<double, std::int64_t>>& samples) {
+  constexpr int kIntervals = 10;
+  const Clock::duration step = (clock.end - clock.start) / kIntervals;
+  for (int i = 0; i <= kIntervals; ++i) {
+    const Clock::time_point due = clock.start + step * i;
+    std::this_thread::sleep_until(due);
+    const std::optional<ProcessUsage> usage = SampleServer(pid);
+    if (!usage) return;
+    samples.emplace_back(std::chrono::duration<double>(due - clock.start).count(),
+                         usage->rss_bytes);
+  }
+}
+
 // Open loop: session s sends frame k at clock.start + (k + s / N) / rate, so the N sessions'
 // frames are spread evenly over each period, as independent devices' would be; one thread
 // sends them all (a send only queues the frame). A frame sent late counts its lateness in its
@@ -295,7 +326,7 @@ int RunLoadtest(const LoadtestOptions& options) {
   std::optional<LoadEnrollments> enrollments;
   if (options.enroll_count > 0 || options.enroll_every > 0) {
     enrollments.emplace(connection, EnrollmentImages(dataset), options.enroll_every,
-                        options.enroll_count);
+                        options.enroll_count, options.delete_during);
   }
 
   SessionOptions session_options = ToSessionOptions(options.session);
@@ -335,6 +366,11 @@ int RunLoadtest(const LoadtestOptions& options) {
     if (::isatty(STDERR_FILENO) == 1) progress.emplace(clock, answered, options.duration);
     std::thread enroller;
     if (enrollments) enroller = std::thread([&] { enrollments->Run(clock, enrolling); });
+    std::thread memory_sampler;
+    if (options.server_pid > 0) {
+      memory_sampler = std::thread(
+          [&] { SampleServerMemory(options.server_pid, clock, report.server_rss_samples); });
+    }
     if (options.closed_loop) {
       std::this_thread::sleep_until(clock.start);
       for (auto& session : sessions) session->SendFrame(0, Clock::now());
@@ -353,6 +389,7 @@ int RunLoadtest(const LoadtestOptions& options) {
       }
     }
     if (enroller.joinable()) enroller.join();
+    if (memory_sampler.joinable()) memory_sampler.join();
   }
   report.generator_cpu_seconds = OwnCpuSeconds() - cpu_at_start;
   if (options.server_pid > 0) report.server_end = SampleServer(options.server_pid);
@@ -362,7 +399,7 @@ int RunLoadtest(const LoadtestOptions& options) {
   for (const auto& session : sessions) session->AddTo(report, last_update);
   report.elapsed_seconds = std::chrono::duration<double>(last_update - clock.start).count();
   if (enrollments) {
-    enrollments->Delete(connection);
+    enrollments->Delete();
     enrollments->AddTo(report);
   }
 
@@ -429,7 +466,7 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   command->add_flag("--image-frames", options->image_frames,
                     "send each frame as its encoded image file for the server to describe,\n"
                     "instead of a descriptor (default: descriptors)");
-  command->add_option("--enroll-every", options->enroll_every,
+  CLI::Option* enroll_every = command->add_option("--enroll-every", options->enroll_every,
                       "during the load, start an enrollment of the dataset's first object (all\n"
                       "its views, e.g. 72 for COIL-100) every this many seconds; each one is\n"
                       "deleted after the load (default 0: none, or back to back with\n"
@@ -439,9 +476,15 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
                       "enrollments to run during the load (default 0: none, or as many as fit\n"
                       "with --enroll-every)")
       ->check(CLI::Range(0, 100000));
+  command->add_flag("--delete-during", options->delete_during,
+                    "delete each object enrolled during the load as soon as the next one is\n"
+                    "enrolled, so that the model set gains and loses an object every\n"
+                    "--enroll-every seconds while the sessions run (a soak's churn)")
+      ->needs(enroll_every);
   command->add_option("--server-pid", options->server_pid,
                       "process id of the server, on this machine: report its CPU time per frame\n"
-                      "(from /proc/PID/stat) and its resident memory at start and end")
+                      "(from /proc/PID/stat) and its resident memory at start, every tenth of the\n"
+                      "load, and end")
       ->check(CLI::Range(1, 1 << 30));
   command->add_flag("--json", options->json,
                     "print one JSON object: frames_per_second, rtt_ms {p50, p90, p99, max,\n"

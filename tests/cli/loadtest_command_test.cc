@@ -119,6 +119,39 @@ TEST(LoadtestCommandTest, EnrollmentsDuringTheLoadAreTimedAndDeletedAfterwards) 
   EXPECT_EQ(testing::OutputLines(listed.out).size(), 2u) << listed.out;
 }
 
+// The soak of docs/results/load.md, shortened: sessions at 10 frames/s while an object is
+// enrolled every half second and the one before it deleted, so the model set changes about 20
+// times under open sessions. Every frame must be answered, no session may fail, and the model
+// set must end as it began.
+TEST(LoadtestCommandTest, AShortSoakWithEnrollmentsAndDeletionsLosesNoUpdate) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir)});
+  const nlohmann::json report =
+      Loadtest(server, "--sessions 24 --rate 10 --duration 5 --enroll-every 0.5 --delete-during "
+                       "--server-pid " + std::to_string(server.pid()));
+  EXPECT_EQ(report["errors"], nlohmann::json::object()) << report;
+  EXPECT_EQ(report["frames"]["sent"], 1200) << report;  // 24 x 10 x 5
+  EXPECT_EQ(report["frames"]["unanswered"], 0) << report;
+  EXPECT_EQ(report["sessions"]["opened"], 24);
+  EXPECT_EQ(report["sessions"]["failed"], 0);
+  EXPECT_EQ(report["sessions"]["cancelled"], 0);
+  ASSERT_TRUE(report.contains("enrollments")) << report;
+  // 10 enrollments are due (at 0, 0.5, ..., 4.5 s); a slow machine may fit fewer.
+  EXPECT_GE(report["enrollments"]["done"].get<int>(), 5) << report;
+  EXPECT_LE(report["enrollments"]["done"].get<int>(), 10) << report;
+  EXPECT_EQ(report["enrollments"]["deleted"], report["enrollments"]["done"]);
+  EXPECT_EQ(report["enrollments"]["deleted_during_load"], true);
+  // The server's memory at the start, every tenth of the load and the end.
+  ASSERT_EQ(report["server"]["rss_mb_samples"].size(), 11u) << report;
+  EXPECT_GT(report["server"]["rss_mb_samples"][10][1].get<double>(), 0);
+  EXPECT_GE(report["rtt_ms"]["worst_session_p99"].get<double>(),
+            report["rtt_ms"]["p50"].get<double>());
+
+  const testing::CommandResult listed = RunOrbit("list --server " + server.address());
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_EQ(testing::OutputLines(listed.out).size(), 2u) << listed.out;
+}
+
 TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
   const std::string at = "loadtest --server 127.0.0.1:1 ";
   const testing::CommandResult neither = RunOrbit(at + "--sessions 2");
@@ -133,6 +166,9 @@ TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
   EXPECT_EQ(RunOrbit(at + "--rate 0").exit_code, 2);
   EXPECT_EQ(RunOrbit(at + "--rate 5 --sessions 0").exit_code, 2);
   EXPECT_EQ(RunOrbit(at + "--rate 5 --frobnicate").exit_code, 2);
+  const testing::CommandResult churn = RunOrbit(at + "--rate 5 --delete-during");
+  EXPECT_EQ(churn.exit_code, 2);
+  EXPECT_THAT(churn.err, HasSubstr("--delete-during requires --enroll-every"));
   // A server that is not there is not a bad flag: the command ran and failed.
   const testing::CommandResult unreachable = RunOrbit(at + "--rate 5 --timeout 1");
   EXPECT_EQ(unreachable.exit_code, 1);
