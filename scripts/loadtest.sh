@@ -1,7 +1,10 @@
 #!/usr/bin/env bash
-# Measures the load table of docs/results/load.md with `orbit loadtest` and prints it as Markdown.
+# Measures the load table of docs/results/load.md with `orbit loadtest` and prints it as Markdown;
+# or, with `soak`, runs the soak of docs/results/load.md and prints its summary.
 #
 #   scripts/loadtest.sh [BUILD_DIR]        # default build/, which ./scripts/build.sh makes (Release)
+#   scripts/loadtest.sh BUILD_DIR soak     # 500 sessions x 10 frames/s for SOAK_SECONDS (600), an
+#                                          # enrollment every 3 s and the one before it deleted
 #
 # A server (`orbit serve`, pinned to CPU $SERVER_CPU) on a copy of a SQLite store holding all 100
 # COIL-100 objects (imported once into $DB, about a minute), then one `orbit loadtest` (pinned to
@@ -15,6 +18,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 
 build=${1:-build}
+mode=${2:-table}
+[[ "$mode" == table || "$mode" == soak ]] || { echo "usage: $0 [BUILD_DIR] [soak]" >&2; exit 2; }
 orbit="$build/orbit"
 data=${ORBIT_DATA:-../shared/data}
 duration=${DURATION:-15}
@@ -40,12 +45,13 @@ fi
 cp "$db" "$out/models.db"
 
 # --max-fps: a closed-loop session sends thousands of frames per second, far above the default 60.
+# --max-sessions: the soak opens 500.
 taskset -c "$server_cpu" "$orbit" serve --db "$out/models.db" --listen "127.0.0.1:$port" \
-  --max-fps 1000000 2>"$out/serve.log" &
+  --max-fps 1000000 --max-sessions 1000 2>"$out/serve.log" &
 server=$!
 trap 'kill "$server" 2>/dev/null || true; wait "$server" 2>/dev/null || true' EXIT
 for _ in $(seq 100); do
-  grep -q "listening on" "$out/serve.log" && break
+  grep -qs "listening on" "$out/serve.log" && break
   kill -0 "$server" 2>/dev/null || { cat "$out/serve.log" >&2; exit 1; }
   sleep 0.2
 done
@@ -61,6 +67,20 @@ run() {
   taskset -c "$load_cpu" "$orbit" loadtest --json --server "127.0.0.1:$port" --server-pid "$server" \
     --data "$data/coil-100" --duration "$duration" "$@" >"$out/$name.json"
 }
+
+if [[ "$mode" == soak ]]; then
+  soak_seconds=${SOAK_SECONDS:-600}
+  duration=$soak_seconds run soak --engine hmm --sessions 500 --rate 10 --enroll-every 3 \
+    --delete-during
+  echo "Soak at $(git rev-parse --short HEAD), $(nproc) CPUs, load average before: $(cat "$out/soak.load"); JSON in $out/soak.json."
+  jq -r '
+    "- \(.config.sessions) sessions x \(.config.rate_per_session) frames/s, \(.config.duration_s) s, \(.config.engine): \(.frames.sent) frames sent, \(.frames.answered) answered, \(.frames.unanswered) unanswered; sessions \(.sessions.opened) opened, \(.sessions.failed) failed, \(.sessions.cancelled) cancelled; errors \(.errors)",
+    "- round trip p50 \(.rtt_ms.p50) ms, p99 \(.rtt_ms.p99), max \(.rtt_ms.max); worst session p99 \(.rtt_ms.worst_session_p99) ms, \(.rtt_ms.sessions_p99_above_5ms) sessions above 5 ms",
+    "- \(.enrollments.done) enrollments of \(.enrollments.views) views (p50 \(.enrollments.latency_ms.p50) ms, max \(.enrollments.latency_ms.max)), \(.enrollments.deleted) deleted during the load",
+    "- server CPU \(.server.cpu_us_per_frame) us per frame (\(.server.cpu_percent)% of a core); RSS (s: MB) \(.server.rss_mb_samples | map("\(.[0]): \(.[1])") | join(", "))"
+  ' "$out/soak.json"
+  exit 0
+fi
 
 run open-64-hmm --engine hmm --sessions 64 --rate 10
 run open-256-hmm --engine hmm --sessions 256 --rate 10
