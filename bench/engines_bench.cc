@@ -5,6 +5,10 @@
 //                                    (ViewIndexSnapshot::SimilarityToEveryView)
 //   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
 //                                    kd-tree index, default options
+//   session-frame/<engine>/<objects>/sessions:<n>
+//                                    the same, with n sessions on the snapshot taking frames in
+//                                    turn, so each frame finds its session's state out of cache
+//                                    as a busy server does (BM_SessionFrames)
 //   frame-after-model-change/<engine>/<objects>[/first-session]
 //                                    the same, on a snapshot that gained or lost a 72-view object
 //                                    since the session's previous frame (BM_FrameAfterModelChange)
@@ -171,6 +175,30 @@ void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objec
   state.counters["top1"] = answered > 0 ? static_cast<double>(correct) / answered : 0;
 }
 
+// One frame each of `sessions` sessions in turn, windows full: what a frame costs when many
+// sessions share the server, their per-frame state evicted from the caches by the others'.
+void BM_SessionFrames(benchmark::State& state, std::string engine_name, int objects,
+                      int sessions) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
+  const auto snapshot = set.index->Snapshot();
+  std::vector<std::unique_ptr<RecognitionEngine>> engines;
+  for (int s = 0; s < sessions; ++s) engines.push_back(CreateEngine(engine_name));
+  const int window = engines.front()->options().window;
+  const std::vector<QueryFrame> frames = set.objects->Frames(objects / 3, 25.0, 4 * window);
+  for (const auto& engine : engines) {
+    for (int k = 0; k < window; ++k) engine->Observe(snapshot, frames[k]);
+  }
+  std::size_t next = window, turn = 0;
+  for (auto _ : state) {
+    const FrameUpdate update = engines[turn]->Observe(snapshot, frames[next]);
+    benchmark::DoNotOptimize(update.ranking.data());
+    if (++turn == engines.size()) {
+      turn = 0;
+      next = next + 1 < frames.size() ? next + 1 : window;
+    }
+  }
+}
+
 // One frame of a session whose window is full, on a snapshot that differs from its previous
 // frame's by one enrolled (even iterations) or deleted (odd) object of 72 views: what an
 // enrollment costs each open session (issue 13, defect E). `shared_work_done` builds the
@@ -289,6 +317,12 @@ int RegisterEngineBenchmarks() {
           BM_SessionFrame, std::string(engine), objects)
           ->Unit(benchmark::kMicrosecond);
     }
+  }
+  for (const char* engine : {"vci", "hmm"}) {
+    benchmark::RegisterBenchmark(
+        ("session-frame/" + std::string(engine) + "/1000/sessions:64").c_str(), BM_SessionFrames,
+        std::string(engine), 1000, 64)
+        ->Unit(benchmark::kMicrosecond);
   }
   for (const char* engine : {"vci", "hmm"}) {
     for (const int objects : {100, 1000}) {

@@ -122,25 +122,25 @@ ViterbiPath Viterbi(std::span<const double> initial,
 
 namespace {
 
-// emission[i * n + o] = b_i(o_t) up to a per-frame constant: the similarity floored at 1e-12 of
-// the object's sum over its states, or 1 for every state when that sum is 0 (b uniform).
-// `sum` is scratch of n floats.
+// In place, values[i * n + o] = TC(S_i, o_t) becomes b_i(o_t) up to a per-frame constant:
+// the similarity floored at 1e-12 of the object's sum over its states, or 1 for every state when
+// that sum is 0 (b uniform; unseen[o] = 1 then, else 0). `sum` is scratch of n floats.
 __attribute__((target_clones("avx2", "default"))) void EmissionsFromSimilarities(
-    const float* __restrict similarity, int states, float* __restrict sum,
-    float* __restrict emission, std::size_t n) {
+    float* __restrict values, int states, float* __restrict sum, std::uint8_t* __restrict unseen,
+    std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) sum[o] = 0.0f;
   for (int i = 0; i < states; ++i) {
-    const float* row = &similarity[static_cast<std::size_t>(i) * n];
+    const float* row = &values[static_cast<std::size_t>(i) * n];
     for (std::size_t o = 0; o < n; ++o) sum[o] += row[o];
   }
   for (int i = 0; i < states; ++i) {
-    const float* row = &similarity[static_cast<std::size_t>(i) * n];
-    float* out = &emission[static_cast<std::size_t>(i) * n];
+    float* row = &values[static_cast<std::size_t>(i) * n];
     for (std::size_t o = 0; o < n; ++o) {
       const float floor = static_cast<float>(kEmissionFloor) * sum[o];
-      out[o] = sum[o] > 0.0f ? std::max(row[o], floor) : 1.0f;
+      row[o] = sum[o] > 0.0f ? std::max(row[o], floor) : 1.0f;
     }
   }
+  for (std::size_t o = 0; o < n; ++o) unseen[o] = sum[o] > 0.0f ? 0 : 1;
 }
 
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
@@ -149,7 +149,11 @@ __attribute__((target_clones("avx2", "default"))) void EmissionsFromSimilarities
 // decodes every object's Viterbi path over the window at once (BatchViterbi), in linear space:
 // dividing b_i(o_t) = TC_i / sum_j TC_j by its per-frame constant changes no path's rank, so
 // the raw similarities serve as emissions (with the same 1e-12 floor relative to the sum) and
-// no logarithm is taken per state.
+// no logarithm is taken per state. A frame keeps only its emissions: the similarity of a state
+// on an object's path is read back from them (TC = the emission, 0 for an object unseen in the
+// frame; a floored TC reads 1e-12 of the sum too high, at most 8e-12), which halves what a
+// session holds and streams through the caches per frame (8 frames x 8000 states x 4 bytes at
+// 1000 objects).
 class OrientationHmm final : public RecognitionEngine {
  public:
   explicit OrientationHmm(const EngineOptions& options)
@@ -205,7 +209,12 @@ class OrientationHmm final : public RecognitionEngine {
     for (std::size_t t = 0; t < frames_.size(); ++t) {
       WindowFrame& frame = frames_[t];
       if (!added_objects.empty()) Score(added, window[t].descriptor.values, scored);
-      std::vector<float> similarity(objects * states_), emission(objects * states_);
+      std::vector<float> emission(objects * states_);
+      std::vector<std::uint8_t> unseen(objects);
+      for (std::size_t o = 0; o < objects; ++o) {
+        const bool added = source[o] >= kFromAdded;
+        unseen[o] = added ? scored.unseen[source[o] - kFromAdded] : frame.unseen[source[o]];
+      }
       for (int i = 0; i < states_; ++i) {
         const std::size_t row = static_cast<std::size_t>(i) * objects;
         for (std::size_t o = 0; o < objects; ++o) {
@@ -214,12 +223,11 @@ class OrientationHmm final : public RecognitionEngine {
                   ? static_cast<std::size_t>(i) * added_objects.size() + (source[o] - kFromAdded)
                   : static_cast<std::size_t>(i) * before_objects + source[o];
           const WindowFrame& origin = source[o] >= kFromAdded ? scored : frame;
-          similarity[row + o] = origin.similarity[from];
           emission[row + o] = origin.emission[from];
         }
       }
-      frame.similarity = std::move(similarity);
       frame.emission = std::move(emission);
+      frame.unseen = std::move(unseen);
     }
   }
 
@@ -227,11 +235,10 @@ class OrientationHmm final : public RecognitionEngine {
                                  std::span<const QueryFrame> window) override {
     const std::size_t frames = window.size();
     const std::size_t objects = table_->object_count();
-    std::vector<const float*> emissions, similarities;
+    std::vector<const float*> emissions;
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
       emissions.push_back(frames_[t].emission.data());
-      similarities.push_back(frames_[t].similarity.data());
       if (t > 0) steps.push_back(&frames_[t].step);
     }
     viterbi_.Decode(emissions, steps, objects);
@@ -239,7 +246,9 @@ class OrientationHmm final : public RecognitionEngine {
     for (std::size_t o = 0; o < objects; ++o) {
       const std::span<const std::uint16_t> path = viterbi_.path(o);
       double sum = 0;
-      for (std::size_t t = 0; t < frames; ++t) sum += similarities[t][path[t] * objects + o];
+      for (std::size_t t = 0; t < frames; ++t) {
+        if (!frames_[t].unseen[o]) sum += emissions[t][path[t] * objects + o];
+      }
       assessments[o].object = index.objects()[o].object;
       assessments[o].score = sum / static_cast<double>(frames);
     }
@@ -267,8 +276,8 @@ class OrientationHmm final : public RecognitionEngine {
  private:
   // What the engine keeps of a frame while it is in the window, [state * objects + object].
   struct WindowFrame {
-    std::vector<float> similarity;  // TC(S_i, o_t)
-    std::vector<float> emission;    // EmissionsFromSimilarities()
+    std::vector<float> emission;       // EmissionsFromSimilarities()
+    std::vector<std::uint8_t> unseen;  // [object]: 1 when every state's TC is 0
     SparseTransitions step;         // from the previous frame (empty for the first)
   };
 
@@ -285,11 +294,11 @@ class OrientationHmm final : public RecognitionEngine {
   void Score(const SectorSimilarityTable& table, const DescriptorValues& descriptor,
              WindowFrame& frame) const {
     const std::size_t objects = table.object_count();
-    frame.similarity.resize(objects * states_);
     frame.emission.resize(objects * states_);
-    table.Compute(descriptor, frame.similarity);
+    frame.unseen.resize(objects);
+    table.Compute(descriptor, frame.emission);
     std::vector<float> sum(objects);
-    EmissionsFromSimilarities(frame.similarity.data(), states_, sum.data(), frame.emission.data(),
+    EmissionsFromSimilarities(frame.emission.data(), states_, sum.data(), frame.unseen.data(),
                               objects);
   }
 

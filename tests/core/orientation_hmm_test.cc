@@ -197,5 +197,37 @@ TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
   }
 }
 
+// An object none of whose views shares a bin with the frames has TC 0 with every state: its
+// emissions are uniform (so its Viterbi path is arbitrary), but its score, the mean TC along the
+// path, is 0, below an object that matches only a little.
+TEST(OrientationHmmTest, AnObjectUnseenInEveryFrameScoresZero) {
+  auto model = [](ObjectId id, int first_bin) {
+    ObjectModel object;
+    object.id = id;
+    for (int v = 0; v < 8; ++v) {
+      ModelView view;
+      for (int b = first_bin; b < first_bin + 10; ++b) view.descriptor[b] = 3;
+      view.azimuth = 45.0 * v;
+      object.views.push_back(view);
+    }
+    return object;
+  };
+  // Object 1 uses bins 0..9; object 2 bins 100..109; the frames bins 5..14 (half of object 1's).
+  ViewIndex index({model(1, 0), model(2, 100)}, {.search = SearchMode::kExact});
+  auto engine = CreateEngine("hmm", {.window = 4, .top_k = 2});
+  DescriptorValues frame{};
+  for (int b = 5; b < 15; ++b) frame[b] = 3;
+  FrameUpdate update;
+  for (int k = 0; k < 4; ++k) {
+    update = engine->Observe(index.Snapshot(), {{DescriptorVariant::kCeddLire, frame}, 20.0 * k});
+  }
+  ASSERT_EQ(update.ranking.size(), 2u);
+  EXPECT_EQ(update.ranking[0].object, 1);
+  // TC of half-overlapping blocks of equal values: 5 x 9 / (10 x 9 + 10 x 9 - 5 x 9) = 1/3.
+  EXPECT_NEAR(update.ranking[0].score, 1.0 / 3, 1e-6);
+  EXPECT_EQ(update.ranking[1].object, 2);
+  EXPECT_EQ(update.ranking[1].score, 0.0);
+}
+
 }  // namespace
 }  // namespace orbit
