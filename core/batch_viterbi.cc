@@ -104,6 +104,10 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
       throw std::invalid_argument("Viterbi: transition size differs from states");
     }
   }
+  if (objects == 0) {  // an empty index: no path to find (the loops below index empty rows)
+    paths_.clear();
+    return;
+  }
   score_.resize(states * objects);
   next_.resize(states * objects);
   best_.resize(objects);

@@ -96,6 +96,8 @@ void SectorSimilarityTable::Compute(const DescriptorValues& query,
   if (similarity.size() < count) {
     throw std::invalid_argument("SectorSimilarityTable: result span too small");
   }
+  // An empty index has no rows: &bin_sums_[...] below would index an empty vector.
+  if (count == 0) return;
   thread_local std::vector<std::int32_t> acc;
   acc.assign(stride_, 0);
   std::int32_t query_norm = 0;
