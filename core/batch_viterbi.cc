@@ -4,6 +4,8 @@
 #include <cfloat>
 #include <stdexcept>
 
+#include "core/cpu_dispatch.h"
+
 namespace orbit {
 namespace {
 
@@ -13,11 +15,8 @@ constexpr std::size_t kMaxStates = 65536;  // back pointers are 16 bits
 // handle 8 objects per instruction.
 
 // next[o] = pi * emission[o]; top[o] = max(top[o], next[o]).
-__attribute__((target_clones("avx2", "default"))) void Start(float pi,
-                                                             const float* __restrict emission,
-                                                             float* __restrict next,
-                                                             float* __restrict top,
-                                                             std::size_t n) {
+ORBIT_AVX2_CLONES void Start(float pi, const float* __restrict emission, float* __restrict next,
+                             float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     next[o] = pi * emission[o];
     top[o] = std::max(top[o], next[o]);
@@ -25,11 +24,8 @@ __attribute__((target_clones("avx2", "default"))) void Start(float pi,
 }
 
 // best[o], arg[o] = score_i[o] * a, i: the first transition into a state.
-__attribute__((target_clones("avx2", "default"))) void Enter(const float* __restrict score_i,
-                                                             float a, std::int32_t i,
-                                                             float* __restrict best,
-                                                             std::int32_t* __restrict arg,
-                                                             std::size_t n) {
+ORBIT_AVX2_CLONES void Enter(const float* __restrict score_i, float a, std::int32_t i,
+                             float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     best[o] = score_i[o] * a;
     arg[o] = i;
@@ -38,11 +34,8 @@ __attribute__((target_clones("avx2", "default"))) void Enter(const float* __rest
 
 // best[o], arg[o] = the larger of (best[o], arg[o]) and (score_i[o] * a, i); strict, so that
 // among equal values the earlier (lower) state stays.
-__attribute__((target_clones("avx2", "default"))) void Relax(const float* __restrict score_i,
-                                                             float a, std::int32_t i,
-                                                             float* __restrict best,
-                                                             std::int32_t* __restrict arg,
-                                                             std::size_t n) {
+ORBIT_AVX2_CLONES void Relax(const float* __restrict score_i, float a, std::int32_t i,
+                             float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     const float value = score_i[o] * a;
     const bool better = value > best[o];
@@ -52,13 +45,9 @@ __attribute__((target_clones("avx2", "default"))) void Relax(const float* __rest
 }
 
 // next[o] = best[o] * emission[o]; back[o] = arg[o]; top[o] = max(top[o], next[o]).
-__attribute__((target_clones("avx2", "default"))) void Emit(const float* __restrict best,
-                                                            const std::int32_t* __restrict arg,
-                                                            const float* __restrict emission,
-                                                            float* __restrict next,
-                                                            std::uint16_t* __restrict back,
-                                                            float* __restrict top,
-                                                            std::size_t n) {
+ORBIT_AVX2_CLONES void Emit(const float* __restrict best, const std::int32_t* __restrict arg,
+                            const float* __restrict emission, float* __restrict next,
+                            std::uint16_t* __restrict back, float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     next[o] = best[o] * emission[o];
     back[o] = static_cast<std::uint16_t>(arg[o]);
@@ -67,9 +56,8 @@ __attribute__((target_clones("avx2", "default"))) void Emit(const float* __restr
 }
 
 // row[o] *= scale[o], and values below FLT_MIN become 0 (see the header).
-__attribute__((target_clones("avx2", "default"))) void Rescale(float* __restrict row,
-                                                               const float* __restrict scale,
-                                                               std::size_t n) {
+ORBIT_AVX2_CLONES void Rescale(float* __restrict row, const float* __restrict scale,
+                               std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     const float value = row[o] * scale[o];
     row[o] = value >= FLT_MIN ? value : 0.0f;
@@ -77,8 +65,7 @@ __attribute__((target_clones("avx2", "default"))) void Rescale(float* __restrict
 }
 
 // scale[o] = 1 / top[o], or 1 when every score of the object is 0.
-__attribute__((target_clones("avx2", "default"))) void Reciprocal(float* __restrict top,
-                                                                  std::size_t n) {
+ORBIT_AVX2_CLONES void Reciprocal(float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) top[o] = top[o] > 0.0f ? 1.0f / top[o] : 1.0f;
 }
 

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <limits>
 
+#include "core/cpu_dispatch.h"
+
 namespace orbit::cedd {
 namespace {
 
@@ -44,14 +46,12 @@ void ProportionalBlocks(int size, std::vector<int>& edges, std::vector<int>& fir
 // the baseline, chosen at load time by the CPU (function multi-versioning), since it is
 // memory-bound work that AVX2 halves. One overload per accumulator type rather than a template:
 // clang (the fuzz build) does not multi-version function templates.
-__attribute__((target_clones("avx2", "default"))) void AddRow(const std::uint8_t* __restrict row,
-                                                               std::uint16_t* __restrict acc,
-                                                               int n) {
+ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint16_t* __restrict acc,
+                              int n) {
   for (int i = 0; i < n; ++i) acc[i] = static_cast<std::uint16_t>(acc[i] + row[i]);
 }
-__attribute__((target_clones("avx2", "default"))) void AddRow(const std::uint8_t* __restrict row,
-                                                               std::uint32_t* __restrict acc,
-                                                               int n) {
+ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint32_t* __restrict acc,
+                              int n) {
   for (int i = 0; i < n; ++i) acc[i] = acc[i] + row[i];
 }
 

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <unordered_map>
 
+#include "core/cpu_dispatch.h"
 #include "core/sector_similarity_table.h"
 #include "core/similarity.h"
 
@@ -125,9 +126,9 @@ namespace {
 // In place, values[i * n + o] = TC(S_i, o_t) becomes b_i(o_t) up to a per-frame constant:
 // the similarity floored at 1e-12 of the object's sum over its states, or 1 for every state when
 // that sum is 0 (b uniform; unseen[o] = 1 then, else 0). `sum` is scratch of n floats.
-__attribute__((target_clones("avx2", "default"))) void EmissionsFromSimilarities(
-    float* __restrict values, int states, float* __restrict sum, std::uint8_t* __restrict unseen,
-    std::size_t n) {
+ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int states,
+                                                 float* __restrict sum,
+                                                 std::uint8_t* __restrict unseen, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) sum[o] = 0.0f;
   for (int i = 0; i < states; ++i) {
     const float* row = &values[static_cast<std::size_t>(i) * n];

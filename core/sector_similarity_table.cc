@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <stdexcept>
 
+#include "core/cpu_dispatch.h"
+
 namespace orbit {
 namespace {
 
@@ -14,18 +16,17 @@ constexpr std::size_t kRowAlignment = 16;
 
 // acc[s] += q * row[s]: exact, since |q * row[s]| <= 7 * 32767 and at most 144 such terms are
 // added. GCC vectorises the loop; the AVX2 clone handles 8 states per instruction.
-__attribute__((target_clones("avx2", "default"))) void AddScaledRow(
-    const std::int16_t* __restrict row, std::int32_t q, std::int32_t* __restrict acc,
-    std::size_t n) {
+ORBIT_AVX2_CLONES void AddScaledRow(const std::int16_t* __restrict row, std::int32_t q,
+                                    std::int32_t* __restrict acc, std::size_t n) {
   for (std::size_t s = 0; s < n; ++s) acc[s] += q * row[s];
 }
 
 // similarity[s] = TC from the dot product with the state's sum: q.S = acc / count, and
 // TC = q.S / (q.q + S.S - q.S); 1 when both are zero vectors, 0 when only one is.
-__attribute__((target_clones("avx2", "default"))) void TanimotoFromSums(
-    const std::int32_t* __restrict acc, const float* __restrict inverse_counts,
-    const float* __restrict squared_norms, float query_norm, float* __restrict similarity,
-    std::size_t n) {
+ORBIT_AVX2_CLONES void TanimotoFromSums(const std::int32_t* __restrict acc,
+                                        const float* __restrict inverse_counts,
+                                        const float* __restrict squared_norms, float query_norm,
+                                        float* __restrict similarity, std::size_t n) {
   for (std::size_t s = 0; s < n; ++s) {
     const float qc = static_cast<float>(acc[s]) * inverse_counts[s];
     const float denominator = query_norm + squared_norms[s] - qc;
