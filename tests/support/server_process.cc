@@ -104,7 +104,19 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
 }
 
 ServerProcess::~ServerProcess() {
-  if (pid_ > 0 && Stop(SIGTERM, std::chrono::seconds(10)) < 0) Stop(SIGKILL);
+  if (pid_ > 0) {
+    // A server stops cleanly on SIGTERM. One that crashed during the test, hangs in its
+    // shutdown, or reports a finding at exit (under scripts/sanitize.sh; UBSan writes to stderr
+    // only) fails the test, showing the log that is removed below.
+    const int code = Stop(SIGTERM, std::chrono::seconds(10));
+    if (code < 0) Stop(SIGKILL);
+    if (code != 0) {
+      ADD_FAILURE() << "orbit serve did not stop cleanly on SIGTERM ("
+                    << (code < 0 ? "still running after 10 s" : "exit " + std::to_string(code))
+                    << "); its log:\n"
+                    << Log();
+    }
+  }
   std::error_code ignored;
   if (owns_database_) std::filesystem::remove_all(temp_dir_, ignored);
   else std::filesystem::remove(log_file_, ignored);

@@ -4,7 +4,8 @@
 //   auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
 //
 // The destructor stops the server (SIGTERM, then SIGKILL after 10 s) and removes the temporary
-// database it created.
+// database it created. A server still running that does not then exit with 0 (it crashed, hung,
+// or a sanitizer reported at its exit) fails the current test, with the server's log.
 #pragma once
 
 #include <sys/types.h>
