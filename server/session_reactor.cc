@@ -27,8 +27,11 @@ SessionReactor::SessionReactor(const SessionEnvironment& environment,
       read_started_(Clock::now()),
       previous_read_done_(read_started_),
       last_activity_(Clock::now().time_since_epoch().count()) {
-  std::lock_guard lock(mutex_);
+  // Registered before mutex_ is taken: the registry calls Close, which takes mutex_, with its own
+  // lock held, so taking the registry's lock under mutex_ would invert that order. Close may
+  // therefore run before the lock below is taken; it finishes the stream, and no read starts.
   const grpc::Status admitted = env_.registry.Add(this);
+  std::lock_guard lock(mutex_);
   if (!admitted.ok()) {  // the session limit, or the server is shutting down
     Refuse(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
                          ? RefusalReason::kShuttingDown
@@ -36,7 +39,7 @@ SessionReactor::SessionReactor(const SessionEnvironment& environment,
     return;
   }
   registered_ = true;
-  ReadNext();
+  if (!finished_) ReadNext();
 }
 
 void SessionReactor::OnReadDone(bool ok) {

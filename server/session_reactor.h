@@ -83,7 +83,9 @@ class SessionReactor final
 
   const SessionEnvironment env_;
   grpc::CallbackServerContext* const context_;
-  std::recursive_mutex mutex_;  // recursive: a reaction may run inside a Start* call
+  // Recursive: a reaction may run inside a Start* call. Taken after the registry's lock (the
+  // registry calls Close with it held), never before it.
+  std::recursive_mutex mutex_;
   v1::SessionRequest request_;
   v1::SessionUpdate update_;
   std::unique_ptr<SessionEngine> engine_;  // set by the open request
