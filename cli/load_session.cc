@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "api/status_code_name.h"
 #include "client/rpc_error.h"
 
 namespace orbit {

@@ -22,6 +22,7 @@
 
 #include "api/conversion.h"
 #include "api/engine_names.h"
+#include "api/status_code_name.h"
 #include "cli/commands.h"
 #include "cli/load_report.h"
 #include "cli/load_session.h"

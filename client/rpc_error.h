@@ -28,9 +28,6 @@ class RpcError : public std::runtime_error {
   grpc::Status status_;
 };
 
-// The canonical name of a status code: "OK", "INVALID_ARGUMENT", "UNAVAILABLE", ...
-std::string_view StatusCodeName(grpc::StatusCode code);
-
 // Throws RpcError(call, status) unless status is OK.
 void ThrowIfError(std::string_view call, const grpc::Status& status);
 

@@ -5,15 +5,20 @@
 #   scripts/loadtest.sh [BUILD_DIR]        # default build/, which ./scripts/build.sh makes (Release)
 #   scripts/loadtest.sh BUILD_DIR soak     # 500 sessions x 10 frames/s for SOAK_SECONDS (600), an
 #                                          # enrollment every 3 s and the one before it deleted
+#   OBJECTS=1000 scripts/loadtest.sh       # the 1000-object rows (issue 13's goals at 1000 objects)
 #
 # A server (`orbit serve`, pinned to CPU $SERVER_CPU) on a copy of a SQLite store holding all 100
 # COIL-100 objects (imported once into $DB, about a minute), then one `orbit loadtest` (pinned to
 # CPU $LOAD_CPU) per row, $DURATION seconds each, in the order of the table. Every run's JSON goes
-# to $OUT; the Markdown table to stdout, progress to stderr.
+# to $OUT; the Markdown table to stdout, progress to stderr. With OBJECTS=1000 the store holds
+# COIL-100 and nine copies of it with permuted colours and turned images (BUILD_DIR/
+# orbit_coil_variants; 1000 objects x 72 views, made once in about 4 minutes), and the sessions
+# show the 100 original objects.
 #
 # Environment: ORBIT_DATA (default ../shared/data), DURATION (15), PORT (50151), SERVER_CPU (0),
-# LOAD_CPU (1), DB (BUILD_DIR/loadtest/coil100.db), OUT (BUILD_DIR/loadtest/<time>), COMMIT (the
-# commit BUILD_DIR was built from, for the table's heading; default the checkout's HEAD).
+# LOAD_CPU (1), OBJECTS (100 or 1000), DB (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT
+# (BUILD_DIR/loadtest/<time>), COMMIT (the commit BUILD_DIR was built from, for the table's
+# heading; default the checkout's HEAD).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -26,7 +31,9 @@ duration=${DURATION:-15}
 port=${PORT:-50151}
 server_cpu=${SERVER_CPU:-0}
 load_cpu=${LOAD_CPU:-1}
-db=${DB:-$build/loadtest/coil100.db}
+objects=${OBJECTS:-100}
+[[ "$objects" == 100 || "$objects" == 1000 ]] || { echo "OBJECTS must be 100 or 1000" >&2; exit 2; }
+db=${DB:-$build/loadtest/coil$objects.db}
 out=${OUT:-$build/loadtest/$(date -u +%Y%m%dT%H%M%SZ)}
 
 [ -x "$orbit" ] || { echo "no $orbit: build first (./scripts/build.sh)" >&2; exit 1; }
@@ -36,9 +43,17 @@ command -v jq >/dev/null || { echo "jq is needed to read the reports (apt-get in
 mkdir -p "$out" "$(dirname "$db")"
 
 if [ ! -f "$db" ]; then
-  echo "importing COIL-100 (100 objects x 72 views) into $db ..." >&2
-  "$orbit" import --db "$db.partial" --layout coil100 --data "$data/coil-100" >/dev/null
+  images=$data/coil-100
+  if [[ "$objects" == 1000 ]]; then
+    images=$build/loadtest/coil1000-images
+    [ -x "$build/orbit_coil_variants" ] || { echo "no $build/orbit_coil_variants: build first" >&2; exit 1; }
+    echo "writing COIL-100 x 10 (1000 objects x 72 views) into $images ..." >&2
+    "$build/orbit_coil_variants" "$data/coil-100" "$images" 10
+  fi
+  echo "importing $objects objects x 72 views into $db ..." >&2
+  "$orbit" import --db "$db.partial" --layout coil100 --data "$images" >/dev/null
   mv "$db.partial" "$db"
+  if [[ "$objects" == 1000 ]]; then rm -rf "$images"; fi
 fi
 # The server works on a copy: the enrollments of the last row are deleted afterwards, but ids and
 # the file's pages would still drift from run to run.
@@ -82,14 +97,30 @@ if [[ "$mode" == soak ]]; then
   exit 0
 fi
 
-run open-64-hmm --engine hmm --sessions 64 --rate 10
-run open-256-hmm --engine hmm --sessions 256 --rate 10
-run closed-8-hmm --engine hmm --sessions 8 --closed-loop
-run closed-64-hmm --engine hmm --sessions 64 --closed-loop
-run closed-8-vci --engine vci --sessions 8 --closed-loop
-run closed-64-vci --engine vci --sessions 64 --closed-loop
-run open-1-hmm --engine hmm --sessions 1 --rate 10
-run open-64-hmm-enroll --engine hmm --sessions 64 --rate 10 --enroll-count 20
+if [[ "$objects" == 100 ]]; then
+  rows=(open-64-hmm open-256-hmm closed-8-hmm closed-64-hmm closed-8-vci closed-64-vci open-1-hmm
+        open-64-hmm-enroll)
+  run open-64-hmm --engine hmm --sessions 64 --rate 10
+  run open-256-hmm --engine hmm --sessions 256 --rate 10
+  run closed-8-hmm --engine hmm --sessions 8 --closed-loop
+  run closed-64-hmm --engine hmm --sessions 64 --closed-loop
+  run closed-8-vci --engine vci --sessions 8 --closed-loop
+  run closed-64-vci --engine vci --sessions 64 --closed-loop
+  run open-1-hmm --engine hmm --sessions 1 --rate 10
+  run open-64-hmm-enroll --engine hmm --sessions 64 --rate 10 --enroll-count 20
+  enroll_row=open-64-hmm-enroll
+else
+  # The goals at 1000 objects: closed loop at 8 and 256 sessions against the engine's cost (the
+  # server's processing time at one session), 256 x 10 frames/s, and the same with a 72-view
+  # enrollment every 5 s (each deleted after the load).
+  rows=(open-1-hmm closed-8-hmm closed-256-hmm open-256-hmm open-256-hmm-enroll)
+  run open-1-hmm --engine hmm --sessions 1 --rate 10
+  run closed-8-hmm --engine hmm --sessions 8 --closed-loop
+  run closed-256-hmm --engine hmm --sessions 256 --closed-loop
+  run open-256-hmm --engine hmm --sessions 256 --rate 10
+  run open-256-hmm-enroll --engine hmm --sessions 256 --rate 10 --enroll-every 5
+  enroll_row=open-256-hmm-enroll
+fi
 
 # One Markdown row per run.
 row() {
@@ -110,13 +141,13 @@ else
   commit=$(git rev-parse --short HEAD)
   dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (working tree has uncommitted changes)" || true)
 fi
-echo "Commit $commit$dirty, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row; JSON in $out."
+echo "Commit $commit$dirty, $objects objects x 72 views, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row; JSON in $out."
 echo
 echo "| load | engine | frames/s | RTT p50 (ms) | p90 | p99 | max | server processing p50 / p99 (us) | server CPU per frame (us) | generator CPU per frame (us) | server RSS start -> end (MB) | errors | load avg before |"
 echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: |"
-for name in open-64-hmm open-256-hmm closed-8-hmm closed-64-hmm closed-8-vci closed-64-vci open-1-hmm open-64-hmm-enroll; do
+for name in "${rows[@]}"; do
   row "$name"
 done
 echo
-jq -r '"During \(.enrollments.done) back-to-back enrollments of \(.enrollments.views) views (64 x 10 fps HMM): RTT p50 \(.enrollments.rtt_ms_during.p50) ms, p90 \(.enrollments.rtt_ms_during.p90), p99 \(.enrollments.rtt_ms_during.p99), max \(.enrollments.rtt_ms_during.max) over \(.enrollments.rtt_ms_during.count) frames; enrollment latency p50 \(.enrollments.latency_ms.p50) ms, p99 \(.enrollments.latency_ms.p99), max \(.enrollments.latency_ms.max); \(.enrollments.deleted) deleted afterwards."' \
-  "$out/open-64-hmm-enroll.json"
+jq -r '"During \(.enrollments.done) enrollments of \(.enrollments.views) views (\(.config.sessions) x \(.config.rate_per_session) fps HMM): RTT p50 \(.enrollments.rtt_ms_during.p50) ms, p90 \(.enrollments.rtt_ms_during.p90), p99 \(.enrollments.rtt_ms_during.p99), max \(.enrollments.rtt_ms_during.max) over \(.enrollments.rtt_ms_during.count) frames; enrollment latency p50 \(.enrollments.latency_ms.p50) ms, p99 \(.enrollments.latency_ms.p99), max \(.enrollments.latency_ms.max); \(.enrollments.deleted) deleted afterwards; worst session p99 \(.rtt_ms.worst_session_p99) ms, \(.rtt_ms.sessions_p99_above_5ms) sessions above 5 ms."' \
+  "$out/$enroll_row.json"

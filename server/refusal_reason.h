@@ -37,9 +37,6 @@ inline constexpr int kRefusalReasonCount = static_cast<int>(RefusalReason::kInte
 // The label value, e.g. "frame_rate".
 std::string_view RefusalReasonName(RefusalReason reason);
 
-// The canonical name of a gRPC status code, e.g. "INVALID_ARGUMENT" (the `code` label).
-std::string_view StatusCodeName(grpc::StatusCode code);
-
 // Every (code, reason) pair the server answers with, so that each series exists, at 0, from
 // the start (a counter that appears only at its first increment hides that first increment
 // from rate() and increase()).

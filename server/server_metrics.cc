@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "api/engine_names.h"
+#include "api/status_code_name.h"
 #include "server/model_catalogue.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"

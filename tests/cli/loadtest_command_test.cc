@@ -38,10 +38,10 @@ nlohmann::json Loadtest(const ServerProcess& server, const std::string& argument
 }
 
 void ExpectOrderedRoundTrips(const nlohmann::json& rtt) {
-  EXPECT_GT(rtt["p50"].get<double>(), 0) << rtt;
-  EXPECT_LE(rtt["p50"].get<double>(), rtt["p90"].get<double>()) << rtt;
-  EXPECT_LE(rtt["p90"].get<double>(), rtt["p99"].get<double>()) << rtt;
-  EXPECT_LE(rtt["p99"].get<double>(), rtt["max"].get<double>()) << rtt;
+  EXPECT_GT(rtt.at("p50").get<double>(), 0) << rtt;
+  EXPECT_LE(rtt.at("p50").get<double>(), rtt.at("p90").get<double>()) << rtt;
+  EXPECT_LE(rtt.at("p90").get<double>(), rtt.at("p99").get<double>()) << rtt;
+  EXPECT_LE(rtt.at("p99").get<double>(), rtt.at("max").get<double>()) << rtt;
 }
 
 TEST(LoadtestCommandTest, OpenLoopAnswersEveryFrameOnScheduleWithoutErrors) {
@@ -51,53 +51,53 @@ TEST(LoadtestCommandTest, OpenLoopAnswersEveryFrameOnScheduleWithoutErrors) {
       Loadtest(server, "--sessions 3 --rate 20 --duration 2 --server-pid " +
                            std::to_string(server.pid()));
   // 3 sessions x 20 frames/s x 2 s, every frame answered.
-  EXPECT_EQ(report["frames"]["sent"], 120) << report;
-  EXPECT_EQ(report["frames"]["answered"], 120) << report;
-  EXPECT_GT(report["frames_per_second"].get<double>(), 0);
-  ExpectOrderedRoundTrips(report["rtt_ms"]);
-  EXPECT_EQ(report["rtt_ms"]["count"], 120);
-  EXPECT_EQ(report["errors"], nlohmann::json::object());
-  EXPECT_EQ(report["sessions"]["opened"], 3);
-  EXPECT_EQ(report["sessions"]["failed"], 0);
-  EXPECT_EQ(report["config"]["engine"], "hmm");  // the server's default
-  EXPECT_EQ(report["config"]["mode"], "open-loop");
+  EXPECT_EQ(report.at("frames").at("sent"), 120) << report;
+  EXPECT_EQ(report.at("frames").at("answered"), 120) << report;
+  EXPECT_GT(report.at("frames_per_second").get<double>(), 0);
+  ExpectOrderedRoundTrips(report.at("rtt_ms"));
+  EXPECT_EQ(report.at("rtt_ms").at("count"), 120);
+  EXPECT_EQ(report.at("errors"), nlohmann::json::object());
+  EXPECT_EQ(report.at("sessions").at("opened"), 3);
+  EXPECT_EQ(report.at("sessions").at("failed"), 0);
+  EXPECT_EQ(report.at("config").at("engine"), "hmm");  // the server's default
+  EXPECT_EQ(report.at("config").at("mode"), "open-loop");
   // The server's own figures: its processing times and, through its pid, CPU and memory.
-  EXPECT_GT(report["server"]["processing_time_us"]["p50"].get<double>(), 0);
-  EXPECT_LE(report["server"]["processing_time_us"]["p50"].get<double>(),
-            report["server"]["processing_time_us"]["p99"].get<double>());
-  EXPECT_GE(report["server"]["cpu_seconds"].get<double>(), 0);
-  EXPECT_GT(report["server"]["rss_mb_start"].get<double>(), 1);
-  EXPECT_GT(report["server"]["rss_mb_end"].get<double>(), 1);
-  EXPECT_TRUE(report["generator"].contains("cpu_us_per_frame"));
+  EXPECT_GT(report.at("server").at("processing_time_us").at("p50").get<double>(), 0);
+  EXPECT_LE(report.at("server").at("processing_time_us").at("p50").get<double>(),
+            report.at("server").at("processing_time_us").at("p99").get<double>());
+  EXPECT_GE(report.at("server").at("cpu_seconds").get<double>(), 0);
+  EXPECT_GT(report.at("server").at("rss_mb_start").get<double>(), 1);
+  EXPECT_GT(report.at("server").at("rss_mb_end").get<double>(), 1);
+  EXPECT_TRUE(report.at("generator").contains("cpu_us_per_frame"));
 }
 
 TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-fps", "100000"}});
   const nlohmann::json closed = Loadtest(server, "--sessions 2 --closed-loop --duration 1 --engine vci");
-  EXPECT_EQ(closed["config"]["mode"], "closed-loop");
-  EXPECT_EQ(closed["config"]["engine"], "vci");
-  EXPECT_GT(closed["frames"]["answered"].get<int>(), 2);
-  EXPECT_EQ(closed["frames"]["answered"], closed["frames"]["sent"]);
-  EXPECT_EQ(closed["errors"], nlohmann::json::object());
-  ExpectOrderedRoundTrips(closed["rtt_ms"]);
+  EXPECT_EQ(closed.at("config").at("mode"), "closed-loop");
+  EXPECT_EQ(closed.at("config").at("engine"), "vci");
+  EXPECT_GT(closed.at("frames").at("answered").get<int>(), 2);
+  EXPECT_EQ(closed.at("frames").at("answered"), closed.at("frames").at("sent"));
+  EXPECT_EQ(closed.at("errors"), nlohmann::json::object());
+  ExpectOrderedRoundTrips(closed.at("rtt_ms"));
 
   const nlohmann::json images = Loadtest(server, "--sessions 2 --rate 10 --duration 1 --image-frames");
-  EXPECT_EQ(images["config"]["frames"], "image");
-  EXPECT_EQ(images["frames"]["sent"], 20);
-  EXPECT_EQ(images["frames"]["answered"], 20);
-  EXPECT_EQ(images["errors"], nlohmann::json::object());
+  EXPECT_EQ(images.at("config").at("frames"), "image");
+  EXPECT_EQ(images.at("frames").at("sent"), 20);
+  EXPECT_EQ(images.at("frames").at("answered"), 20);
+  EXPECT_EQ(images.at("errors"), nlohmann::json::object());
 }
 
 TEST(LoadtestCommandTest, SessionsBeyondTheServersLimitAreCountedAsResourceExhausted) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-sessions", "2"}});
   const nlohmann::json report = Loadtest(server, "--sessions 4 --rate 10 --duration 1");
-  EXPECT_EQ(report["errors"], (nlohmann::json{{"RESOURCE_EXHAUSTED", 2}})) << report;
-  EXPECT_EQ(report["sessions"]["opened"], 2);
-  EXPECT_EQ(report["sessions"]["failed"], 2);
+  EXPECT_EQ(report.at("errors"), (nlohmann::json{{"RESOURCE_EXHAUSTED", 2}})) << report;
+  EXPECT_EQ(report.at("sessions").at("opened"), 2);
+  EXPECT_EQ(report.at("sessions").at("failed"), 2);
   // The two admitted sessions ran: 2 x 10 frames/s x 1 s.
-  EXPECT_EQ(report["frames"]["answered"], 20);
+  EXPECT_EQ(report.at("frames").at("answered"), 20);
 }
 
 TEST(LoadtestCommandTest, EnrollmentsDuringTheLoadAreTimedAndDeletedAfterwards) {
@@ -106,12 +106,12 @@ TEST(LoadtestCommandTest, EnrollmentsDuringTheLoadAreTimedAndDeletedAfterwards) 
   const nlohmann::json report =
       Loadtest(server, "--sessions 2 --rate 10 --duration 2 --enroll-count 2");
   ASSERT_TRUE(report.contains("enrollments")) << report;
-  EXPECT_EQ(report["enrollments"]["done"], 2);
-  EXPECT_EQ(report["enrollments"]["deleted"], 2);
-  EXPECT_EQ(report["enrollments"]["views"], 72);  // all of obj1's views
-  EXPECT_GT(report["enrollments"]["latency_ms"]["p50"].get<double>(), 0);
-  EXPECT_EQ(report["errors"], nlohmann::json::object());
-  EXPECT_EQ(report["frames"]["answered"], 40);
+  EXPECT_EQ(report.at("enrollments").at("done"), 2);
+  EXPECT_EQ(report.at("enrollments").at("deleted"), 2);
+  EXPECT_EQ(report.at("enrollments").at("views"), 72);  // all of obj1's views
+  EXPECT_GT(report.at("enrollments").at("latency_ms").at("p50").get<double>(), 0);
+  EXPECT_EQ(report.at("errors"), nlohmann::json::object());
+  EXPECT_EQ(report.at("frames").at("answered"), 40);
 
   // Only the two imported objects are left.
   const testing::CommandResult listed = RunOrbit("list --server " + server.address());
@@ -129,23 +129,23 @@ TEST(LoadtestCommandTest, AShortSoakWithEnrollmentsAndDeletionsLosesNoUpdate) {
   const nlohmann::json report =
       Loadtest(server, "--sessions 24 --rate 10 --duration 5 --enroll-every 0.5 --delete-during "
                        "--server-pid " + std::to_string(server.pid()));
-  EXPECT_EQ(report["errors"], nlohmann::json::object()) << report;
-  EXPECT_EQ(report["frames"]["sent"], 1200) << report;  // 24 x 10 x 5
-  EXPECT_EQ(report["frames"]["unanswered"], 0) << report;
-  EXPECT_EQ(report["sessions"]["opened"], 24);
-  EXPECT_EQ(report["sessions"]["failed"], 0);
-  EXPECT_EQ(report["sessions"]["cancelled"], 0);
+  EXPECT_EQ(report.at("errors"), nlohmann::json::object()) << report;
+  EXPECT_EQ(report.at("frames").at("sent"), 1200) << report;  // 24 x 10 x 5
+  EXPECT_EQ(report.at("frames").at("unanswered"), 0) << report;
+  EXPECT_EQ(report.at("sessions").at("opened"), 24);
+  EXPECT_EQ(report.at("sessions").at("failed"), 0);
+  EXPECT_EQ(report.at("sessions").at("cancelled"), 0);
   ASSERT_TRUE(report.contains("enrollments")) << report;
   // 10 enrollments are due (at 0, 0.5, ..., 4.5 s); a slow machine may fit fewer.
-  EXPECT_GE(report["enrollments"]["done"].get<int>(), 5) << report;
-  EXPECT_LE(report["enrollments"]["done"].get<int>(), 10) << report;
-  EXPECT_EQ(report["enrollments"]["deleted"], report["enrollments"]["done"]);
-  EXPECT_EQ(report["enrollments"]["deleted_during_load"], true);
+  EXPECT_GE(report.at("enrollments").at("done").get<int>(), 5) << report;
+  EXPECT_LE(report.at("enrollments").at("done").get<int>(), 10) << report;
+  EXPECT_EQ(report.at("enrollments").at("deleted"), report.at("enrollments").at("done"));
+  EXPECT_EQ(report.at("enrollments").at("deleted_during_load"), true);
   // The server's memory at the start, every tenth of the load and the end.
-  ASSERT_EQ(report["server"]["rss_mb_samples"].size(), 11u) << report;
-  EXPECT_GT(report["server"]["rss_mb_samples"][10][1].get<double>(), 0);
-  EXPECT_GE(report["rtt_ms"]["worst_session_p99"].get<double>(),
-            report["rtt_ms"]["p50"].get<double>());
+  ASSERT_EQ(report.at("server").at("rss_mb_samples").size(), 11u) << report;
+  EXPECT_GT(report.at("server").at("rss_mb_samples")[10][1].get<double>(), 0);
+  EXPECT_GE(report.at("rtt_ms").at("worst_session_p99").get<double>(),
+            report.at("rtt_ms").at("p50").get<double>());
 
   const testing::CommandResult listed = RunOrbit("list --server " + server.address());
   ASSERT_EQ(listed.exit_code, 0) << listed.err;
