@@ -7,7 +7,6 @@
 #include <limits>
 #include <optional>
 #include <stdexcept>
-#include <unordered_map>
 
 #include "core/cpu_dispatch.h"
 #include "core/sector_similarity_table.h"
@@ -165,7 +164,7 @@ class OrientationHmm final : public RecognitionEngine {
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
-    if (!table_) UseSnapshot(index);
+    if (!table_) table_ = SectorSimilarityTable::Of(index, states_);
     WindowFrame stored;
     Score(*table_, frame.descriptor.values, stored);
     if (previous_azimuth_) {
@@ -178,7 +177,6 @@ class OrientationHmm final : public RecognitionEngine {
   void Clear() override {
     frames_.clear();
     previous_azimuth_.reset();
-    positions_.clear();
     table_.reset();
   }
 
@@ -187,44 +185,33 @@ class OrientationHmm final : public RecognitionEngine {
   // similarities and emissions depend on that object alone, so the state equals a re-append.
   void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
               const SnapshotChange& change, std::span<const QueryFrame> window) override {
-    const std::unordered_map<const IndexedObject*, std::size_t> before_positions =
-        std::move(positions_);
     const std::size_t before_objects = table_->object_count();
-    UseSnapshot(after);
+    table_ = SectorSimilarityTable::Of(after, states_);
     const std::size_t objects = table_->object_count();
 
     std::vector<const IndexedObject*> added_objects;
     for (const ObjectSlot& slot : change.added) added_objects.push_back(slot.object);
+    const std::size_t added_count = added_objects.size();
     const SectorSimilarityTable added(added_objects, states_);
-    // Where each object's column comes from: its position before, or (kFromAdded + j) for the
-    // j-th added object.
-    constexpr std::size_t kFromAdded = std::size_t{1} << 62;
-    std::vector<std::size_t> source(objects);
-    std::size_t next_added = 0;
-    for (std::size_t o = 0; o < objects; ++o) {
-      const auto kept = before_positions.find(after.objects()[o].object);
-      source[o] = kept != before_positions.end() ? kept->second : kFromAdded + next_added++;
-    }
 
+    // Each state's row is rebuilt from runs of kept columns and runs of the added objects'
+    // columns (scored now against the kept frames): a few block copies per row.
     WindowFrame scored;
     for (std::size_t t = 0; t < frames_.size(); ++t) {
       WindowFrame& frame = frames_[t];
-      if (!added_objects.empty()) Score(added, window[t].descriptor.values, scored);
+      if (added_count > 0) Score(added, window[t].descriptor.values, scored);
       std::vector<float> emission(objects * states_);
       std::vector<std::uint8_t> unseen(objects);
-      for (std::size_t o = 0; o < objects; ++o) {
-        const bool added = source[o] >= kFromAdded;
-        unseen[o] = added ? scored.unseen[source[o] - kFromAdded] : frame.unseen[source[o]];
+      for (const SnapshotChange::Run& run : change.runs) {
+        const std::vector<std::uint8_t>& from = run.added ? scored.unseen : frame.unseen;
+        std::copy_n(from.begin() + run.source, run.length, unseen.begin() + run.after);
       }
       for (int i = 0; i < states_; ++i) {
-        const std::size_t row = static_cast<std::size_t>(i) * objects;
-        for (std::size_t o = 0; o < objects; ++o) {
-          const std::size_t from =
-              source[o] >= kFromAdded
-                  ? static_cast<std::size_t>(i) * added_objects.size() + (source[o] - kFromAdded)
-                  : static_cast<std::size_t>(i) * before_objects + source[o];
-          const WindowFrame& origin = source[o] >= kFromAdded ? scored : frame;
-          emission[row + o] = origin.emission[from];
+        float* row = &emission[static_cast<std::size_t>(i) * objects];
+        const float* kept = &frame.emission[static_cast<std::size_t>(i) * before_objects];
+        const float* fresh = added_count > 0 ? &scored.emission[i * added_count] : nullptr;
+        for (const SnapshotChange::Run& run : change.runs) {
+          std::copy_n((run.added ? fresh : kept) + run.source, run.length, row + run.after);
         }
       }
       frame.emission = std::move(emission);
@@ -256,10 +243,10 @@ class OrientationHmm final : public RecognitionEngine {
     return assessments;
   }
 
-  void Complete(const ViewIndexSnapshot&, std::span<const QueryFrame> window,
+  void Complete(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
                 Assessment& assessment) override {
     const std::span<const std::uint16_t> path =
-        viterbi_.path(positions_.at(assessment.object));
+        viterbi_.path(index.PositionOf(assessment.object->id()));
     const SectorViews& sectors = assessment.object->Sectors(states_);
     const auto& views = assessment.object->model().views;
     assessment.matched.clear();
@@ -282,15 +269,6 @@ class OrientationHmm final : public RecognitionEngine {
     SparseTransitions step;         // from the previous frame (empty for the first)
   };
 
-  // The snapshot's shared sector table, and every object's position in it.
-  void UseSnapshot(const ViewIndexSnapshot& index) {
-    table_ = SectorSimilarityTable::Of(index, states_);
-    positions_.clear();
-    for (std::size_t o = 0; o < index.object_count(); ++o) {
-      positions_[index.objects()[o].object] = o;
-    }
-  }
-
   // The similarities and emissions of one frame for the objects of `table`.
   void Score(const SectorSimilarityTable& table, const DescriptorValues& descriptor,
              WindowFrame& frame) const {
@@ -307,7 +285,6 @@ class OrientationHmm final : public RecognitionEngine {
   const std::vector<Arc> sectors_;
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
-  std::unordered_map<const IndexedObject*, std::size_t> positions_;  // object -> position
   std::deque<WindowFrame> frames_;
   std::optional<double> previous_azimuth_;
 };

@@ -104,7 +104,7 @@ FrameUpdate RecognitionEngine::Observe(std::shared_ptr<const ViewIndexSnapshot> 
     if (window_.empty()) {
       Clear();
     } else {
-      Rebase(*index_, *index, CompareSnapshots(*index_, *index), window_);
+      Rebase(*index_, *index, *index->ChangeSince(*index_), window_);
     }
     index_ = std::move(index);
   }

@@ -1,6 +1,7 @@
 #include "core/view_index.h"
 
 #include <algorithm>
+#include <atomic>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -160,6 +161,8 @@ std::shared_ptr<const IndexedObject> Prepare(ObjectModel model, DescriptorVarian
 ViewIndexSnapshot::ViewIndexSnapshot(DescriptorVariant variant, ViewIndexOptions options,
                                      std::vector<SegmentState> segments)
     : variant_(variant), options_(options), segments_(std::move(segments)) {
+  static std::atomic<std::uint64_t> next_serial{1};
+  serial_ = next_serial.fetch_add(1, std::memory_order_relaxed);
   for (const SegmentState& state : segments_) {
     const Segment& segment = *state.segment;
     segment_first_slot_.push_back(slot_count_);
@@ -281,19 +284,41 @@ std::shared_ptr<const void> ViewIndexSnapshot::Derived(
   return derived;
 }
 
+std::shared_ptr<const SnapshotChange> ViewIndexSnapshot::ChangeSince(
+    const ViewIndexSnapshot& before) const {
+  return std::static_pointer_cast<const SnapshotChange>(
+      Derived({"change-since", static_cast<std::int64_t>(before.serial())},
+              [&]() -> std::shared_ptr<const void> {
+                return std::make_shared<const SnapshotChange>(CompareSnapshots(before, *this));
+              }));
+}
+
 SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after) {
-  std::unordered_set<const IndexedObject*> in_after;
-  in_after.reserve(after.object_count());
-  for (const ObjectSlot& slot : after.objects()) in_after.insert(slot.object);
+  // An object is kept when the other snapshot has the same version (IndexedObject) under its id.
+  const auto position_in = [](const ViewIndexSnapshot& snapshot,
+                              const IndexedObject* object) -> std::int32_t {
+    if (snapshot.Find(object->id()) != object) return -1;
+    return static_cast<std::int32_t>(snapshot.PositionOf(object->id()));
+  };
   SnapshotChange change;
-  std::unordered_set<const IndexedObject*> in_before;
-  in_before.reserve(before.object_count());
   for (const ObjectSlot& slot : before.objects()) {
-    in_before.insert(slot.object);
-    if (!in_after.contains(slot.object)) change.removed.push_back(slot.object);
+    if (position_in(after, slot.object) < 0) change.removed.push_back(slot.object);
   }
+  change.before_position.reserve(after.object_count());
   for (const ObjectSlot& slot : after.objects()) {
-    if (!in_before.contains(slot.object)) change.added.push_back(slot);
+    const std::int32_t position = position_in(before, slot.object);
+    const bool added = position < 0;
+    const std::size_t source =
+        added ? change.added.size() : static_cast<std::size_t>(position);
+    std::vector<SnapshotChange::Run>& runs = change.runs;
+    if (!runs.empty() && runs.back().added == added &&
+        runs.back().source + runs.back().length == source) {
+      ++runs.back().length;
+    } else {
+      runs.push_back({change.before_position.size(), source, 1, added});
+    }
+    change.before_position.push_back(position);
+    if (added) change.added.push_back(slot);
   }
   return change;
 }

@@ -66,6 +66,7 @@ struct ViewMatch {
 };
 
 class ViewIndexSnapshot;
+struct SnapshotChange;
 
 class ViewIndex {
  public:
@@ -143,6 +144,18 @@ class ViewIndexSnapshot {
   // The object with this id, or nullptr.
   const IndexedObject* Find(ObjectId id) const;
 
+  // The position in objects() of the object with this id; throws std::out_of_range when the
+  // snapshot has no such object.
+  std::size_t PositionOf(ObjectId id) const { return position_of_id_.at(id); }
+
+  // A number no other snapshot of this process has (in order of creation).
+  std::uint64_t serial() const { return serial_; }
+
+  // CompareSnapshots(before, *this), computed once per `before` and shared: the sessions that
+  // meet this snapshot after `before` (all of them, after one enrollment) pay for the change once
+  // between them, not once each (issue 13, defect E at 1000 objects).
+  std::shared_ptr<const SnapshotChange> ChangeSince(const ViewIndexSnapshot& before) const;
+
   // The `count` views most similar to `query` by Tanimoto, best first (ties: lower object
   // position, then lower view index first), using the snapshot's search mode. Returns fewer
   // when the index holds fewer views. In kKdTree mode the list is approximate (a true
@@ -163,7 +176,7 @@ class ViewIndexSnapshot {
   // SectorSimilarityTable::Of): the first call with `key` runs `build` and keeps its result for
   // the snapshot's life; every later call returns the same object. A caller that arrives during
   // a build waits for it. `key` names the derivation and its parameter, e.g. {"sectors", 8}.
-  using DerivedKey = std::pair<std::string_view, int>;
+  using DerivedKey = std::pair<std::string_view, std::int64_t>;
   std::shared_ptr<const void> Derived(DerivedKey key,
                                       const std::function<std::shared_ptr<const void>()>& build) const;
 
@@ -182,6 +195,7 @@ class ViewIndexSnapshot {
   std::vector<std::int32_t> view_of_slot_;      // view index within its object
   std::size_t view_count_ = 0;
   std::size_t slot_count_ = 0;
+  std::uint64_t serial_ = 0;
   mutable std::mutex derived_mutex_;
   mutable std::map<DerivedKey, std::shared_ptr<const void>> derived_;
 
@@ -193,11 +207,26 @@ class ViewIndexSnapshot {
 struct SnapshotChange {
   std::vector<const IndexedObject*> removed;  // in `before` and not in `after`, in before's order
   std::vector<ObjectSlot> added;              // in `after` and not in `before`, in after's order
+  // For each position of `after`'s objects(): the object's position in `before`, or -1 for an
+  // added object.
+  std::vector<std::int32_t> before_position;
+  // The same as maximal runs, in after's order: `after`'s objects [after, after + length) are
+  // `before`'s [source, source + length), or, when `added`, added[source, source + length).
+  // What an engine rebuilds a per-object array from with a few block copies.
+  struct Run {
+    std::size_t after = 0;
+    std::size_t source = 0;
+    std::size_t length = 0;
+    bool added = false;
+    friend bool operator==(const Run&, const Run&) = default;
+  };
+  std::vector<Run> runs;
   bool empty() const { return removed.empty() && added.empty(); }
 };
 
-// O(objects). The engines use it to bring a session's per-frame state to a new snapshot with
-// work proportional to the change (RecognitionEngine, "Index updates").
+// O(objects). The engines use it (through ViewIndexSnapshot::ChangeSince, which shares it) to
+// bring a session's per-frame state to a new snapshot with work proportional to the change
+// (RecognitionEngine, "Index updates").
 SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after);
 
 }  // namespace orbit

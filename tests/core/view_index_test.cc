@@ -76,6 +76,45 @@ TEST(ViewIndexTest, ReplacePublishesTheNewVersionInOneSnapshot) {
   }
 }
 
+TEST(ViewIndexTest, ChangeSinceNamesWhatChangedAndIsSharedByEverySessionComingFromThere) {
+  ViewIndex index(SmallModels(), {.search = SearchMode::kExact});
+  const auto first = index.Snapshot();  // objects 1, 2
+  index.Add(Model(3, {{kC, 10}}));
+  index.Replace(Model(1, {{kA, 0}}));   // a new version of 1: removed and added
+  index.Remove(2);
+  const auto last = index.Snapshot();   // objects 3, 1 (the new version, added last)
+  EXPECT_LT(first->serial(), last->serial());
+
+  const std::shared_ptr<const SnapshotChange> change = last->ChangeSince(*first);
+  ASSERT_EQ(change->removed.size(), 2u);
+  EXPECT_EQ(change->removed[0]->id(), 1);
+  EXPECT_EQ(change->removed[1]->id(), 2);
+  ASSERT_EQ(change->added.size(), 2u);
+  EXPECT_EQ(change->added[0].object->id(), 3);
+  EXPECT_EQ(change->added[1].object->id(), 1);
+  EXPECT_EQ(change->before_position, (std::vector<std::int32_t>{-1, -1}));
+  EXPECT_EQ(change->runs, (std::vector<SnapshotChange::Run>{{0, 0, 2, true}}));
+  EXPECT_EQ(last->ChangeSince(*first).get(), change.get());  // computed once
+
+  // From a snapshot that shares objects: positions map back, and no change is empty.
+  index.Add(Model(4, {{kB, 0}}));
+  const auto grown = index.Snapshot();  // objects 3, 1, 4
+  const std::shared_ptr<const SnapshotChange> growth = grown->ChangeSince(*last);
+  EXPECT_TRUE(growth->removed.empty());
+  ASSERT_EQ(growth->added.size(), 1u);
+  EXPECT_EQ(growth->added[0].object->id(), 4);
+  EXPECT_EQ(growth->before_position, (std::vector<std::int32_t>{0, 1, -1}));
+  EXPECT_EQ(growth->runs, (std::vector<SnapshotChange::Run>{{0, 0, 2, false}, {2, 0, 1, true}}));
+  EXPECT_TRUE(grown->ChangeSince(*grown)->empty());
+  index.Remove(1);
+  const auto shrunk = index.Snapshot();  // objects 3, 4
+  EXPECT_EQ(shrunk->ChangeSince(*grown)->before_position, (std::vector<std::int32_t>{0, 2}));
+  EXPECT_EQ(shrunk->ChangeSince(*grown)->runs,
+            (std::vector<SnapshotChange::Run>{{0, 0, 1, false}, {1, 2, 1, false}}));
+  EXPECT_EQ(grown->PositionOf(4), 2u);
+  EXPECT_THROW(grown->PositionOf(2), std::out_of_range);
+}
+
 TEST(ViewIndexTest, ExactSearchRanksViewsByTanimotoWithHandComputedValues) {
   ViewIndex index(SmallModels());
   const auto list = index.Snapshot()->Search(kQuery, 5);
