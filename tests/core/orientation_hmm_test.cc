@@ -10,6 +10,7 @@
 #include "core/indexed_object.h"
 #include "core/recognition_engine.h"
 #include "core/view_index.h"
+#include "tests/support/coil_models.h"
 
 namespace orbit {
 namespace {
@@ -227,6 +228,92 @@ TEST(OrientationHmmTest, AnObjectUnseenInEveryFrameScoresZero) {
   EXPECT_NEAR(update.ranking[0].score, 1.0 / 3, 1e-6);
   EXPECT_EQ(update.ranking[1].object, 2);
   EXPECT_EQ(update.ranking[1].score, 0.0);
+}
+
+// The engine decodes only the objects whose bound (the mean of their best emission per frame)
+// can reach the ranking. Over all 100 COIL-100 objects, its top 5 must be exactly the first 5
+// of a ranking that decodes every object (top_k = 100), scores to the last bit, and so must the
+// decision, for frames of known objects and for frames that many objects match
+// about equally (one colour bin: bounds close together, so more objects must be decoded).
+TEST(OrientationHmmTest, DecodingOnlyObjectsThatCanRankGivesTheFullRankingsTop) {
+  ViewIndex index(testing::CoilObjects(1, 100, testing::EvenView), {.search = SearchMode::kExact});
+  const auto snapshot = index.Snapshot();
+  auto pruned = CreateEngine("hmm", {.top_k = 5});
+  auto full = CreateEngine("hmm", {.top_k = 100});
+  std::vector<QueryFrame> frames;
+  for (const int object : {7, 42, 93}) {
+    for (int azimuth = 5; azimuth < 120; azimuth += 10) {
+      frames.push_back({{DescriptorVariant::kCeddLire, testing::CoilView(object, azimuth)},
+                        static_cast<double>(azimuth)});
+    }
+  }
+  for (int k = 0; k < 10; ++k) {
+    DescriptorValues one_bin{};
+    one_bin[k % 3] = static_cast<std::uint8_t>(1 + k % 7);
+    frames.push_back({{DescriptorVariant::kCeddLire, one_bin}, 10.0 * k});
+  }
+  for (std::size_t f = 0; f < frames.size(); ++f) {
+    const FrameUpdate top = pruned->Observe(snapshot, frames[f]);
+    const FrameUpdate all = full->Observe(snapshot, frames[f]);
+    ASSERT_EQ(top.ranking.size(), 5u);
+    ASSERT_EQ(all.ranking.size(), 100u);
+    for (std::size_t r = 0; r < 5; ++r) {
+      EXPECT_EQ(top.ranking[r].object, all.ranking[r].object) << "frame " << f << ", rank " << r;
+      EXPECT_EQ(top.ranking[r].score, all.ranking[r].score) << "frame " << f << ", rank " << r;
+    }
+    EXPECT_EQ(top.decision, all.decision) << "frame " << f;
+  }
+}
+
+// When many objects match each frame well but not along any path the measured turns allow,
+// their bounds are high and their scores low: the engine must decode past them. 32 "jumpy"
+// objects (ids 1-32) hold half of frame A's bins at 0 degrees and half of frame B's at 180,
+// nothing elsewhere: TC 0.5 with every frame at some state (bound 0.5), but the device does not
+// turn while the frames alternate A, B, so a path scores (0.5 + 0) / 2 = 0.25. 8 "steady" objects
+// (ids 33-40) show M, half of A's bins and half of B's, all around: TC(A, M) = TC(B, M) =
+// 45 / (90 + 90 - 45) = 1/3 in every frame, bound and score. The top 8 are the steady ones.
+TEST(OrientationHmmTest, ObjectsWithHighBoundsButInconsistentPathsDoNotHideTheRightOnes) {
+  auto bins = [](int first, int count) {
+    DescriptorValues values{};
+    for (int b = first; b < first + count; ++b) values[b] = 3;
+    return values;
+  };
+  const DescriptorValues a = bins(0, 10), b = bins(10, 10);
+  DescriptorValues m = bins(0, 5);
+  for (int k = 10; k < 15; ++k) m[k] = 3;
+  std::vector<ObjectModel> models;
+  for (ObjectId id = 1; id <= 40; ++id) {
+    ObjectModel model;
+    model.id = id;
+    for (int v = 0; v < 8; ++v) {
+      ModelView view;
+      view.azimuth = 45.0 * v;
+      if (id > 32) {
+        view.descriptor = m;
+      } else {
+        view.descriptor = v == 0 ? bins(0, 5) : v == 4 ? bins(10, 5) : bins(100, 10);
+      }
+      model.views.push_back(view);
+    }
+    models.push_back(model);
+  }
+  ViewIndex index(models, {.search = SearchMode::kExact});
+  auto pruned = CreateEngine("hmm", {.window = 8, .top_k = 8});
+  auto full = CreateEngine("hmm", {.window = 8, .top_k = 40});
+  FrameUpdate top, all;
+  for (int k = 0; k < 8; ++k) {
+    const QueryFrame frame{{DescriptorVariant::kCeddLire, k % 2 == 0 ? a : b}, 90.0};
+    top = pruned->Observe(index.Snapshot(), frame);
+    all = full->Observe(index.Snapshot(), frame);
+  }
+  ASSERT_EQ(top.ranking.size(), 8u);
+  for (std::size_t r = 0; r < 8; ++r) {
+    EXPECT_EQ(top.ranking[r].object, static_cast<ObjectId>(33 + r)) << "rank " << r;
+    EXPECT_NEAR(top.ranking[r].score, 1.0 / 3, 1e-6) << "rank " << r;
+    EXPECT_EQ(top.ranking[r].object, all.ranking[r].object) << "rank " << r;
+    EXPECT_EQ(top.ranking[r].score, all.ranking[r].score) << "rank " << r;
+  }
+  EXPECT_LT(all.ranking[8].score, 1.0 / 3);  // the best jumpy object
 }
 
 }  // namespace
