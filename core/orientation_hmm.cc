@@ -153,10 +153,10 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
 // (SectorSimilarityTable) and the emissions from them, and the sparse transitions from the
 // previous frame; these stay with the frame while it is in the window. Per answer (Assess) it
-// decodes every object's Viterbi path over the window at once (BatchViterbi), in linear space:
-// dividing b_i(o_t) = TC_i / sum_j TC_j by its per-frame constant changes no path's rank, so
-// the raw similarities serve as emissions (with the same 1e-12 floor relative to the sum) and
-// no logarithm is taken per state. A frame keeps only its emissions: the similarity of a state
+// decodes the Viterbi paths of the objects that can rank over the window at once (BatchViterbi),
+// in linear space: dividing b_i(o_t) = TC_i / sum_j TC_j by its per-frame constant changes no
+// path's rank, so the raw similarities serve as emissions (with the same 1e-12 floor relative
+// to the sum) and no logarithm is taken per state. A frame keeps only its emissions: the similarity of a state
 // on an object's path is read back from them (TC = the emission, 0 for an object unseen in the
 // frame; a floored TC reads 1e-12 of the sum too high, at most 8e-12), which halves what a
 // session holds and streams through the caches per frame (8 frames x 8000 states x 4 bytes at
