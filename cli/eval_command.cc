@@ -36,7 +36,8 @@ struct EvalOptions {
   std::string manifest;
   std::vector<std::string> methods = EvaluationOptions{}.methods;
   std::vector<std::string> variants = Names(EvaluationOptions{}.variants, VariantName);
-  std::vector<std::string> distortions = Names(EvaluationOptions{}.distortions, DistortionName);
+  std::vector<std::string> distortions =
+      Names(EvaluationOptions{}.distortions, [](const DistortionSpec& d) { return d.name; });
   std::vector<int> ns = EvaluationOptions{}.query_lengths;
   int trials = EvaluationOptions{}.trials;
   std::uint64_t seed = EvaluationOptions{}.seed;
@@ -62,7 +63,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   for (const std::string& name : o.variants) options.variants.push_back(*ParseVariant(name));
   options.methods = o.methods;
   options.distortions.clear();
-  for (const std::string& name : o.distortions) options.distortions.push_back(*ParseDistortion(name));
+  for (const std::string& name : o.distortions) options.distortions.push_back(ParseDistortionSpec(name));
   options.query_lengths = o.ns;
   options.trials = o.trials;
   options.seed = o.seed;
@@ -136,9 +137,21 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
-  command->add_option("--distortions", o->distortions, "query distortions: df, mb, gn")
+  command->add_option("--distortions", o->distortions,
+                      "query distortions, comma-separated: df, mb, gn (the protocol's) or "
+                      "mb:len=L:angle=A, gn:var=V, jpeg:q=Q, gain:G, lowres:S, joined by + to "
+                      "combine, e.g. mb:len=9:angle=70+gn:var=0.004")
       ->delimiter(',')
-      ->check(CLI::IsMember(DistortionNames()))
+      ->check(CLI::Validator(
+          [](std::string& text) {
+            try {
+              ParseDistortionSpec(text);
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what());
+            }
+            return std::string();
+          },
+          "SPEC"))
       ->capture_default_str();
   command->add_option("--n", o->ns, "query lengths (frames per query)")
       ->delimiter(',')

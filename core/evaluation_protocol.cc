@@ -7,7 +7,6 @@
 #include <string>
 
 #include "core/angles.h"
-#include "core/distortion.h"
 #include "core/seeded_random.h"
 
 namespace orbit {
@@ -18,44 +17,6 @@ namespace {
 constexpr double kAngleTolerance = 1e-9;
 
 }  // namespace
-
-std::string_view DistortionName(QueryDistortion distortion) {
-  switch (distortion) {
-    case QueryDistortion::kNone:
-      return "df";
-    case QueryDistortion::kMotionBlur:
-      return "mb";
-    case QueryDistortion::kGaussianNoise:
-      return "gn";
-  }
-  return "?";
-}
-
-std::optional<QueryDistortion> ParseDistortion(std::string_view name) {
-  for (const QueryDistortion d : kQueryDistortions) {
-    if (name == DistortionName(d)) return d;
-  }
-  return std::nullopt;
-}
-
-std::vector<std::string> DistortionNames() {
-  std::vector<std::string> names;
-  for (const QueryDistortion d : kQueryDistortions) names.emplace_back(DistortionName(d));
-  return names;
-}
-
-cv::Mat ApplyQueryDistortion(const cv::Mat& view, QueryDistortion distortion,
-                             std::uint64_t seed) {
-  switch (distortion) {
-    case QueryDistortion::kMotionBlur:
-      return MotionBlur(view, kMotionBlurLength, kMotionBlurAngleDegrees);
-    case QueryDistortion::kGaussianNoise:
-      return AddGaussianNoise(view, kGaussianNoiseVariance, seed);
-    case QueryDistortion::kNone:
-      break;
-  }
-  return view;
-}
 
 std::uint64_t TrialSeed(std::uint64_t seed, int object, int n, int trial) {
   std::uint64_t s = MixSeed(seed, static_cast<std::uint64_t>(object));

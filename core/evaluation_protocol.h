@@ -10,7 +10,8 @@
 //      and each frame's device azimuth is its true azimuth + N(0, kQueryAzimuthNoiseDegrees) +
 //      one offset, uniform in [0, 360), shared by the trial's frames;
 //   4. the query images are the chosen views, unchanged (DF), motion-blurred (MB) or with
-//      Gaussian noise (GN): ApplyQueryDistortion;
+//      Gaussian noise (GN), core/distortion.h (evaluation/distortion_spec.h names these and
+//      other distortions for `orbit eval`);
 //   5. a hit is a top-1 answer naming c (IsTopOneHit).
 // Every random draw comes from TrialSeed(seed, object, n, trial), so a trial is the same for
 // every method, distortion, descriptor variant, index mode and thread count.
@@ -18,15 +19,9 @@
 // All functions are pure and thread-safe.
 #pragma once
 
-#include <array>
 #include <cstdint>
-#include <optional>
 #include <span>
-#include <string>
-#include <string_view>
 #include <vector>
-
-#include <opencv2/core.hpp>
 
 #include "core/object_model.h"
 #include "core/recognition_engine.h"
@@ -35,27 +30,6 @@ namespace orbit {
 
 inline constexpr double kQueryExclusionDegrees = 10;    // inclusive: |difference| <= 10
 inline constexpr double kQueryAzimuthNoiseDegrees = 3;  // standard deviation
-
-// The query image distortions, named as on the command line.
-enum class QueryDistortion {
-  kNone,           // "df": the view as captured
-  kMotionBlur,     // "mb": MotionBlur(view), fspecial('motion', 15, 20)
-  kGaussianNoise,  // "gn": AddGaussianNoise(view, 0.012, seed)
-};
-
-inline constexpr std::array<QueryDistortion, 3> kQueryDistortions = {
-    QueryDistortion::kNone, QueryDistortion::kMotionBlur, QueryDistortion::kGaussianNoise};
-
-// "df", "mb", "gn".
-std::string_view DistortionName(QueryDistortion distortion);
-// DistortionName of every distortion, in kQueryDistortions' order.
-std::vector<std::string> DistortionNames();
-// Inverse of DistortionName (lower case only); nullopt for any other text.
-std::optional<QueryDistortion> ParseDistortion(std::string_view name);
-
-// The query image for `view` under `distortion` (core/distortion.h); `seed` only matters for
-// kGaussianNoise. Throws as MotionBlur / AddGaussianNoise.
-cv::Mat ApplyQueryDistortion(const cv::Mat& view, QueryDistortion distortion, std::uint64_t seed);
 
 // The seed of one trial: object is the object's position in the dataset, n the query length,
 // trial the trial's number (0-based).

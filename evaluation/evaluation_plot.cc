@@ -104,7 +104,7 @@ void AddOnce(std::vector<T>& values, const T& value) {
 cv::Mat DrawHitRatePlot(const EvaluationReport& report) {
   if (report.cells.empty()) throw std::invalid_argument("DrawHitRatePlot: the report is empty");
   std::vector<DescriptorVariant> variants;
-  std::vector<QueryDistortion> distortions;
+  std::vector<std::string> distortions;
   std::vector<std::string> methods;
   std::vector<int> ns;
   for (const EvaluationCell& cell : report.cells) {

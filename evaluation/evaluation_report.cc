@@ -49,8 +49,10 @@ void ForEachRow(const std::vector<const EvaluationCell*>& cells, std::size_t n_c
 
 }  // namespace
 
-std::string DistortionLabel(QueryDistortion distortion) {
-  std::string label(DistortionName(distortion));
+std::string DistortionLabel(const std::string& distortion) {
+  // The protocol's three are the only names without parameters: DF, MB, GN as in the thesis.
+  if (distortion.find(':') != std::string::npos) return distortion;
+  std::string label = distortion;
   for (char& c : label) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
   return label;
 }
@@ -125,7 +127,7 @@ void WriteCsv(const EvaluationReport& report, std::ostream& out) {
   if (recognition) out << ",accepted,accept_rate,unknown_trials,rejected,reject_rate";
   out << "\n";
   for (const EvaluationCell& cell : report.cells) {
-    out << cell.method << ',' << VariantName(cell.variant) << ',' << DistortionName(cell.distortion)
+    out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion
         << ',' << cell.n << ',' << cell.trials << ',' << cell.hits << ','
         << Format("%.4f", cell.hit_rate()) << ',' << Format("%.4f", cell.ms_per_query());
     if (recognition) {

@@ -12,7 +12,7 @@
 namespace orbit {
 
 // The distortion as the thesis and the tables write it: "DF", "MB", "GN".
-std::string DistortionLabel(QueryDistortion distortion);
+std::string DistortionLabel(const std::string& distortion);
 
 // The report as Markdown: a line with the run's parameters (seed, objects, index, threads,
 // times), the model memory per variant, then per variant a table of hit rates in percent with

@@ -128,7 +128,8 @@ DescribedImages DescribeImages(const EvaluationDataset& dataset, const Evaluatio
                                int threads) {
   DescribedImages described(dataset.images.size());
   RunStage(described.size(), threads, "descriptors", options, [&](std::size_t i) {
-    described[i] = DescribeImage(*dataset.images[i], i, options.variants, options.seed);
+    described[i] = DescribeImage(*dataset.images[i], i, options.variants, options.distortions,
+                                 options.seed);
   });
   return described;
 }
@@ -292,7 +293,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
     for (std::size_t d = 0; d < grid.distortions; ++d) {
       for (std::size_t k = 0; k < frames.size(); ++k) {
         const DescribedImage& image = described[target.images[query.views[k]]][t.variant];
-        frames[k].descriptor = {options.variants[t.variant], image.Query(options.distortions[d])};
+        frames[k].descriptor = {options.variants[t.variant], image.queries[d]};
         frames[k].azimuth = query.azimuths[k];
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
@@ -326,7 +327,7 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
           EvaluationCell cell;
           cell.method = options.methods[m];
           cell.variant = options.variants[v];
-          cell.distortion = options.distortions[d];
+          cell.distortion = options.distortions[d].name;
           cell.n = options.query_lengths[s];
           for (std::size_t object = 0; object < grid.objects; ++object) {
             for (std::size_t trial = 0; trial < grid.trials; ++trial) {
@@ -357,33 +358,35 @@ std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
 }
 
-const DescriptorValues& DescribedImage::Query(QueryDistortion distortion) const {
-  switch (distortion) {
-    case QueryDistortion::kNone:
-      return view.descriptor;
-    case QueryDistortion::kMotionBlur:
-      return motion_blur_query;
-    case QueryDistortion::kGaussianNoise:
-      return noise_query;
-  }
-  throw std::invalid_argument("unknown query distortion");
-}
-
 std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
                                           const std::vector<DescriptorVariant>& variants,
+                                          const std::vector<DistortionSpec>& distortions,
                                           std::uint64_t seed) {
   const cv::Mat view = ReadImageFile(image.path);
-  // The GN query draws its own noise; the model view is described as every enrollment path
-  // describes it, and its MB copy is the MB query (motion blur draws nothing).
-  const cv::Mat noisy = ApplyQueryDistortion(view, QueryDistortion::kGaussianNoise,
-                                             ImageNoiseSeed(seed, position));
+  // The model view is described as every enrollment path describes it; its motion-blurred
+  // copy is the MB query (motion blur draws nothing). Other queries are distorted here, the
+  // image once for all variants.
+  const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
+  std::vector<cv::Mat> distorted(distortions.size());
+  for (std::size_t d = 0; d < distortions.size(); ++d) {
+    if (!distortions[d].steps.empty() && distortions[d] != protocol_blur) {
+      distorted[d] = ApplyDistortion(view, distortions[d], ImageNoiseSeed(seed, position));
+    }
+  }
   std::vector<DescribedImage> described;
   for (DescriptorVariant variant : variants) {
     const ViewDescription description = DescribeView(view, variant, seed);
     DescribedImage& d = described.emplace_back();
     d.view = {description.descriptor, image.azimuth, image.elevation, description.typical_distance};
-    d.motion_blur_query = description.distorted[0];
-    d.noise_query = ExtractCedd(noisy, variant).values;
+    for (std::size_t q = 0; q < distortions.size(); ++q) {
+      if (distortions[q].steps.empty()) {
+        d.queries.push_back(description.descriptor);
+      } else if (distortions[q] == protocol_blur) {
+        d.queries.push_back(description.distorted[0]);
+      } else {
+        d.queries.push_back(ExtractCedd(distorted[q], variant).values);
+      }
+    }
   }
   return described;
 }

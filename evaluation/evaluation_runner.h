@@ -6,9 +6,9 @@
 //   1. reads every image once and, for each variant, on all threads, describes it as a model
 //      view exactly as every enrollment path does (DescribeImage: core/view_description.h,
 //      DescribeView with `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical
-//      distance), and computes its GN query, whose noise is drawn with ImageNoiseSeed(seed, i),
-//      so reruns see the same noise. The DF query is the view's CEDD, the MB query its
-//      motion-blurred copy;
+//      distance), and computes its query under each distortion (evaluation/distortion_spec.h),
+//      whose noise is drawn with ImageNoiseSeed(seed, i), so reruns see the same noise. The DF
+//      query is the view's CEDD, the MB query its motion-blurred copy;
 //   2. builds each known object's model from its images' model views of step 1, and the index
 //      of all known objects, whose memory the report gives;
 //   3. runs the trials, one task per (variant, object, n, trial), spread over the threads: each
@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "evaluation/dataset.h"
+#include "evaluation/distortion_spec.h"
 #include "core/descriptor.h"
 #include "core/evaluation_protocol.h"
 #include "core/object_model.h"
@@ -42,8 +43,9 @@ namespace orbit {
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
   std::vector<std::string> methods{EngineNames().begin(), EngineNames().end()};  // all of them
-  std::vector<QueryDistortion> distortions{QueryDistortion::kNone, QueryDistortion::kMotionBlur,
-                                           QueryDistortion::kGaussianNoise};
+  // Query distortions (evaluation/distortion_spec.h); by default the protocol's df, mb and gn.
+  std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"), ParseDistortionSpec("mb"),
+                                          ParseDistortionSpec("gn")};
   std::vector<int> query_lengths{1, 2, 4, 6, 8};  // n: frames per query (1..kMaxWindow)
   int trials = 10;                                // trials per object and n (>= 1)
   std::uint64_t seed = 1;                         // every random draw derives from it
@@ -59,7 +61,7 @@ struct EvaluationOptions {
 struct EvaluationCell {
   std::string method;
   DescriptorVariant variant = DescriptorVariant::kCeddLire;
-  QueryDistortion distortion = QueryDistortion::kNone;
+  std::string distortion = "df";  // the DistortionSpec's name
   int n = 0;
   int trials = 0;           // queries of known objects
   int hits = 0;             // ... whose top-1 object was right
@@ -107,7 +109,7 @@ struct EvaluationReport {
   double trial_seconds = 0;         // wall-clock time of step 3
 };
 
-// The seed of the Gaussian noise of image i's GN query.
+// The seed of the noise of image i's queries (ApplyDistortion's seed).
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
 
 // One image as the evaluation uses it, in one descriptor variant (step 1).
@@ -115,19 +117,20 @@ struct DescribedImage {
   // The model view it contributes: described exactly as every enrollment path describes it
   // (DescribeView with the options' seed as base), at the image's azimuth and elevation.
   ModelView view;
-  DescriptorValues motion_blur_query{};  // CEDD of DescribeView's motion-blurred copy
-  DescriptorValues noise_query{};        // CEDD of a copy with noise seeded ImageNoiseSeed
-
-  // The query descriptor under `distortion`: the DF query is the view's own CEDD.
-  const DescriptorValues& Query(QueryDistortion distortion) const;
+  // The query descriptor under each of the options' distortions, in their order: the CEDD of
+  // ApplyDistortion(image, spec, ImageNoiseSeed(seed, position)). df's is the view's own CEDD,
+  // mb's DescribeView's motion-blurred copy (the same image, not computed twice).
+  std::vector<DescriptorValues> queries;
 };
 
 // Step 1 for one image: reads it once and describes it in each of `variants` (the results in
-// that order). `position` is its place among the evaluated images (known ones first, then
-// unknown ones), which seeds its GN query: ImageNoiseSeed(seed, position).
+// that order), with its query under each of `distortions`. `position` is its place among the
+// evaluated images (known ones first, then unknown ones), which seeds the noise of its queries:
+// ImageNoiseSeed(seed, position).
 // Throws std::runtime_error naming the file when it cannot be read.
 std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
                                           const std::vector<DescriptorVariant>& variants,
+                                          const std::vector<DistortionSpec>& distortions,
                                           std::uint64_t seed);
 
 // Runs the protocol. `known` holds the images of the objects in the model set, `unknown` those

@@ -166,6 +166,20 @@ TEST_F(EvalCommandTest, ExplainsBadOptions) {
   EXPECT_THAT(r.err, HasSubstr("no image of object 101"));
   r = testing::RunCommand(eval + "--data " + coil_ + " --n 0");
   EXPECT_NE(r.exit_code, 0);
+  r = testing::RunCommand(eval + "--data " + coil_ + " --distortions df,mb:len=0");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_THAT(r.err, HasSubstr("distortion 'mb:len=0': len must be in [1, 100]"));
+}
+
+// Parameterised distortions reach the report under their canonical names, next to the
+// protocol's, which keep theirs (in capitals).
+TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
+  const auto r = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
+                                     " --objects 1-3 --n 2 --trials 1 --methods hmm --no-progress"
+                                     " --distortions gn,gn:var=0.004+jpeg:q=30");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("| GN | hmm |"));
+  EXPECT_THAT(r.out, HasSubstr("| gn:var=0.004+jpeg:q=30 | hmm |"));
 }
 
 }  // namespace

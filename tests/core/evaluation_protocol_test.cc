@@ -137,24 +137,5 @@ TEST(IsTopOneHitTest, OnlyTheFirstPlaceCounts) {
   EXPECT_FALSE(IsTopOneHit({}, 4));
 }
 
-TEST(QueryDistortionTest, NamesAndImages) {
-  for (const auto d : {QueryDistortion::kNone, QueryDistortion::kMotionBlur,
-                       QueryDistortion::kGaussianNoise}) {
-    EXPECT_EQ(ParseDistortion(DistortionName(d)), d);
-  }
-  EXPECT_EQ(ParseDistortion("MB"), std::nullopt);
-  EXPECT_EQ(ParseDistortion("blur"), std::nullopt);
-
-  cv::Mat view(24, 24, CV_8UC3);
-  cv::randu(view, 0, 256);
-  EXPECT_EQ(cv::norm(ApplyQueryDistortion(view, QueryDistortion::kNone, 1), view, cv::NORM_INF), 0);
-  EXPECT_EQ(cv::norm(ApplyQueryDistortion(view, QueryDistortion::kMotionBlur, 1),
-                     MotionBlur(view, 15, 20), cv::NORM_INF),
-            0);
-  EXPECT_EQ(cv::norm(ApplyQueryDistortion(view, QueryDistortion::kGaussianNoise, 1),
-                     AddGaussianNoise(view, 0.012, 1), cv::NORM_INF),
-            0);
-}
-
 }  // namespace
 }  // namespace orbit

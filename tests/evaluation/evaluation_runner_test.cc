@@ -11,6 +11,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/distortion.h"
 #include "core/view_description.h"
 #include "tests/support/test_data.h"
 
@@ -32,7 +33,8 @@ TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
   const std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire,
                                                 DescriptorVariant::kCeddFull};
 
-  const std::vector<DescribedImage> described = DescribeImage(image, 0, variants, seed);
+  const std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"), ParseDistortionSpec("mb")};
+  const std::vector<DescribedImage> described = DescribeImage(image, 0, variants, distortions, seed);
 
   ASSERT_EQ(described.size(), 2u);
   for (std::size_t v = 0; v < variants.size(); ++v) {
@@ -46,27 +48,34 @@ TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
     EXPECT_EQ(view.azimuth, 20.0);
     EXPECT_FALSE(view.elevation.has_value());
     // DF is the view itself; MB is DescribeView's motion-blurred copy.
-    EXPECT_EQ(described[v].Query(QueryDistortion::kNone), expected.descriptor);
-    EXPECT_EQ(described[v].Query(QueryDistortion::kMotionBlur), expected.distorted[0]);
+    ASSERT_EQ(described[v].queries.size(), 2u);
+    EXPECT_EQ(described[v].queries[0], expected.descriptor);
+    EXPECT_EQ(described[v].queries[1], expected.distorted[0]);
   }
   EXPECT_NE(described[0].view.descriptor, described[1].view.descriptor);
 }
 
-// The GN query's noise is seeded by the image's position, so two places draw different noise.
+// A query's noise is seeded by the image's position, so two places draw different noise; any
+// distortion spec is applied as ApplyDistortion applies it.
 TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
   const DatasetImage image = Coil100Image();
   const cv::Mat pixels = ReadImageFile(image.path);
   const std::vector<DescriptorVariant> lire{DescriptorVariant::kCeddLire};
+  const std::vector<DistortionSpec> distortions{ParseDistortionSpec("gn"),
+                                                ParseDistortionSpec("jpeg:q=20+gain:0.6")};
 
-  const DescribedImage first = DescribeImage(image, 0, lire, 7)[0];
-  const DescribedImage fifth = DescribeImage(image, 4, lire, 7)[0];
+  const DescribedImage first = DescribeImage(image, 0, lire, distortions, 7)[0];
+  const DescribedImage fifth = DescribeImage(image, 4, lire, distortions, 7)[0];
 
-  const cv::Mat noisy = ApplyQueryDistortion(pixels, QueryDistortion::kGaussianNoise,
-                                             ImageNoiseSeed(7, 4));
-  EXPECT_EQ(fifth.Query(QueryDistortion::kGaussianNoise),
-            ExtractCedd(noisy, DescriptorVariant::kCeddLire).values);
-  EXPECT_NE(first.noise_query, fifth.noise_query);
-  EXPECT_NE(fifth.noise_query, fifth.view.descriptor);
+  EXPECT_EQ(fifth.queries[0],
+            ExtractCedd(AddGaussianNoise(pixels, 0.012, ImageNoiseSeed(7, 4)),
+                        DescriptorVariant::kCeddLire).values);
+  EXPECT_EQ(fifth.queries[1],
+            ExtractCedd(ApplyDistortion(pixels, distortions[1], ImageNoiseSeed(7, 4)),
+                        DescriptorVariant::kCeddLire).values);
+  EXPECT_NE(first.queries[0], fifth.queries[0]);
+  EXPECT_NE(fifth.queries[0], fifth.view.descriptor);
+  EXPECT_NE(fifth.queries[1], fifth.view.descriptor);
   // The model view depends on the image alone.
   EXPECT_EQ(first.view.descriptor, fifth.view.descriptor);
   EXPECT_EQ(first.view.typical_distance, fifth.view.typical_distance);
@@ -75,7 +84,7 @@ TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
 TEST(DescribeImageTest, NamesAFileThatCannotBeRead) {
   const DatasetImage missing{"/nonexistent/obj1__0.png", "obj1", 0, std::nullopt};
   EXPECT_THAT(testing::ErrorMessageOf<std::runtime_error>(
-                  [&] { DescribeImage(missing, 0, {DescriptorVariant::kCeddLire}, 1); }),
+                  [&] { DescribeImage(missing, 0, {DescriptorVariant::kCeddLire}, {}, 1); }),
               HasSubstr("/nonexistent/obj1__0.png"));
 }
 

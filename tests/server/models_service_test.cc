@@ -119,7 +119,7 @@ TEST(ModelsServiceTest, EveryEnrollmentPathStoresTheSameNumbersForTheSameImage) 
   std::vector<Numbers> evaluated;
   for (std::size_t i = 0; i < kAzimuths.size(); ++i) {
     const DatasetImage image{CoilFile(kObject, kAzimuths[i]), "obj3", double(kAzimuths[i]), {}};
-    const ModelView view = DescribeImage(image, i, {DescriptorVariant::kCeddLire},
+    const ModelView view = DescribeImage(image, i, {DescriptorVariant::kCeddLire}, {},
                                          EvaluationOptions{}.seed)
                                .at(0)
                                .view;
