@@ -2,7 +2,7 @@
 // single-threaded BGR->grey conversion of the same frame (one read of every pixel).
 //
 // Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
-// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray'
+// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray|noise-estimate'
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -16,6 +16,7 @@
 #include "bench/bench_data.h"
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/noise_estimate.h"
 
 namespace orbit {
 namespace {
@@ -43,6 +44,12 @@ void BM_Bgr2Gray(benchmark::State& state, int width, int height) {
   }
 }
 
+// The noise estimate a robust pipeline reads on every frame (core/noise_estimate.h).
+void BM_NoiseEstimate(benchmark::State& state, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  for (auto _ : state) benchmark::DoNotOptimize(EstimateNoiseSigma(frame));
+}
+
 int RegisterCeddBenchmarks() {
   struct Size {
     int width, height;
@@ -55,6 +62,8 @@ int RegisterCeddBenchmarks() {
     }
   }
   benchmark::RegisterBenchmark("bgr2gray/640x480", BM_Bgr2Gray, 640, 480);
+  benchmark::RegisterBenchmark("noise-estimate/128x128", BM_NoiseEstimate, 128, 128);
+  benchmark::RegisterBenchmark("noise-estimate/640x480", BM_NoiseEstimate, 640, 480);
   return 0;
 }
 
