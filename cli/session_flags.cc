@@ -16,7 +16,8 @@ void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
   command.add_option("--window", flags.window,
                      "W: frames the session remembers, 1.." + std::to_string(kMaxWindow));
   command.add_option("--w", flags.orientation_weight,
-                     "orientation weight w of the Hough score, per radian");
+                     "orientation weight w of the Hough score, per radian, 0.." +
+                         std::to_string(static_cast<int>(kMaxOrientationWeight)));
   command.add_option("--list-length", flags.list_length, "N_L: views per retrieval list");
   command.add_option("--hmm-states", flags.hmm_states, "HMM sectors per object");
   command.add_option("--threshold", flags.threshold, "Th: accept when T_M / Ttyp <= Th");

@@ -29,8 +29,9 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.window >= 1 && o.window <= kMaxWindow,
           "window must be in 1.." + std::to_string(kMaxWindow) + ", got " + std::to_string(o.window));
   Require(o.list_length >= 1, "list_length (N_L) must be at least 1");
-  Require(std::isfinite(o.orientation_weight) && o.orientation_weight >= 0,
-          "orientation_weight (w) must be finite and >= 0");
+  Require(o.orientation_weight >= 0 && o.orientation_weight <= kMaxOrientationWeight,
+          "orientation_weight (w) must be in [0, " +
+              std::to_string(static_cast<int>(kMaxOrientationWeight)) + "]");
   Require(o.hmm_states >= 1 && o.hmm_states <= kMaxHmmStates,
           "hmm_states must be in 1.." + std::to_string(kMaxHmmStates));
   Require(std::isfinite(o.threshold) && o.threshold > 0, "threshold (Th) must be finite and > 0");

@@ -56,11 +56,14 @@ namespace orbit {
 inline constexpr int kMaxWindow = 64;
 // Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
 inline constexpr int kMaxHmmStates = 360;
+// w, per radian: at most this. A turn of 1 degree then already costs 17 similarity points, so
+// larger weights change nothing but can overflow a score to infinity (a request's 1e308).
+inline constexpr double kMaxOrientationWeight = 1000;
 
 struct EngineOptions {
   int window = 8;                   // W: frames kept (1..kMaxWindow)
   int list_length = 4;              // N_L: views per VCI retrieval list (>= 1)
-  double orientation_weight = 0.5;  // w: VCI's orientation term, per radian (>= 0; "vci" only)
+  double orientation_weight = 0.5;  // w: VCI's orientation term, per radian (0..kMaxOrientationWeight; "vci" only)
   int hmm_states = 8;               // HMM states = equal azimuth sectors (1..kMaxHmmStates)
   double threshold = 2.0;           // Th: accept when T_M / mean Ttyp <= Th (> 0)
   int top_k = 5;                    // objects in each update's ranking (>= 1)

@@ -60,7 +60,10 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
   }
   if (requested.has_orientation_weight()) {
     const double w = requested.orientation_weight();
-    if (!std::isfinite(w) || w < 0) return InvalidArgument("options.orientation_weight must be >= 0");
+    if (!(w >= 0 && w <= kMaxOrientationWeight)) {  // NaN fails both comparisons
+      return InvalidArgument("options.orientation_weight must be in [0, " +
+                             std::to_string(static_cast<int>(kMaxOrientationWeight)) + "]");
+    }
     o.orientation_weight = w;
   }
   if (requested.list_length() != 0) {

@@ -75,6 +75,8 @@ TEST(RecognitionEngineTest, FactoryKnowsTheSevenEnginesAndChecksOptions) {
   EXPECT_THROW(CreateEngine("hmm", {.hmm_states = 0}), std::invalid_argument);
   EXPECT_THROW(CreateEngine("eis", {.threshold = 0}), std::invalid_argument);
   EXPECT_THROW(CreateEngine("vci", {.orientation_weight = -1}), std::invalid_argument);
+  EXPECT_THROW(CreateEngine("vci", {.orientation_weight = 1001}), std::invalid_argument);
+  EXPECT_NO_THROW(CreateEngine("vci", {.orientation_weight = 1000}));
   EXPECT_THROW(CreateEngine("vci", {.list_length = 0}), std::invalid_argument);
 }
 

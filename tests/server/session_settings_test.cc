@@ -53,7 +53,10 @@ TEST(SessionSettingsTest, OutOfRangeValuesAreInvalidArgumentNamingTheField) {
       // Beyond the API's range is a bad argument, whatever this server's limit.
       {[](v1::SessionOptions& o) { o.set_window(1000); }, "options.window must be 1..64"},
       {[](v1::SessionOptions& o) { o.set_orientation_weight(-0.5); },
-       "options.orientation_weight must be >= 0"},
+       "options.orientation_weight must be in [0, 1000]"},
+      // Found by fuzzing: a huge finite w made VCI's scores infinite or NaN.
+      {[](v1::SessionOptions& o) { o.set_orientation_weight(9.998e307); },
+       "options.orientation_weight must be in [0, 1000]"},
       {[](v1::SessionOptions& o) { o.set_list_length(65); }, "options.list_length must be 1..64"},
       {[](v1::SessionOptions& o) { o.set_hmm_states(361); }, "options.hmm_states must be 1..360"},
       {[](v1::SessionOptions& o) { o.set_threshold(0); }, "options.threshold must be > 0"},
