@@ -41,6 +41,7 @@ struct EvalOptions {
   std::vector<int> ns = EvaluationOptions{}.query_lengths;
   int trials = EvaluationOptions{}.trials;
   std::uint64_t seed = EvaluationOptions{}.seed;
+  std::string orientation = EvaluationOptions{}.use_orientation ? "use" : "ignore";
   std::string objects;
   std::string unknown_objects;
   std::string index = "exact";
@@ -67,6 +68,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.query_lengths = o.ns;
   options.trials = o.trials;
   options.seed = o.seed;
+  options.use_orientation = o.orientation == "use";
   options.index.search = o.index == "kdtree" ? SearchMode::kKdTree : SearchMode::kExact;
   options.index.kd_trees = o.kd_trees;
   options.index.kd_checks = o.kd_checks;
@@ -161,6 +163,12 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--seed", o->seed, "seed of every random draw")->capture_default_str();
+  command->add_option("--orientation", o->orientation,
+                      "use: query frames carry the device's azimuth; ignore: they carry none, as "
+                      "from a device without an orientation sensor (the same methods on the "
+                      "descriptors alone)")
+      ->check(CLI::IsMember({"use", "ignore"}))
+      ->capture_default_str();
   command->add_option("--objects", o->objects,
                       "objects in the model set, e.g. 1-20 or 1-5,9 (coil100: object numbers; "
                       "manifest: order of first appearance); default all");

@@ -1,6 +1,7 @@
 #include "core/baseline_engines.h"
 
 #include <deque>
+#include <optional>
 #include <unordered_map>
 #include <vector>
 
@@ -110,9 +111,15 @@ class BaselineEngine final : public RecognitionEngine {
     double sum = Similarity(0, slot, anchor);
     if (matched != nullptr) matched->push_back({0, anchor, Similarity(0, slot, anchor)});
     for (int k = 1; k < static_cast<int>(window.size()); ++k) {
-      const double target = anchor_azimuth + AzimuthChange(window[0].azimuth, window[k].azimuth);
-      const auto [left, right] = slot.object->NeighbourViews(target);
-      const int view = Similarity(k, slot, right) > Similarity(k, slot, left) ? right : left;
+      // Without a measured turn, the frame's most similar view (as EIS matches every frame).
+      const std::optional<double> turn = MeasuredTurn(window[0], window[k]);
+      int view = 0;
+      if (turn) {
+        const auto [left, right] = slot.object->NeighbourViews(anchor_azimuth + *turn);
+        view = Similarity(k, slot, right) > Similarity(k, slot, left) ? right : left;
+      } else {
+        view = BestView(k, slot);
+      }
       sum += Similarity(k, slot, view);
       if (matched != nullptr) matched->push_back({k, view, Similarity(k, slot, view)});
     }

@@ -19,24 +19,36 @@ double OrientationMismatch(double beta_k, double beta_next, double alpha_k, doub
   return DegreesToRadians(std::abs(WrapDegrees(d_beta - d_alpha)));
 }
 
+namespace {
+
+// w x the orientation term of the step from an entry of frame k to one of frame k + 1; 0 when a
+// frame has no azimuth (the turn is unknown, so no path is preferred for it).
+double StepCost(const HoughEntry& here, const HoughEntry& next,
+                const std::optional<double>& alpha_k, const std::optional<double>& alpha_next,
+                double w) {
+  if (!alpha_k || !alpha_next || w == 0) return 0;
+  return w * OrientationMismatch(here.azimuth, next.azimuth, *alpha_k, *alpha_next);
+}
+
+}  // namespace
+
 double HoughPathScore(std::span<const std::vector<HoughEntry>> entries,
-                      std::span<const double> frame_azimuths, std::span<const int> choice,
-                      double w) {
+                      std::span<const std::optional<double>> frame_azimuths,
+                      std::span<const int> choice, double w) {
   double score = 0;
   for (std::size_t k = 0; k < entries.size(); ++k) {
     const HoughEntry& here = entries[k][choice[k]];
     score += here.similarity;
     if (k + 1 < entries.size()) {
       const HoughEntry& next = entries[k + 1][choice[k + 1]];
-      score -= w * OrientationMismatch(here.azimuth, next.azimuth, frame_azimuths[k],
-                                       frame_azimuths[k + 1]);
+      score -= StepCost(here, next, frame_azimuths[k], frame_azimuths[k + 1], w);
     }
   }
   return score;
 }
 
 HoughPath BestHoughPath(std::span<const std::vector<HoughEntry>> entries,
-                        std::span<const double> frame_azimuths, double w) {
+                        std::span<const std::optional<double>> frame_azimuths, double w) {
   if (entries.empty()) throw std::invalid_argument("BestHoughPath: no frames");
   if (entries.size() != frame_azimuths.size()) {
     throw std::invalid_argument("BestHoughPath: one azimuth per frame is needed");
@@ -55,9 +67,8 @@ HoughPath BestHoughPath(std::span<const std::vector<HoughEntry>> entries,
       double top = -std::numeric_limits<double>::infinity();
       int arg = 0;
       for (std::size_t i = 0; i < entries[k - 1].size(); ++i) {
-        const double value =
-            best[k - 1][i] - w * OrientationMismatch(entries[k - 1][i].azimuth, e.azimuth,
-                                                     frame_azimuths[k - 1], frame_azimuths[k]);
+        const double value = best[k - 1][i] - StepCost(entries[k - 1][i], e, frame_azimuths[k - 1],
+                                                        frame_azimuths[k], w);
         if (value > top) {
           top = value;
           arg = static_cast<int>(i);
@@ -181,7 +192,8 @@ class HoughVoter final : public RecognitionEngine {
       a.latest_azimuth = best.azimuth;
       latest_frame = static_cast<int>(k);
     }
-    a.latest_azimuth += AzimuthChange(window[latest_frame].azimuth, window.back().azimuth);
+    // The latest view's azimuth, turned by what the device measured since; as it is without.
+    a.latest_azimuth += MeasuredTurn(window[latest_frame], window.back()).value_or(0);
     a.score = sum / static_cast<double>(window.size());
     return a;
   }
@@ -203,17 +215,16 @@ class HoughVoter final : public RecognitionEngine {
     for (std::size_t k = 0; k < entries.size(); ++k) {
       if (!entries[k].empty()) continue;
       const DescriptorValues& query = window[k].descriptor.values;
-      if (variant_ == HoughVariant::kWeightless) {
+      const std::optional<double> turn = MeasuredTurn(window[anchor_frame], window[k]);
+      if (variant_ == HoughVariant::kWeightless || !turn) {
         entries[k].push_back(MostSimilarView(k, object, query));
       } else {
-        const double implied =
-            anchor_azimuth + AzimuthChange(window[anchor_frame].azimuth, window[k].azimuth);
-        const int view = object.NearestView(implied);
+        const int view = object.NearestView(anchor_azimuth + *turn);
         const ModelView& model_view = object.model().views[view];
         entries[k].push_back({view, model_view.azimuth, Tanimoto(query, model_view.descriptor)});
       }
     }
-    std::vector<double> azimuths;
+    std::vector<std::optional<double>> azimuths;
     for (const QueryFrame& frame : window) azimuths.push_back(frame.azimuth);
     const double w = variant_ == HoughVariant::kOriented ? options().orientation_weight : 0.0;
     const HoughPath path = BestHoughPath(entries, azimuths, w);

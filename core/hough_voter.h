@@ -28,6 +28,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -47,10 +48,11 @@ struct HoughEntry {
 double OrientationMismatch(double beta_k, double beta_next, double alpha_k, double alpha_next);
 
 // The score of one path: choice[k] indexes entries[k]. Exposed so tests can enumerate paths.
+// A step between frames of which one has no azimuth costs no orientation term.
 // REQUIRES: entries, frame_azimuths and choice have the same size and each choice is valid.
 double HoughPathScore(std::span<const std::vector<HoughEntry>> entries,
-                      std::span<const double> frame_azimuths, std::span<const int> choice,
-                      double w);
+                      std::span<const std::optional<double>> frame_azimuths,
+                      std::span<const int> choice, double w);
 
 struct HoughPath {
   double score = 0;         // H(c_i)
@@ -62,7 +64,7 @@ struct HoughPath {
 // Throws std::invalid_argument when entries is empty, a frame has no entry, or the sizes of
 // entries and frame_azimuths differ.
 HoughPath BestHoughPath(std::span<const std::vector<HoughEntry>> entries,
-                        std::span<const double> frame_azimuths, double w);
+                        std::span<const std::optional<double>> frame_azimuths, double w);
 
 enum class HoughVariant { kBestMatch, kWeightless, kOriented };
 

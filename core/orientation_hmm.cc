@@ -64,6 +64,18 @@ SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double del
   return step;
 }
 
+SparseTransitions UnknownTurnTransitions(std::span<const Arc> sectors) {
+  const std::vector<double> initial = InitialProbabilities(sectors);
+  SparseTransitions step;
+  step.into.resize(sectors.size());
+  for (std::size_t j = 0; j < sectors.size(); ++j) {
+    for (std::size_t i = 0; i < sectors.size(); ++i) {
+      step.into[j].emplace_back(static_cast<int>(i), static_cast<float>(initial[j]));
+    }
+  }
+  return step;
+}
+
 std::vector<double> Emissions(std::span<const double> state_similarities) {
   double sum = 0;
   for (const double s : state_similarities) sum += s;
@@ -174,16 +186,17 @@ class OrientationHmm final : public RecognitionEngine {
     if (!table_) table_ = SectorSimilarityTable::Of(index, states_);
     WindowFrame stored;
     Score(*table_, frame.descriptor.values, stored);
-    if (previous_azimuth_) {
-      stored.step = MakeSparseTransitions(sectors_, AzimuthChange(*previous_azimuth_, frame.azimuth));
+    if (previous_) {
+      const std::optional<double> turn = MeasuredTurn(*previous_, frame);
+      stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : UnknownTurnTransitions(sectors_);
     }
-    previous_azimuth_ = frame.azimuth;
+    previous_ = frame;
     frames_.push_back(std::move(stored));
   }
   void DropOldest() override { frames_.pop_front(); }
   void Clear() override {
     frames_.clear();
-    previous_azimuth_.reset();
+    previous_.reset();
     table_.reset();
   }
 
@@ -238,6 +251,7 @@ class OrientationHmm final : public RecognitionEngine {
                                  std::span<const QueryFrame> window) override {
     const std::size_t frames = window.size();
     const std::size_t objects = table_->object_count();
+    if (objects == 0) return {};
     // Sums in double, frame by frame, as the scores are: a path's sum is then never above its
     // object's bound (every term is at most the frame's best, and rounding is monotone).
     std::vector<double> bound(objects, 0.0);
@@ -361,7 +375,7 @@ class OrientationHmm final : public RecognitionEngine {
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
-  std::optional<double> previous_azimuth_;
+  std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn
   std::vector<std::int32_t> lane_;                 // [object position]: its lane in viterbi_, or -1
   std::vector<std::vector<float>> gathered_;       // scratch: the decoded objects' emissions
 };

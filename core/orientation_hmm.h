@@ -46,6 +46,11 @@ std::vector<std::vector<double>> TransitionMatrix(std::span<const Arc> sectors, 
 // The same transitions kept sparse, for BatchViterbi: into[j] lists (i, a_ij) for a_ij > 0.
 SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta);
 
+// The transitions when the turn between two frames is not known (a frame without azimuth):
+// from any sector to sector j with its initial probability, a_ij = pi_j, so the path may jump
+// anywhere and only the emissions choose it.
+SparseTransitions UnknownTurnTransitions(std::span<const Arc> sectors);
+
 // b_i = similarity_i / sum_j similarity_j; uniform when the sum is 0.
 std::vector<double> Emissions(std::span<const double> state_similarities);
 

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/active_vision.h"
+#include "core/angles.h"
 #include "core/baseline_engines.h"
 #include "core/hough_voter.h"
 #include "core/orientation_hmm.h"
@@ -39,6 +40,11 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.averaged_views >= 2 && o.averaged_views <= 360, "averaged_views must be in 2..360");
   Require(std::isfinite(o.ambiguity_margin) && o.ambiguity_margin >= 0,
           "ambiguity_margin must be finite and >= 0");
+}
+
+std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to) {
+  if (!from.azimuth || !to.azimuth) return std::nullopt;
+  return AzimuthChange(*from.azimuth, *to.azimuth);
 }
 
 std::string_view DecisionName(Decision decision) {
@@ -84,7 +90,9 @@ void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFram
                                 ", the model set has " + std::string(VariantName(index->variant())));
   }
   ValidateDescriptorValues(frame.descriptor.values, "frame descriptor");
-  if (!std::isfinite(frame.azimuth)) throw std::invalid_argument("frame azimuth is not finite");
+  if (frame.azimuth && !std::isfinite(*frame.azimuth)) {
+    throw std::invalid_argument("frame azimuth is not finite");
+  }
 }
 
 void RecognitionEngine::Push(const QueryFrame& frame) {

@@ -43,6 +43,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <span>
 #include <string_view>
 #include <vector>
@@ -77,11 +78,18 @@ struct EngineOptions {
 void ValidateEngineOptions(const EngineOptions& options);
 
 // One arriving frame: the descriptor of the object's region and the device azimuth (degrees,
-// any finite value; only differences between frames matter).
+// any finite value; only differences between frames matter), or none when the device has no
+// orientation reading for the frame (no IMU, or `orbit eval --orientation ignore`). A turn is
+// known only between two frames that both have one (MeasuredTurn); where it is not, the
+// engines assume nothing about it: the HMM lets the object turn to any sector, VCI puts no
+// orientation cost on a path and completes a list with the view most similar to the frame.
 struct QueryFrame {
   Descriptor descriptor;
-  double azimuth = 0;
+  std::optional<double> azimuth;
 };
+
+// AzimuthChange(from, to) when both frames have an azimuth, else nullopt.
+std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to);
 
 struct RankedObject {
   ObjectId object = 0;

@@ -71,6 +71,9 @@ std::string MarkdownReport(const EvaluationReport& report) {
   out << "Engines: window " << e.window << ", N_L " << e.list_length << ", w "
       << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "
       << Format("%g", e.threshold) << ".";
+  if (!report.use_orientation) {
+    out << " Orientation ignored: the query frames carry no azimuth (`--orientation ignore`).";
+  }
   if (report.search == SearchMode::kKdTree) {
     out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
         << " checks, " << report.index.kd_candidates << " candidates re-ranked.";

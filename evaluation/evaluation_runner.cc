@@ -294,7 +294,8 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
       for (std::size_t k = 0; k < frames.size(); ++k) {
         const DescribedImage& image = described[target.images[query.views[k]]][t.variant];
         frames[k].descriptor = {options.variants[t.variant], image.queries[d]};
-        frames[k].azimuth = query.azimuths[k];
+        frames[k].azimuth =
+            options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
         const Clock::time_point start = Clock::now();
@@ -401,6 +402,7 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   report.images = dataset.images.size();
   report.seed = options.seed;
   report.search = options.index.search;
+  report.use_orientation = options.use_orientation;
   report.index = options.index;
   report.threads = options.threads > 0 ? options.threads : AvailableCpus();
   report.engine = options.engine;

@@ -48,6 +48,9 @@ struct EvaluationOptions {
                                           ParseDistortionSpec("gn")};
   std::vector<int> query_lengths{1, 2, 4, 6, 8};  // n: frames per query (1..kMaxWindow)
   int trials = 10;                                // trials per object and n (>= 1)
+  // false: the query frames carry no azimuth, as from a device without an orientation sensor
+  // (QueryFrame); every method then runs on the descriptors alone (`--orientation ignore`).
+  bool use_orientation = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
   ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
   EngineOptions engine;     // the engines' options; the window is raised to the largest n
@@ -103,6 +106,7 @@ struct EvaluationReport {
   std::uint64_t seed = 0;
   int threads = 0;                  // worker threads used
   SearchMode search = SearchMode::kExact;
+  bool use_orientation = true;      // as the options said
   ViewIndexOptions index;           // as used
   EngineOptions engine;             // as used (window raised to the largest n)
   double descriptor_seconds = 0;    // wall-clock time of step 1

@@ -77,7 +77,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (const v1::Frame& frame : request.frames()) {
     QueryFrame query;
     if (!server::ToQueryFrame(frame, kVariant, limits, &query).ok()) return 0;
-    ORBIT_FUZZ_CHECK(std::isfinite(query.azimuth));
+    ORBIT_FUZZ_CHECK(!query.azimuth || std::isfinite(*query.azimuth));
     ORBIT_FUZZ_CHECK(query.descriptor.variant == kVariant);
     for (std::uint8_t value : query.descriptor.values) ORBIT_FUZZ_CHECK(value <= kDescriptorMaxValue);
     FrameUpdate update;

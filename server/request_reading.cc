@@ -70,11 +70,13 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 
 grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
                           const ServerLimits& limits, QueryFrame* out) {
-  if (auto s = CheckFinite(frame.azimuth_deg(), "frame.azimuth_deg"); !s.ok()) return s;
+  if (frame.has_azimuth_deg()) {
+    if (auto s = CheckFinite(frame.azimuth_deg(), "frame.azimuth_deg"); !s.ok()) return s;
+  }
   if (frame.has_elevation_deg()) {
     if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
   }
-  out->azimuth = frame.azimuth_deg();
+  out->azimuth = frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
   out->descriptor.variant = variant;
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
   if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");

@@ -182,5 +182,34 @@ TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
   EXPECT_THAT(r.out, HasSubstr("| gn:var=0.004+jpeg:q=30 | hmm |"));
 }
 
+// --orientation ignore runs the methods without azimuths: vci then answers as vci-w0 does with
+// them (tests/core/recognition_engine_test.cc), so the two rows' hit counts are equal.
+TEST_F(EvalCommandTest, OrientationIgnoreRunsTheMethodsWithoutAzimuths) {
+  const std::string eval = testing::OrbitBinary() + " eval --data " + coil_ +
+                           " --objects 1-6 --n 4 --trials 2 --distortions mb --no-progress --csv ";
+  const std::string ignored = (dir_ / "ignored.csv").string(), used = (dir_ / "used.csv").string();
+  auto r = testing::RunCommand(eval + ignored + " --methods vci --orientation ignore");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Orientation ignored"));
+  r = testing::RunCommand(eval + used + " --methods vci-w0");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // The first row's trials and hits (columns 5 and 6: method,variant,distortion,n,trials,hits).
+  const auto trials_and_hits = [](const std::string& csv) {
+    std::ifstream in(csv);
+    std::string header, row;
+    std::getline(in, header);
+    std::getline(in, row);
+    std::vector<std::string> fields;
+    std::stringstream cells(row);
+    for (std::string field; std::getline(cells, field, ',');) fields.push_back(field);
+    return fields.size() > 5 ? fields[4] + " " + fields[5] : row;
+  };
+  EXPECT_EQ(trials_and_hits(ignored), trials_and_hits(used));
+  EXPECT_EQ(trials_and_hits(used).substr(0, 3), "12 ");
+  r = testing::RunCommand(eval + used + " --orientation sideways");
+  EXPECT_NE(r.exit_code, 0);
+  EXPECT_THAT(r.err, HasSubstr("--orientation"));
+}
+
 }  // namespace
 }  // namespace orbit

@@ -168,7 +168,7 @@ TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
     std::vector<Matrix> transitions;
     for (std::size_t t = 1; t < kept.size(); ++t) {
       transitions.push_back(
-          TransitionMatrix(sectors, AzimuthChange(kept[t - 1].azimuth, kept[t].azimuth)));
+          TransitionMatrix(sectors, AzimuthChange(*kept[t - 1].azimuth, *kept[t].azimuth)));
     }
     std::map<ObjectId, double> expected;
     for (const ObjectModel& model : models) {

@@ -3,6 +3,7 @@
 #include "core/parallel_for.h"
 
 #include <atomic>
+#include <chrono>
 #include <mutex>
 #include <set>
 #include <stdexcept>
@@ -47,9 +48,14 @@ TEST(ParallelForTest, NoTasksAndNoThreadsAreFine) {
 TEST(ParallelForTest, RethrowsTheFirstErrorUnchangedAndSkipsTheRest) {
   std::atomic<int> started{0};
   try {
+    // The other tasks take a while (10000 x 200 us = 1 s on two threads), so that the error
+    // is recorded long before they could all have started, even on a loaded machine (with
+    // instant tasks the other thread could run all 10 000 while the failing one waited for
+    // the CPU).
     ParallelFor(10000, 2, [&](std::size_t i) {
       ++started;
       if (i == 3) throw std::out_of_range("task 3 failed");
+      std::this_thread::sleep_for(std::chrono::microseconds(200));
     });
     FAIL() << "no exception";
   } catch (const std::out_of_range& e) {

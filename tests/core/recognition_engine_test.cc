@@ -1,5 +1,6 @@
 #include "core/recognition_engine.h"
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <map>
@@ -11,6 +12,8 @@
 #include <gtest/gtest.h>
 
 #include "client/image_file.h"
+#include "core/indexed_object.h"
+#include "core/similarity.h"
 #include "core/view_description.h"
 #include "tests/support/coil_models.h"
 
@@ -136,7 +139,7 @@ TEST(RecognitionEngineTest, ShiftedAndWrappedAzimuthsGiveIdenticalAnswers) {
     // 355, 365 -> reported 15, 25 after wrapping below).
     for (const double offset : {137.25, -1000.5, 20.0}) {
       std::vector<QueryFrame> shifted = Frames(7, across_zero, offset);
-      for (QueryFrame& f : shifted) f.azimuth = std::fmod(f.azimuth, 360.0);  // device wraps
+      for (QueryFrame& f : shifted) f.azimuth = std::fmod(*f.azimuth, 360.0);  // device wraps
       ExpectSameUpdate(engine->ObserveSequence(CoilIndex(SearchMode::kExact), shifted), reference,
                        std::string(name) + " offset " + std::to_string(offset));
     }
@@ -193,6 +196,55 @@ TEST(RecognitionEngineTest, ListExtensionIgnoresAzimuthOffsets) {
 //           Object 2 on L_0 with its only view S: H = 0 + 1 - 0.5 * pi/2 -> score (1 - pi/4)/2.
 //   vci-w0: object 1 gets its most similar view R: (1 + 16/17) / 2; object 2: 1/2.
 //   vci-bm: no extension: both (1 + 0) / 2 = 1/2.
+// A device without an orientation sensor sends frames without azimuths: the engines then use
+// the descriptors alone, each in its own way. VCI puts no orientation cost on a path and fills a
+// list from the frame's most similar view: exactly vci-w0 on the same frames with azimuths. SIIS
+// and EIIS take each frame's most similar view instead of the one the turn implies: exactly EIS.
+// The HMM lets the object jump to any sector (a_ij = pi_j, equal for equal sectors), so each
+// frame's path state is its best one: the score is the mean over frames of the best state's TC,
+// the same whatever order the frames come in.
+TEST(RecognitionEngineTest, WithoutAzimuthsTheEnginesUseTheDescriptorsAlone) {
+  const auto index = CoilIndex(SearchMode::kExact);
+  std::vector<QueryFrame> with = Frames(7, {95, 105, 115, 125, 135}, 40);
+  // A frame of object 3, so that the rankings are not all the same object's.
+  with[2].descriptor.values = CoilView(3, 15);
+  std::vector<QueryFrame> without = with;
+  for (QueryFrame& frame : without) frame.azimuth.reset();
+  ExpectSameUpdate(CreateEngine("vci")->ObserveSequence(index, without),
+                   CreateEngine("vci-w0")->ObserveSequence(index, with), "vci");
+  const FrameUpdate eis = CreateEngine("eis")->ObserveSequence(index, with);
+  for (const char* name : {"siis", "eiis"}) {
+    const FrameUpdate update = CreateEngine(name)->ObserveSequence(index, without);
+    ASSERT_EQ(update.ranking.size(), eis.ranking.size()) << name;
+    for (std::size_t r = 0; r < update.ranking.size(); ++r) {
+      EXPECT_EQ(update.ranking[r].object, eis.ranking[r].object) << name << " rank " << r;
+      EXPECT_NEAR(update.ranking[r].score, eis.ranking[r].score, 1e-9) << name << " rank " << r;
+    }
+  }
+  std::vector<QueryFrame> reversed(without.rbegin(), without.rend());
+  const FrameUpdate hmm = CreateEngine("hmm", {.top_k = 10})->ObserveSequence(index, without);
+  const FrameUpdate hmm_reversed =
+      CreateEngine("hmm", {.top_k = 10})->ObserveSequence(index, reversed);
+  ASSERT_EQ(hmm.ranking.size(), 10u);
+  for (std::size_t r = 0; r < hmm.ranking.size(); ++r) {
+    EXPECT_EQ(hmm.ranking[r].object, hmm_reversed.ranking[r].object) << "rank " << r;
+    EXPECT_NEAR(hmm.ranking[r].score, hmm_reversed.ranking[r].score, 1e-6) << "rank " << r;
+  }
+  // The best score by hand: object 7's mean over frames of its best sector's TC.
+  const IndexedObject& seven = *index->Find(7);
+  const SectorViews& sectors = seven.Sectors(8);
+  double sum = 0;
+  for (const QueryFrame& frame : without) {
+    double best = 0;
+    for (const MeanDescriptor& mean : sectors.descriptor) {
+      best = std::max(best, Tanimoto(frame.descriptor.values, mean));
+    }
+    sum += best;
+  }
+  ASSERT_EQ(hmm.ranking[0].object, 7);
+  EXPECT_NEAR(hmm.ranking[0].score, sum / static_cast<double>(without.size()), 1e-6);
+}
+
 TEST(RecognitionEngineTest, ListExtensionByHand) {
   const DescriptorValues p = Bins({{0, 4}}), s = Bins({{1, 4}});
   const DescriptorValues q = Bins({{1, 4}, {3, 3}}), r = Bins({{1, 4}, {2, 1}});

@@ -69,6 +69,15 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
   EXPECT_EQ(query.azimuth, -725.5);
   EXPECT_EQ(query.descriptor.values[100], 3);
   EXPECT_EQ(query.descriptor.variant, kLire);
+  // A device without an orientation sensor leaves the azimuth unset; 0 set explicitly is a
+  // reading like any other.
+  frame.set_azimuth_deg(0);
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_EQ(query.azimuth, 0.0);
+  frame.clear_azimuth_deg();
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_FALSE(query.azimuth.has_value());
+  frame.set_azimuth_deg(-725.5);
 
   // An image is described on the server, its region alone when given.
   const cv::Mat image = CoilImage();
