@@ -168,8 +168,8 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
 // decodes the Viterbi paths of the objects that can rank over the window at once (BatchViterbi),
 // in linear space: dividing b_i(o_t) = TC_i / sum_j TC_j by its per-frame constant changes no
 // path's rank, so the raw similarities serve as emissions (with the same 1e-12 floor relative
-// to the sum) and no logarithm is taken per state. A frame keeps only its emissions: the similarity of a state
-// on an object's path is read back from them (TC = the emission, 0 for an object unseen in the
+// to the sum) and no logarithm is taken per state. A frame keeps only its emissions: the
+// similarity of a state on an object's path is read back from them (TC = the emission, 0 for an object unseen in the
 // frame; a floored TC reads 1e-12 of the sum too high, at most 8e-12), which halves what a
 // session holds and streams through the caches per frame (8 frames x 8000 states x 4 bytes at
 // 1000 objects).
@@ -179,6 +179,7 @@ class OrientationHmm final : public RecognitionEngine {
       : RecognitionEngine("hmm", options),
         states_(options.hmm_states),
         sectors_(EqualSectors(states_)),
+        unknown_turn_(UnknownTurnTransitions(sectors_)),
         viterbi_(InitialProbabilities(sectors_)) {}
 
  protected:
@@ -188,7 +189,7 @@ class OrientationHmm final : public RecognitionEngine {
     Score(*table_, frame.descriptor.values, stored);
     if (previous_) {
       const std::optional<double> turn = MeasuredTurn(*previous_, frame);
-      stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : UnknownTurnTransitions(sectors_);
+      stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : unknown_turn_;
     }
     previous_ = frame;
     frames_.push_back(std::move(stored));
@@ -372,6 +373,7 @@ class OrientationHmm final : public RecognitionEngine {
 
   const int states_;
   const std::vector<Arc> sectors_;
+  const SparseTransitions unknown_turn_;  // the step to or from a frame without azimuth
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;

@@ -304,7 +304,7 @@ SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndex
   for (const ObjectSlot& slot : before.objects()) {
     if (position_in(after, slot.object) < 0) change.removed.push_back(slot.object);
   }
-  change.before_position.reserve(after.object_count());
+  std::size_t next = 0;  // position in `after`
   for (const ObjectSlot& slot : after.objects()) {
     const std::int32_t position = position_in(before, slot.object);
     const bool added = position < 0;
@@ -315,9 +315,9 @@ SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndex
         runs.back().source + runs.back().length == source) {
       ++runs.back().length;
     } else {
-      runs.push_back({change.before_position.size(), source, 1, added});
+      runs.push_back({next, source, 1, added});
     }
-    change.before_position.push_back(position);
+    ++next;
     if (added) change.added.push_back(slot);
   }
   return change;

@@ -207,11 +207,9 @@ class ViewIndexSnapshot {
 struct SnapshotChange {
   std::vector<const IndexedObject*> removed;  // in `before` and not in `after`, in before's order
   std::vector<ObjectSlot> added;              // in `after` and not in `before`, in after's order
-  // For each position of `after`'s objects(): the object's position in `before`, or -1 for an
-  // added object.
-  std::vector<std::int32_t> before_position;
-  // The same as maximal runs, in after's order: `after`'s objects [after, after + length) are
-  // `before`'s [source, source + length), or, when `added`, added[source, source + length).
+  // Where each of `after`'s objects() comes from, as maximal runs in after's order: `after`'s
+  // objects [after, after + length) are `before`'s [source, source + length), or, when
+  // `added`, added[source, source + length).
   // What an engine rebuilds a per-object array from with a few block copies.
   struct Run {
     std::size_t after = 0;

@@ -367,7 +367,7 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
   // The model view is described as every enrollment path describes it; its motion-blurred
   // copy is the MB query (motion blur draws nothing). Other queries are distorted here, the
   // image once for all variants.
-  const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
+  static const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
   std::vector<cv::Mat> distorted(distortions.size());
   for (std::size_t d = 0; d < distortions.size(); ++d) {
     if (!distortions[d].steps.empty() && distortions[d] != protocol_blur) {
