@@ -12,6 +12,8 @@ v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
       return v1::CEDD_LIRE;
     case DescriptorVariant::kCeddFull:
       return v1::CEDD_FULL;
+    case DescriptorVariant::kCeddRobust:
+      return v1::CEDD_ROBUST;
   }
   return v1::DESCRIPTOR_VARIANT_UNSPECIFIED;
 }
@@ -22,6 +24,8 @@ DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
       return DescriptorVariant::kCeddLire;
     case v1::CEDD_FULL:
       return DescriptorVariant::kCeddFull;
+    case v1::CEDD_ROBUST:
+      return DescriptorVariant::kCeddRobust;
     default:
       throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
   }
@@ -31,6 +35,7 @@ std::string ProtoVariantName(v1::DescriptorVariant variant) {
   switch (variant) {
     case v1::CEDD_LIRE:
     case v1::CEDD_FULL:
+    case v1::CEDD_ROBUST:
       return std::string(VariantName(FromProtoVariant(variant)));
     case v1::DESCRIPTOR_VARIANT_UNSPECIFIED:
       return "unspecified";

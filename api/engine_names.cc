@@ -4,6 +4,7 @@
 #include <cctype>
 #include <stdexcept>
 
+#include "core/product_pipeline.h"
 #include "core/recognition_engine.h"
 
 namespace orbit {
@@ -39,6 +40,8 @@ v1::Engine ParseSessionEngine(std::string_view name) {
   throw std::invalid_argument("unknown engine \"" + std::string(name) + "\" (engines: " + known +
                               ")");
 }
+
+v1::Engine ProductSessionEngine() { return ParseSessionEngine(Product().engine); }
 
 std::vector<std::string_view> CoreEngineNames(v1::Engine engine) {
   if (engine == v1::ENGINE_VCI_HMM) return {"vci", "hmm"};

@@ -25,6 +25,10 @@ std::vector<std::string> SessionEngineNames();
 // The engine called `name`. Throws std::invalid_argument listing the names for any other text.
 v1::Engine ParseSessionEngine(std::string_view name);
 
+// The session engine that runs the product pipeline's engine (core/product_pipeline.h): the
+// default of a session that asks for none.
+v1::Engine ProductSessionEngine();
+
 // The engines of core/recognition_engine.h that `engine` runs: one name, two for ENGINE_VCI_HMM,
 // none for ENGINE_UNSPECIFIED or an unknown value.
 std::vector<std::string_view> CoreEngineNames(v1::Engine engine);

@@ -57,7 +57,8 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
   command
       ->add_option("--variant", options->variant,
                    "cedd-lire: bit-exact with LIRE (reads only LIRE's block grid);\n"
-                   "cedd-full: a 40x40 grid covering every pixel")
+                   "cedd-full: a 40x40 grid covering every pixel;\n"
+                   "cedd-robust: cedd-full of the canonical frame (the product's variant)")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();

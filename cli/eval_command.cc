@@ -130,12 +130,15 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--manifest", o->manifest,
                       "CSV with columns path,object,azimuth[,elevation]; relative paths resolve "
                       "against its folder (--layout manifest)");
-  const std::vector<std::string> engine_names(EngineNames().begin(), EngineNames().end());
-  command->add_option("--methods", o->methods, "comma-separated engines")
+  command->add_option("--methods", o->methods,
+                      "comma-separated: product (what `orbit serve` runs by default: " +
+                          DescribeProduct() +
+                          "; evaluated on its own variant, added when --variant lacks it) and "
+                          "the thesis' engines")
       ->delimiter(',')
-      ->check(CLI::IsMember(engine_names))
+      ->check(CLI::IsMember(DefaultMethods()))
       ->capture_default_str();
-  command->add_option("--variant", o->variants, "descriptor variant(s): cedd-lire, cedd-full")
+  command->add_option("--variant", o->variants, "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust")
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();

@@ -21,9 +21,11 @@
 #include "client/image_file.h"
 #include "cli/progress_bar.h"
 #include "core/parallel_for.h"
+#include "core/product_pipeline.h"
 #include "core/view_description.h"
 #include "storage/model_validation.h"
 #include "storage/sqlite_model_store.h"
+#include "storage/view_index_loading.h"
 
 namespace orbit::cli {
 namespace {
@@ -35,7 +37,7 @@ struct ImportOptions {
   std::string data;
   std::string objects;
   std::string manifest;
-  std::string variant;  // "": cedd-lire for a file, the server's variant with --server
+  std::string variant;  // "": the store's (the product's for a new one); the server's with --server
   std::uint64_t seed = kDefaultViewNoiseSeed;
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
@@ -71,7 +73,16 @@ ImportTarget StoreTarget(const ImportOptions& options) {
   store_options.create_if_missing = true;
   auto store = std::make_shared<SqliteModelStore>(options.db, store_options);
   ImportTarget target;
-  target.variant = *ParseVariant(options.variant.empty() ? "cedd-lire" : options.variant);
+  // The store's variant (a server refuses a store of mixed variants), the product's for a new
+  // store, unless --variant says otherwise.
+  const std::optional<DescriptorVariant> stored = StoreVariant(*store);
+  target.variant = options.variant.empty() ? stored.value_or(Product().variant)
+                                           : *ParseVariant(options.variant);
+  if (stored && *stored != target.variant) {
+    throw std::invalid_argument("--variant " + options.variant + " is not the variant of the " +
+                                "objects in " + options.db + " (" +
+                                std::string(VariantName(*stored)) + "); variants cannot be mixed");
+  }
   target.where = "in the store";
   target.destination = "in " + options.db;
   target.find = [store](const std::string& name) -> std::optional<ObjectId> {
@@ -173,7 +184,9 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
   command->add_option("--variant", options->variant,
-                      "descriptor variant (default: cedd-lire; with --server, the server's)")
+                      "descriptor variant (default: that of the store's objects, " +
+                          std::string(VariantName(Product().variant)) +
+                          " for a new store; with --server, the server's)")
       ->check(CLI::IsMember(VariantNames()));
   command->add_option("--seed", options->seed,
                       "base seed of the noisy copies for typical distances (the default stores\n"

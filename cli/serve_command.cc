@@ -9,6 +9,7 @@
 
 #include "api/engine_names.h"
 #include "cli/commands.h"
+#include "core/product_pipeline.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {
@@ -18,9 +19,9 @@ struct ServeOptions {
   server::ServerConfig config;
   std::string database;
   std::string tokens, tls_cert, tls_key;
-  std::string variant = "cedd-lire";
+  std::string variant;  // "": the store's objects', the product's for an empty store
   std::string index = "kdtree";
-  std::string engine = "hmm";
+  std::string engine{Product().engine};
 };
 
 int RunServe(ServeOptions& o) {
@@ -29,7 +30,7 @@ int RunServe(ServeOptions& o) {
   if (!o.tokens.empty()) config.tokens_file = o.tokens;
   if (!o.tls_cert.empty()) config.tls_cert = o.tls_cert;
   if (!o.tls_key.empty()) config.tls_key = o.tls_key;
-  config.variant = *ParseVariant(o.variant);
+  if (!o.variant.empty()) config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
   config.session_defaults.engine = ParseSessionEngine(o.engine);
   server::ValidateServerConfig(config);  // before the account below claims it will run
@@ -48,6 +49,10 @@ int RunServe(ServeOptions& o) {
     std::cerr << "orbit serve: metrics on http://" << server.metrics_address() << "/metrics"
               << std::endl;
   }
+  std::cerr << "orbit serve: descriptor variant " << VariantName(server.variant())
+            << (o.variant.empty() ? " (not given: the store's, or the product's for a new store)"
+                                  : "")
+            << std::endl;
   std::cerr << "orbit serve: listening on " << server.address() << std::endl;
 
   int received = 0;
@@ -90,16 +95,18 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
       ->envname("ORBIT_TLS_KEY");
   cmd->add_flag("--allow-remote-without-tokens", c.allow_remote_without_tokens,
                 "serve a non-loopback address with no access control (unsafe)");
-  cmd->add_option("--variant", o->variant, "descriptor variant of the models and sessions")
+  cmd->add_option("--variant", o->variant,
+                  "descriptor variant of the models and sessions (default: that of the objects "
+                  "in the store; for a new store " + std::string(VariantName(Product().variant)) +
+                  ", the product pipeline: " + DescribeProduct() + ")")
       ->check(CLI::IsMember(VariantNames()))
-      ->capture_default_str()
       ->envname("ORBIT_VARIANT");
   cmd->add_option("--index", o->index, "view search: kdtree (FLANN) or exact (brute force)")
       ->check(CLI::IsMember({"kdtree", "exact"}))
       ->capture_default_str();
   cmd->add_option("--engine", o->engine,
-                  "default engine of sessions that do not choose one (hmm: the most accurate fast "
-                  "engine on COIL-100, see docs/results/coil100-reproduction.md)")
+                  "default engine of sessions that do not choose one (the product pipeline's: "
+                  "docs/results/robustness.md)")
       ->check(CLI::IsMember(SessionEngineNames()))
       ->capture_default_str();
   cmd->add_option("--window", c.session_defaults.options.window, "default window W")

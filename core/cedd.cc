@@ -16,6 +16,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/canonical_frame.h"
 #include "core/cedd_colour.h"
 #include "core/cedd_grid.h"
 #include "core/cedd_quantisation.h"
@@ -149,7 +150,8 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
                                 std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                                 " image");
   }
-  const cv::Mat bgr = ToBgr(image(area));
+  const cv::Mat bgr = variant == DescriptorVariant::kCeddRobust ? CanonicalFrame(ToBgr(image(area)))
+                                                                 : ToBgr(image(area));
   const bool lire = variant == DescriptorVariant::kCeddLire;
   const Grid grid = lire ? cedd::LireGrid(bgr.cols, bgr.rows) : cedd::FullGrid(bgr.cols, bgr.rows);
 

@@ -26,6 +26,7 @@ namespace orbit {
 //              wide (tall) uses its single column (row) for both its left and right (top and
 //              bottom) quadrants, which therefore show no edge across it. So every non-empty
 //              region, even 1x1, gets a descriptor of its colours.
+//   kCeddRobust kCeddFull of CanonicalFrame(region) (core/canonical_frame.h).
 //
 // Throws std::invalid_argument when the image is empty or of another type, or when the region
 // is empty or not inside the image.

@@ -12,6 +12,8 @@ std::string_view VariantName(DescriptorVariant variant) {
       return "cedd-lire";
     case DescriptorVariant::kCeddFull:
       return "cedd-full";
+    case DescriptorVariant::kCeddRobust:
+      return "cedd-robust";
   }
   return "unknown";
 }

@@ -26,12 +26,15 @@ using DescriptorValues = std::array<std::uint8_t, kDescriptorSize>;
 enum class DescriptorVariant {
   kCeddLire,  // bit-exact with the LIRE reference; reads only LIRE's grid of blocks
   kCeddFull,  // the same algorithm on a 40x40 grid covering every pixel of the region
+  // cedd-full of the region's canonical frame (core/canonical_frame.h: canonical size, blur and
+  // brightness): the product's variant, robust to blur, noise, compression and light
+  kCeddRobust,
 };
-inline constexpr std::array<DescriptorVariant, 2> kDescriptorVariants = {
-    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull};
+inline constexpr std::array<DescriptorVariant, 3> kDescriptorVariants = {
+    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust};
 
 // The variant's name as it appears on the command line, in the API and in the model store:
-// "cedd-lire" or "cedd-full".
+// "cedd-lire", "cedd-full" or "cedd-robust".
 std::string_view VariantName(DescriptorVariant variant);
 
 // Inverse of VariantName; nullopt for any other text.

@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include "core/product_pipeline.h"
+
 namespace orbit {
 namespace {
 
@@ -79,6 +81,10 @@ std::string MarkdownReport(const EvaluationReport& report) {
         << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
   }
   out << "\n\n";
+  if (std::any_of(report.cells.begin(), report.cells.end(),
+                  [](const EvaluationCell& cell) { return cell.method == kProductMethod; })) {
+    out << "product: what `orbit serve` runs by default, " << DescribeProduct() << ".\n\n";
+  }
   for (const ModelMemory& memory : report.memory) {
     out << "Model memory (" << VariantName(memory.variant) << "): " << memory.objects
         << " objects, " << memory.views << " views, descriptors "

@@ -15,6 +15,7 @@
 #include "core/cedd.h"
 #include "core/seeded_random.h"
 #include "core/parallel_for.h"
+#include "core/product_pipeline.h"
 #include "core/view_description.h"
 
 namespace orbit {
@@ -54,7 +55,7 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   require(!options.query_lengths.empty(), "no query length n");
   const auto names = EngineNames();
   for (const std::string& method : options.methods) {
-    require(std::find(names.begin(), names.end(), method) != names.end(),
+    require(method == kProductMethod || std::find(names.begin(), names.end(), method) != names.end(),
             "unknown method \"" + method + "\"");
   }
   for (int n : options.query_lengths) {
@@ -65,6 +66,18 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   require(options.threads >= 0, "threads must be >= 0");
   ValidateEngineOptions(options.engine);
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
+}
+
+// `options` with the product's variant added to the variants (last) when the product method is
+// asked for and its variant is not.
+EvaluationOptions WithProductVariant(EvaluationOptions options) {
+  const bool product = std::find(options.methods.begin(), options.methods.end(), kProductMethod) !=
+                       options.methods.end();
+  if (product && std::find(options.variants.begin(), options.variants.end(), Product().variant) ==
+                     options.variants.end()) {
+    options.variants.push_back(Product().variant);
+  }
+  return options;
 }
 
 // The longest query, n. REQUIRES: options.query_lengths is not empty (ValidateOptions).
@@ -209,14 +222,23 @@ struct Outcome {
   double seconds = 0;     // wall-clock time in ObserveSequence
 };
 
+// Whether `method` is evaluated on descriptors of `variant`: the product pipeline only on its own
+// variant (core/product_pipeline.h), every faithful method on every variant.
+bool Evaluates(std::string_view method, DescriptorVariant variant) {
+  return method != kProductMethod || variant == Product().variant;
+}
+
 // One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,
-// made anew when none is idle, and gives it back. Thread-safe.
+// made anew when none is idle, and gives it back. The product method runs the product's engine
+// with the product's options (its window raised as the others'). Thread-safe.
 class EnginePool {
  public:
   using Engines = std::vector<std::unique_ptr<RecognitionEngine>>;
 
   EnginePool(const std::vector<std::string>& methods, const EngineOptions& options)
-      : methods_(methods), options_(options) {}
+      : methods_(methods), options_(options), product_options_(Product().options) {
+    product_options_.window = std::max(product_options_.window, options.window);
+  }
 
   Engines Take() {
     {
@@ -228,7 +250,11 @@ class EnginePool {
       }
     }
     Engines engines;
-    for (const std::string& method : methods_) engines.push_back(CreateEngine(method, options_));
+    for (const std::string& method : methods_) {
+      engines.push_back(method == kProductMethod
+                            ? CreateEngine(Product().engine, product_options_)
+                            : CreateEngine(method, options_));
+    }
     return engines;
   }
 
@@ -240,6 +266,7 @@ class EnginePool {
  private:
   const std::vector<std::string>& methods_;
   const EngineOptions options_;
+  EngineOptions product_options_;
   std::mutex mutex_;
   std::vector<Engines> idle_;  // guarded by mutex_
 };
@@ -298,6 +325,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
+        if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
         const Clock::time_point start = Clock::now();
         const FrameUpdate update = engines[m]->ObserveSequence(snapshot, frames);
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
@@ -324,6 +352,7 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
   for (std::size_t v = 0; v < grid.variants; ++v) {
     for (std::size_t d = 0; d < grid.distortions; ++d) {
       for (std::size_t m = 0; m < grid.methods; ++m) {
+        if (!Evaluates(options.methods[m], options.variants[v])) continue;
         for (std::size_t s = 0; s < grid.ns; ++s) {
           EvaluationCell cell;
           cell.method = options.methods[m];
@@ -354,6 +383,12 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
 }
 
 }  // namespace
+
+std::vector<std::string> DefaultMethods() {
+  std::vector<std::string> methods{std::string(kProductMethod)};
+  methods.insert(methods.end(), EngineNames().begin(), EngineNames().end());
+  return methods;
+}
 
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
@@ -394,7 +429,8 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
 
 EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
                                const std::vector<DatasetImage>& unknown,
-                               const EvaluationOptions& options) {
+                               const EvaluationOptions& requested) {
+  const EvaluationOptions options = WithProductVariant(requested);
   const EvaluationDataset dataset = ValidateAndGroup(known, unknown, options);
   EvaluationReport report;
   report.known_objects = dataset.known.size();

@@ -36,13 +36,21 @@
 #include "core/object_model.h"
 #include "core/recognition_engine.h"
 #include "core/parallel_for.h"
+#include "core/product_pipeline.h"
 #include "core/view_index.h"
 
 namespace orbit {
 
+// kProductMethod, then every engine of EngineNames().
+std::vector<std::string> DefaultMethods();
+
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
-  std::vector<std::string> methods{EngineNames().begin(), EngineNames().end()};  // all of them
+  // Engine names (EngineNames()) and kProductMethod, the product pipeline (core/
+  // product_pipeline.h: its engine with its options, whatever `engine` says, and only on its
+  // variant, which is evaluated, added last, when `variants` lacks it). By default the product
+  // and every engine.
+  std::vector<std::string> methods = DefaultMethods();
   // Query distortions (evaluation/distortion_spec.h); by default the protocol's df, mb and gn.
   std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"), ParseDistortionSpec("mb"),
                                           ParseDistortionSpec("gn")};

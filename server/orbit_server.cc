@@ -10,6 +10,7 @@
 
 #include "orbit/version.h"
 #include "core/parallel_for.h"
+#include "core/product_pipeline.h"
 #include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
 #include "server/models_service.h"
@@ -18,6 +19,7 @@
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
 #include "storage/sqlite_model_store.h"
+#include "storage/view_index_loading.h"
 
 namespace orbit::server {
 namespace {
@@ -61,7 +63,8 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   SqliteModelStoreOptions store_options;
   store_options.create_if_missing = true;
   store_ = std::make_unique<SqliteModelStore>(config_.database, store_options);
-  catalogue_ = std::make_unique<ModelCatalogue>(*store_, config_.variant, config_.index,
+  if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
+  catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
                                                 metrics_->store_writes());
   const int cpus = AvailableCpus();
   pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);

@@ -54,6 +54,9 @@ class OrbitServer {
   // The metrics endpoint's HOST:PORT with the bound port; "" without config.metrics_listen.
   std::string metrics_address() const;
 
+  // The descriptor variant of every model and session (ServerConfig::variant, resolved).
+  DescriptorVariant variant() const { return *config_.variant; }
+
   // Health goes NOT_SERVING, new sessions are refused, open sessions end with UNAVAILABLE, and
   // gRPC stops after letting calls finish for up to shutdown_grace_seconds; the metrics endpoint
   // stops before the workers do.

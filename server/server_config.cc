@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "api/engine_names.h"
+#include "core/product_pipeline.h"
 
 namespace orbit::server {
 
@@ -40,7 +41,11 @@ std::string ServerConfig::Describe() const {
       << "  tls                 "
       << (tls_cert ? "certificate " + tls_cert->string() + ", key " + tls_key->string() : "off")
       << "\n"
-      << "  descriptor variant  " << VariantName(variant) << "\n"
+      << "  descriptor variant  "
+      << (variant ? std::string(VariantName(*variant))
+                  : "the store's objects' (" + std::string(VariantName(Product().variant)) +
+                        " for an empty store)")
+      << "\n"
       << "  index               "
       << (index.search == SearchMode::kKdTree
               ? "kd-tree (" + std::to_string(index.kd_trees) + " trees, " +

@@ -20,7 +20,10 @@ struct ServerConfig {
   // Serving without tokens on a non-loopback address exposes enrollment and deletion to anyone
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;
-  DescriptorVariant variant = DescriptorVariant::kCeddLire;  // of every model and session
+  // Of every model and session. Unset: the variant of the objects the store holds (StoreVariant),
+  // or the product's (core/product_pipeline.h: cedd-robust) for an empty store, so a store built
+  // with an older default keeps serving without a flag.
+  std::optional<DescriptorVariant> variant;
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;

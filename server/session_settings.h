@@ -4,7 +4,9 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include "api/engine_names.h"
 #include "core/descriptor.h"
+#include "core/product_pipeline.h"
 #include "core/recognition_engine.h"
 #include "orbit/v1/recognition.pb.h"
 
@@ -31,10 +33,10 @@ struct ServerLimits {
 };
 
 struct SessionSettings {
-  // HMM by default: the most accurate of the fast engines on COIL-100 (84.0% top-1 at n = 8 with
-  // motion blur against 49.5% for VCI; docs/results/coil100-reproduction.md).
-  v1::Engine engine = v1::ENGINE_HMM;  // never ENGINE_UNSPECIFIED once resolved
-  EngineOptions options;
+  // The product pipeline's engine and options by default (core/product_pipeline.h; why:
+  // docs/results/robustness.md).
+  v1::Engine engine = ProductSessionEngine();  // never ENGINE_UNSPECIFIED once resolved
+  EngineOptions options = Product().options;
 };
 
 // `requested` over `defaults`: a field at 0 / unset keeps the default. INVALID_ARGUMENT for an

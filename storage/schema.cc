@@ -43,6 +43,28 @@ constexpr const char* kMigrations[] = {
         CHECK (json_valid(metadata) AND json_type(metadata) = 'object');
       ALTER TABLE views ADD COLUMN thumbnail BLOB CHECK (length(thumbnail) <= 65536);
     )sql",
+    // 3: the cedd-robust variant. SQLite cannot widen a CHECK in place, so objects is rebuilt
+    // (SQLite's documented table rebuild; MigrateSchema runs it with foreign keys off, so
+    // dropping the old table deletes no views). The AUTOINCREMENT high-water mark is carried
+    // over, so the ids of deleted objects are still never reused.
+    R"sql(
+      CREATE TABLE objects_v3 (
+        id INTEGER PRIMARY KEY AUTOINCREMENT,
+        name TEXT NOT NULL UNIQUE CHECK (length(name) BETWEEN 1 AND 64),
+        variant TEXT NOT NULL CHECK (variant IN ('cedd-lire', 'cedd-full', 'cedd-robust')),
+        created_at TEXT NOT NULL,
+        updated_at TEXT NOT NULL,
+        metadata TEXT NOT NULL DEFAULT '{}'
+          CHECK (json_valid(metadata) AND json_type(metadata) = 'object')
+      ) STRICT;
+      INSERT INTO objects_v3 (id, name, variant, created_at, updated_at, metadata)
+        SELECT id, name, variant, created_at, updated_at, metadata FROM objects;
+      DELETE FROM sqlite_sequence WHERE name = 'objects_v3';
+      INSERT INTO sqlite_sequence (name, seq)
+        SELECT 'objects_v3', seq FROM sqlite_sequence WHERE name = 'objects';
+      DROP TABLE objects;
+      ALTER TABLE objects_v3 RENAME TO objects;
+    )sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 
@@ -66,9 +88,10 @@ int ReadSchemaVersion(SqliteConnection& connection) {
   return static_cast<int>(version->ColumnInt64(0));
 }
 
-void MigrateSchema(SqliteConnection& connection) {
-  // The common case, an up-to-date store, needs no write lock.
-  if (ReadSchemaVersion(connection) == kSchemaVersion) return;
+namespace {
+
+// Applies the missing migrations, one transaction each (foreign keys are off: MigrateSchema).
+void ApplyMigrations(SqliteConnection& connection) {
   for (;;) {
     SqliteTransaction transaction(connection, SqliteTransaction::Mode::kWrite);
     const int version = ReadSchemaVersion(connection);
@@ -81,6 +104,11 @@ void MigrateSchema(SqliteConnection& connection) {
     }
     if (version == kSchemaVersion) return;  // the read-only transaction just ends
     connection.Execute(kMigrations[version]);
+    if (!connection.QueryText("PRAGMA foreign_key_check").empty()) {
+      throw StoreError(StoreError::Code::kCorrupt,
+                       connection.file().string() + ": migration to schema version " +
+                           std::to_string(version + 1) + " found views of missing objects");
+    }
     StatementLease record = connection.Prepare(
         "INSERT INTO schema_version (version, applied_at) "
         "VALUES (?1, strftime('%Y-%m-%dT%H:%M:%fZ', 'now'))");
@@ -88,6 +116,25 @@ void MigrateSchema(SqliteConnection& connection) {
     record->Run();
     transaction.Commit();
   }
+}
+
+}  // namespace
+
+void MigrateSchema(SqliteConnection& connection) {
+  // The common case, an up-to-date store, needs no write lock.
+  if (ReadSchemaVersion(connection) == kSchemaVersion) return;
+  // A migration may rebuild a table that others reference (3): with foreign keys on, dropping
+  // it would cascade. They are switched off for the migrations (a pragma that only takes
+  // effect outside a transaction), checked before each commit, and restored however we leave.
+  const bool foreign_keys = connection.QueryText("PRAGMA foreign_keys") == "1";
+  connection.Execute("PRAGMA foreign_keys = OFF");
+  try {
+    ApplyMigrations(connection);
+  } catch (...) {
+    if (foreign_keys) connection.Execute("PRAGMA foreign_keys = ON");
+    throw;
+  }
+  if (foreign_keys) connection.Execute("PRAGMA foreign_keys = ON");
 }
 
 }  // namespace orbit

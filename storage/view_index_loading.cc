@@ -8,6 +8,12 @@
 
 namespace orbit {
 
+std::optional<DescriptorVariant> StoreVariant(ModelStore& store) {
+  const std::vector<ObjectSummary> first = store.List({.after_id = 0, .limit = 1});
+  if (first.empty()) return std::nullopt;
+  return first.front().variant;
+}
+
 std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
                                          const ViewIndexOptions& options) {
   std::vector<ObjectModel> models = store.LoadAll();

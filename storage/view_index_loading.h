@@ -2,6 +2,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "core/descriptor.h"
 #include "core/view_index.h"
@@ -18,6 +19,10 @@ namespace orbit {
 // Throws StoreError kIncompatible, naming the first such object, when the store holds an object
 // of another variant than `variant` (SPEC.md, "Descriptor variants": never mix variants); other
 // errors as ModelStore::LoadAll and the ViewIndex constructor.
+// The variant of the objects `store` holds (that of its first object: LoadViewIndex refuses a
+// mix), or nullopt for an empty store. What a server serves when not told a variant.
+std::optional<DescriptorVariant> StoreVariant(ModelStore& store);
+
 std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
                                          const ViewIndexOptions& options = {});
 

@@ -15,6 +15,8 @@ TEST(ConversionTest, VariantsRoundTripAndUnknownOnesAreRefusedByName) {
   EXPECT_EQ(ToProtoVariant(DescriptorVariant::kCeddLire), v1::CEDD_LIRE);
   EXPECT_EQ(ToProtoVariant(DescriptorVariant::kCeddFull), v1::CEDD_FULL);
   EXPECT_EQ(ProtoVariantName(v1::CEDD_FULL), "cedd-full");
+  EXPECT_EQ(ToProtoVariant(DescriptorVariant::kCeddRobust), v1::CEDD_ROBUST);
+  EXPECT_EQ(ProtoVariantName(v1::CEDD_ROBUST), "cedd-robust");
   EXPECT_EQ(ProtoVariantName(v1::DESCRIPTOR_VARIANT_UNSPECIFIED), "unspecified");
   EXPECT_EQ(ProtoVariantName(static_cast<v1::DescriptorVariant>(9)), "unknown (9)");
   // Neither end guesses a variant: both refuse what they do not know.

@@ -35,10 +35,39 @@ using testing::RunOrbit;
 using testing::ScratchDir;
 using testing::ServerProcess;
 
+// A store made with another variant (e.g. cedd-lire, the default before cedd-robust) keeps it:
+// import adds to it in its variant, refuses to mix another in, and a server started on it
+// without --variant serves it; a new store gets the product's variant.
+TEST(ImportCommandTest, AnExistingStoreKeepsItsVariantAndANewOneGetsTheProducts) {
+  ScratchDir dir;
+  const std::string lire_db = (dir / "lire.db").string();
+  const std::string coil = " --layout coil100 --data " + CoilDir();
+  ASSERT_EQ(RunOrbit("import --db " + lire_db + coil + " --objects 1 --variant cedd-lire").exit_code,
+            0);
+  ASSERT_EQ(RunOrbit("import --db " + lire_db + coil + " --objects 2").exit_code, 0);
+  const auto mixed = RunOrbit("import --db " + lire_db + coil + " --objects 3 --variant cedd-robust");
+  EXPECT_EQ(mixed.exit_code, 1);
+  EXPECT_THAT(mixed.err, ::testing::HasSubstr("--variant cedd-robust is not the variant of the "
+                                              "objects in " + lire_db + " (cedd-lire)"));
+  EXPECT_THAT(OutputLines(RunOrbit("list --db " + lire_db).out),
+              ::testing::ElementsAre(::testing::StartsWith("1 obj1 cedd-lire 72"),
+                                     ::testing::StartsWith("2 obj2 cedd-lire 72")));
+  {
+    ServerProcess server({.database = dir / "lire.db"});
+    const auto info = RunOrbit("info --json --server " + server.address());
+    ASSERT_EQ(info.exit_code, 0) << info.err;
+    EXPECT_EQ(nlohmann::json::parse(info.out)["variant"], "cedd-lire");
+  }
+  const std::string new_db = (dir / "new.db").string();
+  ASSERT_EQ(RunOrbit("import --db " + new_db + coil + " --objects 4").exit_code, 0);
+  EXPECT_THAT(RunOrbit("list --db " + new_db).out, ::testing::StartsWith("1 obj4 cedd-robust 72"));
+}
+
 TEST(ImportCommandTest, ImportStoresLireDescriptorsAndTypicalDistances) {
   ScratchDir dir;
   const std::string db = (dir / "models.db").string();
-  ASSERT_EQ(RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() + " --objects 7")
+  ASSERT_EQ(RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() +
+                     " --objects 7 --variant cedd-lire")
                 .exit_code,
             0);
 
@@ -154,7 +183,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto listed_local = RunCommand(orbit + "list --db " + db);
   ASSERT_EQ(listed_remote.exit_code, 0) << listed_remote.err;
   EXPECT_EQ(WithoutTimestamps(listed_remote.out), WithoutTimestamps(listed_local.out));
-  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-lire 72");
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-robust 72");
   const auto json = RunCommand(orbit + "list --json" + at);
   ASSERT_EQ(OutputLines(json.out).size(), 3u);
   EXPECT_EQ(nlohmann::json::parse(OutputLines(json.out)[0])["name"], "obj1");
@@ -179,7 +208,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto variant =
       RunCommand(orbit + "import" + at + coil + " --objects 4 --variant cedd-full");
   EXPECT_EQ(variant.exit_code, 1);
-  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-lire)"),
+  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-robust)"),
             std::string::npos)
       << variant.err;
 }

@@ -43,7 +43,7 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   const auto info_json = nlohmann::json::parse(info.out);
   EXPECT_EQ(info_json["objects"], 3);
   EXPECT_EQ(info_json["views"], 54);
-  EXPECT_EQ(info_json["variant"], "cedd-lire");
+  EXPECT_EQ(info_json["variant"], "cedd-robust");
   EXPECT_EQ(info_json["limits"]["max_image_pixels"], 16777216);
   EXPECT_EQ(info_json["limits"]["max_hmm_cells"], 1024);
 

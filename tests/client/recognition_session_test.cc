@@ -13,6 +13,7 @@
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
 #include "core/cedd.h"
+#include "core/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -64,7 +65,7 @@ TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
 
   for (const int object : {3, 5}) {
     auto session = RecognitionSession::Open(connection, testing::TopK(3));
-    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddLire);  // asked from the server
+    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddRobust);  // asked from the server
     EXPECT_EQ(session->window(), 8);
     for (int k = 0; k < 6; ++k) {
       EXPECT_EQ(PushSweepFrame(*session, object, k), k);

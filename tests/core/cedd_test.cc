@@ -10,6 +10,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/canonical_frame.h"
 #include "core/cedd_colour.h"
 #include "core/cedd_quantisation.h"
 #include "core/cedd_texture.h"
@@ -123,6 +124,19 @@ TEST(Cedd, RegionOfInterestEqualsTheCroppedImage) {
       EXPECT_EQ(ExtractCedd(image, v, roi), ExtractCedd(image(roi).clone(), v)) << roi;
     }
   }
+}
+
+// cedd-robust is cedd-full of the canonical frame, whatever the region's size or where it lies.
+TEST(Cedd, RobustVariantIsFullOfTheCanonicalFrame) {
+  const cv::Mat image = ReadImageFile(
+      (testing::DataDir() / "cedd-conformance/synth/shapes_640x480.png").string());
+  const Descriptor robust = ExtractCedd(image, DescriptorVariant::kCeddRobust);
+  EXPECT_EQ(robust.variant, DescriptorVariant::kCeddRobust);
+  EXPECT_EQ(robust.values, ExtractCedd(CanonicalFrame(image), kFull).values);
+  EXPECT_NE(robust.values, ExtractCedd(image, kFull).values);
+  const cv::Rect roi(10, 20, 300, 200);
+  EXPECT_EQ(ExtractCedd(image, DescriptorVariant::kCeddRobust, roi).values,
+            ExtractCedd(CanonicalFrame(image(roi).clone()), kFull).values);
 }
 
 TEST(Cedd, RefusesWhatItCannotDescribe) {

@@ -16,11 +16,13 @@ namespace {
 
 using orbit::testing::ErrorMessageOf;
 TEST(DescriptorTest, VariantNamesRoundTrip) {
-  for (DescriptorVariant variant : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
+  for (DescriptorVariant variant : kDescriptorVariants) {
     EXPECT_EQ(ParseVariant(VariantName(variant)), variant);
   }
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddLire), "cedd-lire");
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddFull), "cedd-full");
+  EXPECT_EQ(VariantName(DescriptorVariant::kCeddRobust), "cedd-robust");
+  EXPECT_EQ(VariantNames(), (std::vector<std::string>{"cedd-lire", "cedd-full", "cedd-robust"}));
   EXPECT_EQ(ParseVariant("CEDD-LIRE"), std::nullopt);
   EXPECT_EQ(ParseVariant(""), std::nullopt);
 }

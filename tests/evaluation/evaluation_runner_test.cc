@@ -12,6 +12,7 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/distortion.h"
+#include "core/product_pipeline.h"
 #include "core/view_description.h"
 #include "tests/support/test_data.h"
 
@@ -103,6 +104,42 @@ TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
   options.query_lengths = {4};
   EXPECT_EQ(testing::ErrorMessageOf([&] { RunEvaluation(known, {}, options); }),
             "object \"a\" has 2 views; n = 4 needs as many");
+}
+
+// `product` is the product pipeline (core/product_pipeline.h): its engine with its options, on
+// its own variant only, which the evaluation adds when it was not asked for. With the engines'
+// default options it is therefore exactly that engine on that variant, query for query.
+TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod), std::string(Product().engine)};
+  options.variants = {DescriptorVariant::kCeddLire};
+  options.distortions = {ParseDistortionSpec("df"), ParseDistortionSpec("gn:var=0.01")};
+  options.query_lengths = {1, 3};
+  options.trials = 2;
+  const EvaluationReport report =
+      RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3, 4}), {}, options);
+
+  // lire: the engine only; robust: product and the engine. 2 distortions x 2 n each.
+  ASSERT_EQ(report.cells.size(), (1 + 2) * 2 * 2u);
+  std::vector<const EvaluationCell*> product, engine_on_robust;
+  for (const EvaluationCell& cell : report.cells) {
+    if (cell.method == kProductMethod) {
+      EXPECT_EQ(cell.variant, Product().variant);
+      product.push_back(&cell);
+    } else if (cell.variant == Product().variant) {
+      engine_on_robust.push_back(&cell);
+    }
+  }
+  ASSERT_EQ(product.size(), 4u);
+  ASSERT_EQ(engine_on_robust.size(), 4u);
+  for (std::size_t i = 0; i < product.size(); ++i) {
+    EXPECT_EQ(product[i]->distortion, engine_on_robust[i]->distortion);
+    EXPECT_EQ(product[i]->n, engine_on_robust[i]->n);
+    EXPECT_EQ(product[i]->trials, 4 * 2);
+    EXPECT_EQ(product[i]->hits, engine_on_robust[i]->hits) << product[i]->distortion;
+  }
+  ASSERT_EQ(report.memory.size(), 2u);
+  EXPECT_EQ(report.memory[1].variant, Product().variant);
 }
 
 }  // namespace

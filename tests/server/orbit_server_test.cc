@@ -16,6 +16,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/product_pipeline.h"
 #include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
@@ -39,7 +40,7 @@ std::string CoilCedd(int object, int azimuth) {
                                          ("obj" + std::to_string(object) + "__" +
                                           std::to_string(azimuth) + ".png"))
                                             .string());
-    const Descriptor d = ExtractCedd(image, DescriptorVariant::kCeddLire);
+    const Descriptor d = ExtractCedd(image, Product().variant);  // the server's
     bytes.assign(d.values.begin(), d.values.end());
   }
   return bytes;
@@ -50,7 +51,7 @@ double CoilTypicalDistance(int object, int azimuth) {
                                        ("obj" + std::to_string(object) + "__" +
                                         std::to_string(azimuth) + ".png"))
                                           .string());
-  return DescribeView(image, DescriptorVariant::kCeddLire, 7).typical_distance;
+  return DescribeView(image, Product().variant, 7).typical_distance;
 }
 
 class Client {
@@ -224,7 +225,7 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
     ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info, azimuths).ok());
     EXPECT_EQ(info.name(), "obj" + std::to_string(object));
     EXPECT_EQ(info.view_count(), static_cast<int>(object == 3 ? azimuths.size() : 72));
-    EXPECT_EQ(info.variant(), v1::CEDD_LIRE);
+    EXPECT_EQ(info.variant(), v1::CEDD_ROBUST);
   }
   v1::ListObjectsResponse page1, page2;
   ASSERT_TRUE(client.List(&page1, 3).ok());

@@ -95,7 +95,7 @@ TEST(SchemaMigrationTest, AnEmptyFileBecomesACurrentStore) {
   }
   RawDatabase raw(dir / "empty.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2"));
+              ElementsAre("1", "2", "3"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('objects')"),
               ElementsAre("id", "name", "variant", "created_at", "updated_at", "metadata"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('views')"),
@@ -132,9 +132,42 @@ TEST(SchemaMigrationTest, AVersion1StoreIsMigratedWithItsDataIntact) {
   EXPECT_EQ(store.Get(8)->thumbnails[0], "png");
   RawDatabase raw(dir / "v1.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2"));
+              ElementsAre("1", "2", "3"));
   EXPECT_EQ(raw.Text("SELECT applied_at FROM schema_version WHERE version = 1"),
             "2024-01-01T00:00:00.000Z");
+}
+
+// Migration 3 rebuilds the objects table: the views must survive it (no cascade), the ids of
+// deleted objects must stay unused, and the rebuilt table must keep its rules and accept the
+// new variant.
+TEST(SchemaMigrationTest, RebuildingTheObjectsTableKeepsViewsIdsAndCascades) {
+  ScratchDir dir;
+  WriteVersion1Store(dir / "v1.db");
+  {
+    RawDatabase raw(dir / "v1.db");  // object 9 came and went: its id must never come back
+    raw.Execute(
+        "INSERT INTO objects VALUES (9, 'gone', 'cedd-lire', '2024-01-03T00:00:00.000Z', "
+        "'2024-01-03T00:00:00.000Z'); DELETE FROM objects WHERE id = 9;");
+  }
+
+  SqliteModelStore store(dir / "v1.db");
+
+  EXPECT_EQ(store.Get(7)->views.size(), 2u);
+  Enrollment robust = SyntheticObject("robust-cup", 3);
+  robust.variant = DescriptorVariant::kCeddRobust;
+  EXPECT_EQ(store.Enroll(robust), 10);
+  EXPECT_EQ(store.Get(10)->summary.variant, DescriptorVariant::kCeddRobust);
+  RawDatabase raw(dir / "v1.db");
+  EXPECT_EQ(raw.Int("SELECT count(*) FROM pragma_foreign_key_check"), 0);
+  EXPECT_THAT(raw.Column("SELECT name FROM sqlite_schema WHERE type = 'table' AND name LIKE "
+                         "'objects%'"),
+              ElementsAre("objects"));
+  store.Delete(7);  // ON DELETE CASCADE still holds on the rebuilt table
+  EXPECT_EQ(raw.Int("SELECT count(*) FROM views WHERE object_id = 7"), 0);
+  EXPECT_EQ(raw.Int("SELECT count(*) FROM views WHERE object_id = 10"), 3);
+  EXPECT_THROW(raw.Execute("INSERT INTO objects (name, variant, created_at, updated_at) VALUES "
+                           "('x', 'sift', 'a', 'b')"),
+               std::exception);
 }
 
 TEST(SchemaMigrationTest, AFailedMigrationLeavesThePreviousVersionWhole) {
@@ -162,7 +195,7 @@ TEST(SchemaMigrationTest, ANewerStoreIsRefusedUntouched) {
   WriteVersion1Store(dir / "future.db");
   {
     RawDatabase raw(dir / "future.db");
-    raw.Execute("INSERT INTO schema_version VALUES (3, '2031-01-01T00:00:00.000Z')");
+    raw.Execute("INSERT INTO schema_version VALUES (4, '2031-01-01T00:00:00.000Z')");
   }
 
   const StoreError error = ErrorOnOpen([&] { SqliteModelStore store(dir / "future.db"); });
@@ -171,7 +204,7 @@ TEST(SchemaMigrationTest, ANewerStoreIsRefusedUntouched) {
   EXPECT_EQ(std::string(error.what()),
             "cannot open model store " + (dir / "future.db").string() + ": " +
                 (dir / "future.db").string() +
-                " has schema version 3, newer than the versions 1..2 this program knows: use a "
+                 " has schema version 4, newer than the versions 1..3 this program knows: use a "
                 "newer orbit");
   RawDatabase raw(dir / "future.db");
   EXPECT_EQ(raw.Int("SELECT count(*) FROM pragma_table_info('objects') WHERE name = 'metadata'"),

@@ -17,6 +17,16 @@ using testing::ScratchDir;
 using testing::SyntheticObject;
 using testing::SyntheticView;
 
+TEST(StoreVariantTest, IsThatOfTheStoredObjectsAndNoneForAnEmptyStore) {
+  ScratchDir dir;
+  SqliteModelStore store(dir / "models.db", {.create_if_missing = true});
+  EXPECT_EQ(StoreVariant(store), std::nullopt);
+  Enrollment full = SyntheticObject("mug", 2);
+  full.variant = DescriptorVariant::kCeddFull;
+  store.Enroll(full);
+  EXPECT_EQ(StoreVariant(store), DescriptorVariant::kCeddFull);
+}
+
 TEST(LoadViewIndexTest, EveryStoredViewIsFoundAtItsObjectAndAzimuth) {
   ScratchDir dir;
   SqliteModelStore store(dir / "models.db", {.create_if_missing = true});

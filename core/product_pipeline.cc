@@ -1,0 +1,25 @@
+#include "core/product_pipeline.h"
+
+#include <sstream>
+
+#include "core/canonical_frame.h"
+
+namespace orbit {
+
+const ProductPipeline& Product() {
+  static const ProductPipeline product;
+  return product;
+}
+
+std::string DescribeProduct() {
+  const ProductPipeline& p = Product();
+  std::ostringstream text;
+  text << p.engine << " (" << p.options.hmm_states << " states, window " << p.options.window
+       << ") on " << VariantName(p.variant) << " (CEDD of a canonical frame: resampled to "
+       << kCanonicalArea << " pixels, Gaussian blur of " << kCanonicalBlurSigma
+       << " px, brightness scaled so that the " << kBrightnessPercentile * 100
+       << "th percentile of the brightest channel is " << kBrightnessTarget << ")";
+  return text.str();
+}
+
+}  // namespace orbit

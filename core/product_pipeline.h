@@ -1,0 +1,34 @@
+// The product's default recognition pipeline, defined once (issue 11): the descriptor variant a
+// device describes its frames in and a server keeps its models in, the engine a session runs
+// when it asks for none, and that engine's options. `orbit serve` takes its defaults from here,
+// the client library describes frames in its server's variant, and `orbit eval --methods
+// product` evaluates exactly this, so the three cannot drift apart.
+//
+// Why these choices: docs/results/robustness.md (the tables, the ablation, the commands).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/descriptor.h"
+#include "core/recognition_engine.h"
+
+namespace orbit {
+
+// The method name `orbit eval` gives the product pipeline.
+inline constexpr std::string_view kProductMethod = "product";
+
+struct ProductPipeline {
+  DescriptorVariant variant = DescriptorVariant::kCeddRobust;
+  std::string_view engine = "hmm";  // one of EngineNames()
+  EngineOptions options;            // the engine's options (EngineOptions' defaults)
+};
+
+// The pipeline above.
+const ProductPipeline& Product();
+
+// One line saying what the product pipeline is, for reports and --help, e.g.
+// "hmm (8 states, window 8) on cedd-robust (canonical 128x128 frame, blur 2 px, brightness ...)".
+std::string DescribeProduct();
+
+}  // namespace orbit
