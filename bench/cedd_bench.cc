@@ -2,7 +2,12 @@
 // single-threaded BGR->grey conversion of the same frame (one read of every pixel).
 //
 // Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
-// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray|noise-estimate'
+// The product's budgets (issue 11): product-describe/640x480, the device side of the product
+// pipeline on one frame (core/product_pipeline.h: cedd-robust), at most 6x bgr2gray/640x480;
+// product-enroll-view/128x128, what enrolling one view costs (descriptor, its distorted copies
+// and typical distance: DescribeView), under 10 ms.
+// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray|noise-estimate|product-'
+
 #include <benchmark/benchmark.h>
 
 #include <cstdlib>
@@ -17,6 +22,8 @@
 #include "client/image_file.h"
 #include "core/cedd.h"
 #include "core/noise_estimate.h"
+#include "core/product_pipeline.h"
+#include "core/view_description.h"
 
 namespace orbit {
 namespace {
@@ -50,18 +57,27 @@ void BM_NoiseEstimate(benchmark::State& state, int width, int height) {
   for (auto _ : state) benchmark::DoNotOptimize(EstimateNoiseSigma(frame));
 }
 
+// What a view costs to enroll in the product's variant.
+void BM_EnrollView(benchmark::State& state, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  for (auto _ : state) benchmark::DoNotOptimize(DescribeView(frame, Product().variant));
+}
+
 int RegisterCeddBenchmarks() {
   struct Size {
     int width, height;
   };
   for (const Size s : {Size{128, 128}, Size{640, 480}, Size{1280, 720}}) {
-    for (const DescriptorVariant v : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
+    for (const DescriptorVariant v : kDescriptorVariants) {
       const std::string name = std::string(VariantName(v)) + "/" + std::to_string(s.width) + "x" +
                                std::to_string(s.height);
       benchmark::RegisterBenchmark(name.c_str(), BM_Cedd, v, s.width, s.height);
     }
   }
   benchmark::RegisterBenchmark("bgr2gray/640x480", BM_Bgr2Gray, 640, 480);
+  benchmark::RegisterBenchmark("product-describe/640x480", BM_Cedd, Product().variant, 640, 480);
+  benchmark::RegisterBenchmark("product-enroll-view/128x128", BM_EnrollView, 128, 128)
+      ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("noise-estimate/128x128", BM_NoiseEstimate, 128, 128);
   benchmark::RegisterBenchmark("noise-estimate/640x480", BM_NoiseEstimate, 640, 480);
   return 0;

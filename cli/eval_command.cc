@@ -52,6 +52,7 @@ struct EvalOptions {
   double orientation_weight = EngineOptions{}.orientation_weight;
   int list_length = EngineOptions{}.list_length;
   int hmm_states = EngineOptions{}.hmm_states;
+  int hmm_sharpness = EngineOptions{}.hmm_sharpness;
   std::string csv;
   std::string plot;
   int threads = EvaluationOptions{}.threads;
@@ -77,6 +78,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
   options.engine.hmm_states = o.hmm_states;
+  options.engine.hmm_sharpness = o.hmm_sharpness;
   options.threads = o.threads;
   return options;
 }
@@ -201,6 +203,10 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--hmm-states", o->hmm_states, "HMM states (azimuth sectors) per object")
       ->check(CLI::Range(1, kMaxHmmStates))
+      ->capture_default_str();
+  command->add_option("--hmm-sharpness", o->hmm_sharpness,
+                      "hmm decodes with emissions to the power 2^S (0: SPEC.md's HMM)")
+      ->check(CLI::Range(0, kMaxHmmSharpness))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
                       "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");

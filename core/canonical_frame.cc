@@ -12,9 +12,10 @@
 namespace orbit {
 namespace {
 
-// Step 1: resampled to about kCanonicalArea pixels, aspect ratio kept.
-cv::Mat CanonicalSize(const cv::Mat& bgr) {
-  const double scale = std::sqrt(double(kCanonicalArea) / (double(bgr.cols) * bgr.rows));
+// Step 1: resampled to about `area` pixels, aspect ratio kept.
+cv::Mat CanonicalSize(const cv::Mat& bgr, int area) {
+  if (area <= 0) return bgr.clone();
+  const double scale = std::sqrt(double(area) / (double(bgr.cols) * bgr.rows));
   const int width = std::max(1, static_cast<int>(std::lround(bgr.cols * scale)));
   const int height = std::max(1, static_cast<int>(std::lround(bgr.rows * scale)));
   if (width == bgr.cols && height == bgr.rows) return bgr.clone();
@@ -54,15 +55,15 @@ void NormaliseBrightness(cv::Mat& bgr) {
 
 }  // namespace
 
-cv::Mat CanonicalFrame(const cv::Mat& bgr) {
+cv::Mat CanonicalFrame(const cv::Mat& bgr, const CanonicalFrameOptions& options) {
   if (bgr.empty() || bgr.type() != CV_8UC3) {
     throw std::invalid_argument("CanonicalFrame needs a non-empty 8-bit BGR image, got type " +
                                 std::to_string(bgr.type()) + " of " + std::to_string(bgr.cols) +
                                 "x" + std::to_string(bgr.rows));
   }
-  cv::Mat frame = CanonicalSize(bgr);
-  cv::GaussianBlur(frame, frame, cv::Size(0, 0), kCanonicalBlurSigma);
-  NormaliseBrightness(frame);
+  cv::Mat frame = CanonicalSize(bgr, options.area);
+  if (options.blur_sigma > 0) cv::GaussianBlur(frame, frame, cv::Size(0, 0), options.blur_sigma);
+  if (options.normalise_brightness) NormaliseBrightness(frame);
   return frame;
 }
 

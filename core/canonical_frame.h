@@ -36,9 +36,18 @@ inline constexpr int kDarkLevel = 20;                 // pixels at or below it a
 inline constexpr double kBrightnessPercentile = 0.9;  // of the brightest channel, in [0, 1]
 inline constexpr int kBrightnessTarget = 200;         // where that percentile is moved
 
+// The steps, each of which can be switched off to measure what it contributes (the ablation of
+// docs/results/robustness.md: build/orbit_robustness_ablation). The defaults are cedd-robust's;
+// the product never uses other values.
+struct CanonicalFrameOptions {
+  int area = kCanonicalArea;                 // step 1; 0: the region keeps its size
+  double blur_sigma = kCanonicalBlurSigma;   // step 2; 0: no blur
+  bool normalise_brightness = true;          // step 3
+};
+
 // The canonical frame of `bgr` (8-bit, 3 channels, not empty): steps 1-3 above. The result is
-// a new 8-bit BGR image of about kCanonicalArea pixels (each side at least 1).
+// a new 8-bit BGR image, of about options.area pixels (each side at least 1).
 // Throws std::invalid_argument for an empty image or one of another type.
-cv::Mat CanonicalFrame(const cv::Mat& bgr);
+cv::Mat CanonicalFrame(const cv::Mat& bgr, const CanonicalFrameOptions& options = {});
 
 }  // namespace orbit

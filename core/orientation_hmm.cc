@@ -162,6 +162,13 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
   for (std::size_t o = 0; o < n; ++o) unseen[o] = sum[o] > 0.0f ? 0 : 1;
 }
 
+// In place, values[k] = values[k]^(2^squarings) (EngineOptions::hmm_sharpness).
+ORBIT_AVX2_CLONES void Sharpen(float* __restrict values, std::size_t count, int squarings) {
+  for (int s = 0; s < squarings; ++s) {
+    for (std::size_t k = 0; k < count; ++k) values[k] *= values[k];
+  }
+}
+
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
 // (SectorSimilarityTable) and the emissions from them, and the sparse transitions from the
 // previous frame; these stay with the frame while it is in the window. Per answer (Assess) it
@@ -180,6 +187,7 @@ class OrientationHmm final : public RecognitionEngine {
         states_(options.hmm_states),
         sectors_(EqualSectors(states_)),
         unknown_turn_(UnknownTurnTransitions(sectors_)),
+        sharpness_root_(1.0f / static_cast<float>(1 << options.hmm_sharpness)),
         viterbi_(InitialProbabilities(sectors_)) {}
 
  protected:
@@ -312,7 +320,7 @@ class OrientationHmm final : public RecognitionEngine {
  private:
   // What the engine keeps of a frame while it is in the window, [state * objects + object].
   struct WindowFrame {
-    std::vector<float> emission;       // EmissionsFromSimilarities()
+    std::vector<float> emission;       // EmissionsFromSimilarities(), then Sharpen()
     std::vector<std::uint8_t> unseen;  // [object]: 1 when every state's TC is 0
     std::vector<float> best;           // [object]: its highest emission, 0 when unseen
     SparseTransitions step;         // from the previous frame (empty for the first)
@@ -352,7 +360,14 @@ class OrientationHmm final : public RecognitionEngine {
       const std::span<const std::uint16_t> path = viterbi_.path(lane);
       const std::size_t width = all ? objects : lanes;
       for (std::size_t t = 0; t < frames; ++t) {
-        if (!frames_[t].unseen[positions[j]]) sums[j] += emissions[t][path[t] * width + lane];
+        if (frames_[t].unseen[positions[j]]) continue;
+        const float emission = emissions[t][path[t] * width + lane];
+        // A sharpened emission's root is the TC again, within rounding: kept at most the
+        // frame's best, so that no sum exceeds its object's bound (Assess).
+        sums[j] += sharpness_root_ == 1.0f
+                       ? emission
+                       : std::min(std::pow(emission, sharpness_root_),
+                                  frames_[t].best[positions[j]]);
       }
       lane_[positions[j]] = static_cast<std::int32_t>(lane);
     }
@@ -369,11 +384,13 @@ class OrientationHmm final : public RecognitionEngine {
     std::vector<float> sum(objects);
     EmissionsFromSimilarities(frame.emission.data(), states_, sum.data(), frame.unseen.data(),
                               frame.best.data(), objects);
+    Sharpen(frame.emission.data(), frame.emission.size(), options().hmm_sharpness);
   }
 
   const int states_;
   const std::vector<Arc> sectors_;
   const SparseTransitions unknown_turn_;  // the step to or from a frame without azimuth
+  const float sharpness_root_;            // 2^-hmm_sharpness: from an emission back to its TC
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;

@@ -21,7 +21,14 @@ inline constexpr std::string_view kProductMethod = "product";
 struct ProductPipeline {
   DescriptorVariant variant = DescriptorVariant::kCeddRobust;
   std::string_view engine = "hmm";  // one of EngineNames()
-  EngineOptions options;            // the engine's options (EngineOptions' defaults)
+  // The engine's options: EngineOptions' defaults but for the HMM's sharpened emissions
+  // (hmm_sharpness 5: emissions to the 32nd power), with which using the measured turns no
+  // longer costs the right object points against ignoring them.
+  EngineOptions options = [] {
+    EngineOptions options;
+    options.hmm_sharpness = kMaxHmmSharpness;
+    return options;
+  }();
 };
 
 // The pipeline above.

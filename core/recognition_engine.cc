@@ -33,6 +33,8 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.orientation_weight >= 0 && o.orientation_weight <= kMaxOrientationWeight,
           "orientation_weight (w) must be in [0, " +
               std::to_string(static_cast<int>(kMaxOrientationWeight)) + "]");
+  Require(o.hmm_sharpness >= 0 && o.hmm_sharpness <= kMaxHmmSharpness,
+          "hmm_sharpness must be in 0.." + std::to_string(kMaxHmmSharpness));
   Require(o.hmm_states >= 1 && o.hmm_states <= kMaxHmmStates,
           "hmm_states must be in 1.." + std::to_string(kMaxHmmStates));
   Require(std::isfinite(o.threshold) && o.threshold > 0, "threshold (Th) must be finite and > 0");

@@ -57,6 +57,7 @@ namespace orbit {
 inline constexpr int kMaxWindow = 64;
 // Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
 inline constexpr int kMaxHmmStates = 360;
+inline constexpr int kMaxHmmSharpness = 5;  // emissions up to the 32nd power
 // w, per radian: at most this. A turn of 1 degree then already costs 17 similarity points, so
 // larger weights change nothing but can overflow a score to infinity (a request's 1e308).
 inline constexpr double kMaxOrientationWeight = 1000;
@@ -66,6 +67,12 @@ struct EngineOptions {
   int list_length = 4;              // N_L: views per VCI retrieval list (>= 1)
   double orientation_weight = 0.5;  // w: VCI's orientation term, per radian (0..kMaxOrientationWeight; "vci" only)
   int hmm_states = 8;               // HMM states = equal azimuth sectors (1..kMaxHmmStates)
+  // The HMM decodes with emissions b_i^(2^hmm_sharpness) (0..kMaxHmmSharpness; 0 is SPEC.md's
+  // HMM). SPEC.md's b_i = TC_i / sum_j TC_j are nearly flat across one object's sectors (TC 0.6
+  // against 0.8 is a factor 1.3), so the transitions alone choose the path and a turn-consistent
+  // path through poorly matching sectors wins. Sharpened, the path follows the similarities
+  // within what the turns allow. Scores stay the mean TC along the path.
+  int hmm_sharpness = 0;
   double threshold = 2.0;           // Th: accept when T_M / mean Ttyp <= Th (> 0)
   int top_k = 5;                    // objects in each update's ranking (>= 1)
   int averaged_views = 8;           // N_avg: active vision's averaged views per object (2..360)

@@ -54,7 +54,8 @@ std::string ServerConfig::Describe() const {
       << "\n"
       << "  session defaults    engine " << SessionEngineName(d.engine) << ", top-k " << d.options.top_k
       << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
-      << d.options.list_length << ", HMM states " << d.options.hmm_states << ", Th "
+      << d.options.list_length << ", HMM states " << d.options.hmm_states << ", HMM sharpness "
+      << d.options.hmm_sharpness << ", Th "
       << d.options.threshold << "\n"
       << "  limits              " << limits.max_sessions << " sessions, "
       << limits.max_frames_per_second << " frames/s per session, window <= "

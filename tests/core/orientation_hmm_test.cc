@@ -11,6 +11,7 @@
 #include "core/recognition_engine.h"
 #include "core/view_index.h"
 #include "tests/support/coil_models.h"
+#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -122,7 +123,10 @@ TEST(OrientationHmmTest, ViterbiRejectsMismatchedSizes) {
 // object: sector means, Emissions(), TransitionMatrix() of the measured change, log-space
 // Viterbi(), then the mean TC along the path. Random objects with irregular azimuths (so some
 // sectors are empty and use stand-ins) and random turns (across 0/360, large jumps, standstill).
-TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
+// The engine against the reference Viterbi() in double precision, object by object, frame by
+// frame; with hmm_sharpness s the reference's emissions are b^(2^s) and the score is still the
+// mean TC along the decoded path.
+void ExpectEngineAgreesWithReferenceViterbi(int sharpness) {
   std::mt19937 random(77);
   std::uniform_int_distribution<int> value(0, 7), bin(0, kDescriptorSize - 1);
   auto sparse_descriptor = [&] {
@@ -148,7 +152,9 @@ TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
   const auto snapshot = index.Snapshot();
   const int states = 8;
   const int window = 6;
-  auto engine = CreateEngine("hmm", {.window = window, .hmm_states = states, .top_k = 24});
+  EngineOptions options{.window = window, .hmm_states = states, .top_k = 24};
+  options.hmm_sharpness = sharpness;
+  auto engine = CreateEngine("hmm", options);
 
   const std::vector<Arc> sectors = EqualSectors(states);
   const std::vector<double> initial = InitialProbabilities(sectors);
@@ -179,7 +185,9 @@ TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
         for (int i = 0; i < states; ++i) {
           tc.push_back(Tanimoto(frame.descriptor.values, means.descriptor[i]));
         }
-        emissions.push_back(Emissions(tc));
+        std::vector<double> b = Emissions(tc);
+        for (double& e : b) e = std::pow(e, 1 << sharpness);
+        emissions.push_back(b);
         similarities.push_back(tc);
       }
       const ViterbiPath path = Viterbi(initial, transitions, emissions);
@@ -190,12 +198,30 @@ TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
     ASSERT_EQ(update.ranking.size(), models.size()) << "frame " << k;
     for (std::size_t r = 0; r < update.ranking.size(); ++r) {
       EXPECT_NEAR(update.ranking[r].score, expected.at(update.ranking[r].object), 1e-6)
-          << "frame " << k << ", object " << update.ranking[r].object;
+          << "sharpness " << sharpness << ", frame " << k << ", object "
+          << update.ranking[r].object;
       if (r > 0) {
         EXPECT_GE(update.ranking[r - 1].score, update.ranking[r].score);
       }
     }
   }
+}
+
+TEST(OrientationHmmTest, EngineAgreesWithReferenceViterbiObjectByObject) {
+  ExpectEngineAgreesWithReferenceViterbi(0);
+}
+
+TEST(OrientationHmmTest, SharpenedEngineAgreesWithReferenceViterbiObjectByObject) {
+  ExpectEngineAgreesWithReferenceViterbi(4);
+}
+
+TEST(OrientationHmmTest, SharpnessOutsideItsRangeIsRefused) {
+  EXPECT_EQ(testing::ErrorMessageOf([] {
+              EngineOptions options;
+              options.hmm_sharpness = kMaxHmmSharpness + 1;
+              ValidateEngineOptions(options);
+            }),
+            "engine option hmm_sharpness must be in 0..5");
 }
 
 // An object none of whose views shares a bin with the frames has TC 0 with every state: its

@@ -107,8 +107,9 @@ TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
 }
 
 // `product` is the product pipeline (core/product_pipeline.h): its engine with its options, on
-// its own variant only, which the evaluation adds when it was not asked for. With the engines'
-// default options it is therefore exactly that engine on that variant, query for query.
+// its own variant only, which the evaluation adds when it was not asked for. With the engine's
+// options set to the product's it is therefore exactly that engine on that variant, query for
+// query.
 TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod), std::string(Product().engine)};
@@ -116,6 +117,7 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   options.distortions = {ParseDistortionSpec("df"), ParseDistortionSpec("gn:var=0.01")};
   options.query_lengths = {1, 3};
   options.trials = 2;
+  options.engine = Product().options;
   const EvaluationReport report =
       RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3, 4}), {}, options);
 
