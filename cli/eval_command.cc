@@ -12,6 +12,7 @@
 
 #include "cli/commands.h"
 #include "evaluation/dataset.h"
+#include "evaluation/distortion_sweep.h"
 #include "evaluation/evaluation_plot.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
@@ -38,6 +39,9 @@ struct EvalOptions {
   std::vector<std::string> variants = Names(EvaluationOptions{}.variants, VariantName);
   std::vector<std::string> distortions =
       Names(EvaluationOptions{}.distortions, [](const DistortionSpec& d) { return d.name; });
+  std::string queries;              // --queries: captured query sequences (CSV)
+  std::vector<std::string> sweeps;  // --sweep: axes whose strength is swept
+  int sweep_steps = 6;
   std::vector<int> ns = EvaluationOptions{}.query_lengths;
   int trials = EvaluationOptions{}.trials;
   std::uint64_t seed = EvaluationOptions{}.seed;
@@ -59,6 +63,12 @@ struct EvalOptions {
   bool no_progress = false;
 };
 
+std::vector<DistortionSweep> Sweeps(const EvalOptions& o) {
+  std::vector<DistortionSweep> sweeps;
+  for (const std::string& text : o.sweeps) sweeps.push_back(ParseSweep(text, o.sweep_steps));
+  return sweeps;
+}
+
 EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   EvaluationOptions options;
   options.variants.clear();
@@ -66,6 +76,10 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.methods = o.methods;
   options.distortions.clear();
   for (const std::string& name : o.distortions) options.distortions.push_back(ParseDistortionSpec(name));
+  for (const DistortionSweep& sweep : Sweeps(o)) {
+    options.distortions.insert(options.distortions.end(), sweep.distortions.begin(),
+                               sweep.distortions.end());
+  }
   options.query_lengths = o.ns;
   options.trials = o.trials;
   options.seed = o.seed;
@@ -98,16 +112,32 @@ int RunEval(const EvalOptions& o) {
     std::cerr << "orbit eval: seed " << options.seed << ", " << known.size() << " known images"
               << (unknown.empty() ? "" : ", " + std::to_string(unknown.size()) + " unknown images")
               << ", " << (options.threads > 0 ? options.threads : AvailableCpus()) << " threads\n";
-    const EvaluationReport report = RunEvaluation(known, unknown, options);
+    if (!o.queries.empty() && !unknown.empty()) {
+      throw std::invalid_argument(
+          "--unknown-objects does not apply to --queries: a captured sequence of an object "
+          "outside the model set is an unknown query");
+    }
+    const EvaluationReport report =
+        o.queries.empty() ? RunEvaluation(known, unknown, options)
+                          : RunCaptureEvaluation(known, ReadQueryCaptures(o.queries), options);
     progress.reset();
 
-    std::cout << MarkdownReport(report) << std::flush;
+    const std::vector<DistortionSweep> sweeps = Sweeps(o);
+    std::cout << MarkdownReport(report);
+    if (!sweeps.empty()) std::cout << SweepMarkdown(report, sweeps);
+    std::cout << std::flush;
     if (!o.csv.empty()) {
       std::ofstream csv(o.csv);
-      if (csv) WriteCsv(report, csv);
+      if (csv) sweeps.empty() ? WriteCsv(report, csv) : WriteSweepCsv(report, sweeps, csv);
       if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
     }
-    if (!o.plot.empty()) WriteHitRatePlot(report, o.plot);
+    if (!o.plot.empty()) {
+      if (sweeps.empty()) {
+        WriteHitRatePlot(report, o.plot);
+      } else {
+        WritePng(DrawSweepPlot(report, sweeps), o.plot);
+      }
+    }
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "orbit eval: " << e.what() << "\n";
@@ -144,7 +174,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
-  command->add_option("--distortions", o->distortions,
+  CLI::Option* distortions = command->add_option("--distortions", o->distortions,
                       "query distortions, comma-separated: df, mb, gn (the protocol's) or "
                       "mb:len=L:angle=A, gn:var=V, jpeg:q=Q, gain:G, lowres:S, joined by + to "
                       "combine, e.g. mb:len=9:angle=70+gn:var=0.004")
@@ -159,6 +189,25 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
             return std::string();
           },
           "SPEC"))
+      ->capture_default_str();
+  command
+      ->add_option("--sweep", o->sweeps,
+                   "distortion strengths to sweep, comma-separated: mb (blur length 5..25 px at "
+                   "changing angles), gn (variance 0.002..0.03), jpeg (quality 10..60), gain "
+                   "(0.6..1.4), or AXIS:FROM..TO; adds hit rate against strength to the report, "
+                   "--csv and --plot then hold the sweep (without --distortions, only the sweep "
+                   "is run)")
+      ->delimiter(',')
+      ->check([o](const std::string& text) {
+        try {
+          ParseSweep(text, o->sweep_steps);
+          return std::string();
+        } catch (const std::invalid_argument& e) {
+          return std::string(e.what());
+        }
+      });
+  command->add_option("--sweep-steps", o->sweep_steps, "strengths per sweep, ends included")
+      ->check(CLI::Range(kMinSweepSteps, kMaxSweepSteps))
       ->capture_default_str();
   command->add_option("--n", o->ns, "query lengths (frames per query)")
       ->delimiter(',')
@@ -214,7 +263,18 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--threads", o->threads, "worker threads (default: every available core)")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--no-progress", o->no_progress, "no progress bar on stderr");
-  command->callback([o, &exit_code] { exit_code = RunEval(*o); });
+  command->add_option("--queries", o->queries,
+                      "CSV of your own query captures, columns path,object,sequence[,azimuth]: "
+                      "each sequence is one query, recognised with its first n frames against "
+                      "the model set of --data/--manifest (all of its images); an object not in "
+                      "the model set is an unknown query; --distortions defaults to df (as "
+                      "captured)")
+      ->check(CLI::ExistingFile);
+  command->callback([o, distortions, &exit_code] {
+    if (!o->queries.empty() && distortions->count() == 0) o->distortions = {"df"};
+    if (!o->sweeps.empty() && distortions->count() == 0) o->distortions.clear();
+    exit_code = RunEval(*o);
+  });
 }
 
 }  // namespace orbit::cli

@@ -101,17 +101,18 @@ bool RecognitionSession::StartStream() {
   return stream_->Write(open);
 }
 
-std::int64_t RecognitionSession::Push(const cv::Mat& image, double azimuth_deg,
+std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double> azimuth_deg,
                                       std::optional<cv::Rect> region,
                                       std::optional<std::int64_t> timestamp_us) {
   return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us);
 }
 
-std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& cedd, double azimuth_deg,
+std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& cedd,
+                                                std::optional<double> azimuth_deg,
                                                 std::optional<std::int64_t> timestamp_us) {
   v1::Frame frame;
   frame.set_cedd(cedd.data(), cedd.size());
-  frame.set_azimuth_deg(azimuth_deg);
+  if (azimuth_deg) frame.set_azimuth_deg(*azimuth_deg);
   if (timestamp_us) frame.set_timestamp_us(*timestamp_us);
   return Send(std::move(frame));
 }

@@ -89,16 +89,18 @@ class RecognitionSession {
   RecognitionSession& operator=(const RecognitionSession&) = delete;
 
   // Computes the CEDD of `image` (of `region` inside it when given) and sends it with the
-  // device azimuth in degrees (any finite value; only differences between frames matter).
+  // device azimuth in degrees (any finite value; only differences between frames matter), or
+  // none (nullopt) from a device without an orientation sensor: the server then recognises
+  // from the descriptors alone (docs/service.md, "Frames without azimuth").
   // `timestamp_us` is echoed in the update. Returns the frame's index (0 for the first frame
   // after Open or Reset), which its update carries as frame_index.
   // Throws std::invalid_argument as ExtractCedd does; RpcError when the session has ended.
-  std::int64_t Push(const cv::Mat& image, double azimuth_deg,
+  std::int64_t Push(const cv::Mat& image, std::optional<double> azimuth_deg,
                     std::optional<cv::Rect> region = std::nullopt,
                     std::optional<std::int64_t> timestamp_us = std::nullopt);
 
   // Sends a descriptor computed elsewhere, in variant(). As Push otherwise.
-  std::int64_t PushDescriptor(const DescriptorValues& cedd, double azimuth_deg,
+  std::int64_t PushDescriptor(const DescriptorValues& cedd, std::optional<double> azimuth_deg,
                               std::optional<std::int64_t> timestamp_us = std::nullopt);
 
   // Starts over on another object: the server forgets every frame and the next frame gets

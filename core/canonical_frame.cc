@@ -6,22 +6,76 @@
 #include <cstdint>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <opencv2/imgproc.hpp>
 
 namespace orbit {
 namespace {
 
-// Step 1: resampled to about `area` pixels, aspect ratio kept.
+// The mean of every k x k block of `bgr` (k >= 2), rounded; rows and columns past the last
+// whole block are left out (fewer than k of them). What INTER_AREA computes for an integer
+// factor, as two passes of integer additions: k rows summed into one (vectorised), then k
+// pixels of that sum into one. OpenCV's INTER_AREA takes several times longer on 3 channels
+// (640 x 480 to 148 x 111: 720 us).
+cv::Mat BlockMeans(const cv::Mat& bgr, int k) {
+  const int width = bgr.cols / k, height = bgr.rows / k;
+  const std::size_t span = static_cast<std::size_t>(width) * k * 3;  // bytes of whole blocks
+  cv::Mat out(height, width, CV_8UC3);
+  std::vector<std::uint16_t> rows(span);  // k <= 16: at most 16 x 255 per value
+  std::vector<std::uint32_t> big_rows(k > 16 ? span : 0);
+  const std::uint32_t area = static_cast<std::uint32_t>(k * k);
+  for (int y = 0; y < height; ++y) {
+    std::uint8_t* row = out.ptr<std::uint8_t>(y);
+    const auto finish = [&](const auto& sums) {
+      for (int x = 0; x < width; ++x) {
+        for (int c = 0; c < 3; ++c) {
+          std::uint32_t sum = 0;
+          const std::size_t first = static_cast<std::size_t>(x) * k * 3 + c;
+          for (int dx = 0; dx < k; ++dx) sum += sums[first + static_cast<std::size_t>(dx) * 3];
+          row[x * 3 + c] = static_cast<std::uint8_t>((sum + area / 2) / area);
+        }
+      }
+    };
+    if (k <= 16) {
+      std::fill(rows.begin(), rows.end(), std::uint16_t{0});
+      for (int dy = 0; dy < k; ++dy) {
+        const std::uint8_t* in = bgr.ptr<std::uint8_t>(y * k + dy);
+        for (std::size_t i = 0; i < span; ++i) rows[i] = static_cast<std::uint16_t>(rows[i] + in[i]);
+      }
+      finish(rows);
+    } else {
+      std::fill(big_rows.begin(), big_rows.end(), 0u);
+      for (int dy = 0; dy < k; ++dy) {
+        const std::uint8_t* in = bgr.ptr<std::uint8_t>(y * k + dy);
+        for (std::size_t i = 0; i < span; ++i) big_rows[i] += in[i];
+      }
+      finish(big_rows);
+    }
+  }
+  return out;
+}
+
+// Step 1: resampled to about `area` pixels, aspect ratio kept: area averaging when shrinking
+// (by whole blocks first when the factor is 2 or more, then bilinear for the rest), bilinear
+// when growing.
 cv::Mat CanonicalSize(const cv::Mat& bgr, int area) {
   if (area <= 0) return bgr.clone();
   const double scale = std::sqrt(double(area) / (double(bgr.cols) * bgr.rows));
   const int width = std::max(1, static_cast<int>(std::lround(bgr.cols * scale)));
   const int height = std::max(1, static_cast<int>(std::lround(bgr.rows * scale)));
   if (width == bgr.cols && height == bgr.rows) return bgr.clone();
+  cv::Mat source = bgr;
+  const int block = static_cast<int>(1 / scale);
+  if (block >= 2 && bgr.cols / block >= width && bgr.rows / block >= height) {
+    source = BlockMeans(bgr, block);
+  }
   cv::Mat resized;
-  cv::resize(bgr, resized, cv::Size(width, height), 0, 0,
-             scale < 1 ? cv::INTER_AREA : cv::INTER_LINEAR);
+  if (source.cols == width && source.rows == height) return source;
+  // After whole blocks less than a factor 2 is left: bilinear is as good there and 5x faster.
+  const bool blocks = source.data != bgr.data;
+  cv::resize(source, resized, cv::Size(width, height), 0, 0,
+             scale < 1 && !blocks ? cv::INTER_AREA : cv::INTER_LINEAR);
   return resized;
 }
 

@@ -220,18 +220,29 @@ std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,
   return images;
 }
 
-std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
+namespace {
+
+// A CSV file with a header row, as the manifest and the query captures are written: its rows
+// as field maps keyed by column name, with their line numbers. `columns` lists every column
+// allowed, the first `required` of them required; `form` is how messages spell the header
+// (e.g. "path,object,azimuth[,elevation]"), `naming` the same in words. Throws std::runtime_error "FILE:LINE: problem" as
+// ReadManifest documents.
+struct CsvRow {
+  int line = 0;
+  std::map<std::string, std::string> field;  // only the columns the header has
+};
+
+std::vector<CsvRow> ReadCsvTable(const std::filesystem::path& csv,
+                                 const std::vector<std::string>& columns, std::size_t required,
+                                 const std::string& form, const std::string& naming,
+                                 const std::string& what) {
   std::ifstream in(csv);
-  if (!in) throw std::runtime_error(csv.string() + ": cannot read the manifest");
-  const std::filesystem::path base = csv.parent_path();
+  if (!in) throw std::runtime_error(csv.string() + ": cannot read the " + what);
   const auto fail = [&csv](int line, const std::string& problem) {
     return std::runtime_error(csv.string() + ":" + std::to_string(line) + ": " + problem);
   };
-
-  std::vector<DatasetImage> images;
-  std::vector<std::string> fields;
-  std::map<std::string, std::size_t> column;  // header name -> field index
-  std::size_t column_count = 0;
+  std::vector<CsvRow> rows;
+  std::vector<std::string> fields, header;
   std::string line;
   int line_number = 0;
   while (std::getline(in, line)) {
@@ -239,53 +250,106 @@ std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
     if (!line.empty() && line.back() == '\r') line.pop_back();
     if (Trim(line).empty()) continue;
     if (!SplitCsvRecord(line, fields)) throw fail(line_number, "malformed quotes");
-    if (column_count == 0) {  // the header
-      for (std::size_t i = 0; i < fields.size(); ++i) {
-        const std::string& name = fields[i];
-        if (name != "path" && name != "object" && name != "azimuth" && name != "elevation") {
-          throw fail(line_number, "unknown column \"" + name +
-                                      "\" (the header must name path,object,azimuth and "
-                                      "optionally elevation)");
+    if (header.empty()) {
+      for (const std::string& name : fields) {
+        if (std::find(columns.begin(), columns.end(), name) == columns.end()) {
+          throw fail(line_number, "unknown column \"" + name + "\" (the header must name " + naming + ")");
         }
-        if (!column.emplace(name, i).second) {
+        if (std::find(header.begin(), header.end(), name) != header.end()) {
           throw fail(line_number, "column \"" + name + "\" appears twice");
         }
+        header.push_back(name);
       }
-      for (const char* required : {"path", "object", "azimuth"}) {
-        if (!column.contains(required)) {
-          throw fail(line_number, std::string("header lacks the column \"") + required +
-                                      "\" (expected path,object,azimuth[,elevation])");
+      for (std::size_t c = 0; c < required; ++c) {
+        if (std::find(header.begin(), header.end(), columns[c]) == header.end()) {
+          throw fail(line_number,
+                     "header lacks the column \"" + columns[c] + "\" (expected " + form + ")");
         }
       }
-      column_count = fields.size();
       continue;
     }
-    if (fields.size() != column_count) {
-      throw fail(line_number, "expected " + std::to_string(column_count) + " fields, found " +
+    if (fields.size() != header.size()) {
+      throw fail(line_number, "expected " + std::to_string(header.size()) + " fields, found " +
                                   std::to_string(fields.size()));
     }
+    CsvRow& row = rows.emplace_back();
+    row.line = line_number;
+    for (std::size_t i = 0; i < header.size(); ++i) row.field[header[i]] = fields[i];
+  }
+  if (header.empty()) throw fail(1, "no header row (expected " + form + ")");
+  return rows;
+}
+
+// The row's path, resolved against the folder of the CSV file when relative.
+std::string RowPath(const CsvRow& row, const std::filesystem::path& csv) {
+  const std::string& path = row.field.at("path");
+  if (path.empty()) {
+    throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": empty path");
+  }
+  const std::filesystem::path file(path);
+  return (file.is_relative() ? csv.parent_path() / file : file).string();
+}
+
+// The row's `column` as a finite number; nullopt when the column is absent or the field empty
+// and `optional`. Throws "FILE:LINE: <column> "x" is not a finite number".
+std::optional<double> RowNumber(const CsvRow& row, const std::filesystem::path& csv,
+                                const std::string& column, bool optional) {
+  const auto found = row.field.find(column);
+  if (optional && (found == row.field.end() || found->second.empty())) return std::nullopt;
+  const std::string text = found == row.field.end() ? "" : found->second;
+  const std::optional<double> value = ParseFiniteNumber(text);
+  if (!value) {
+    throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column +
+                             " \"" + text + "\" is not a finite number");
+  }
+  return value;
+}
+
+std::string RowObject(const CsvRow& row, const std::filesystem::path& csv) {
+  const std::string& object = row.field.at("object");
+  if (object.empty()) {
+    throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": empty object name");
+  }
+  return object;
+}
+
+}  // namespace
+
+std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
+  std::vector<DatasetImage> images;
+  for (const CsvRow& row : ReadCsvTable(csv, {"path", "object", "azimuth", "elevation"}, 3,
+                                        "path,object,azimuth[,elevation]",
+                                        "path,object,azimuth and optionally elevation",
+                                        "manifest")) {
     DatasetImage image;
-    const std::string& path = fields[column.at("path")];
-    if (path.empty()) throw fail(line_number, "empty path");
-    const std::filesystem::path file(path);
-    image.path = (file.is_relative() ? base / file : file).string();
-    image.object = fields[column.at("object")];
-    if (image.object.empty()) throw fail(line_number, "empty object name");
-    const std::string& azimuth = fields[column.at("azimuth")];
-    const std::optional<double> degrees = ParseFiniteNumber(azimuth);
-    if (!degrees) throw fail(line_number, "azimuth \"" + azimuth + "\" is not a finite number");
-    image.azimuth = NormaliseAzimuth(*degrees);
-    if (const auto e = column.find("elevation"); e != column.end() && !fields[e->second].empty()) {
-      image.elevation = ParseFiniteNumber(fields[e->second]);
-      if (!image.elevation) {
-        throw fail(line_number, "elevation \"" + fields[e->second] + "\" is not a finite number");
-      }
-    }
+    image.path = RowPath(row, csv);
+    image.object = RowObject(row, csv);
+    image.azimuth = NormaliseAzimuth(*RowNumber(row, csv, "azimuth", false));
+    image.elevation = RowNumber(row, csv, "elevation", true);
     images.push_back(std::move(image));
   }
-  if (column_count == 0) throw fail(1, "no header row (expected path,object,azimuth[,elevation])");
   if (images.empty()) throw std::runtime_error(csv.string() + ": no images");
   return images;
+}
+
+std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
+  std::vector<CaptureFrame> frames;
+  for (const CsvRow& row : ReadCsvTable(csv, {"path", "object", "sequence", "azimuth"}, 3,
+                                        "path,object,sequence[,azimuth]",
+                                        "path,object,sequence and optionally azimuth",
+                                        "query captures")) {
+    CaptureFrame frame;
+    frame.path = RowPath(row, csv);
+    frame.object = RowObject(row, csv);
+    frame.sequence = row.field.at("sequence");
+    if (frame.sequence.empty()) {
+      throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": empty sequence");
+    }
+    frame.azimuth = RowNumber(row, csv, "azimuth", true);
+    frames.push_back(std::move(frame));
+  }
+  if (frames.empty()) throw std::runtime_error(csv.string() + ": no frames");
+  return frames;
 }
 
 std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images) {

@@ -60,6 +60,24 @@ std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,
 // "FILE: no images" when there are no data rows. Image files are not opened here.
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
 
+// One frame of a query capture (`orbit eval --queries`): what a user's own camera took of an
+// object, to be recognised against a model set. Consecutive frames of one sequence form one
+// query, in the file's order.
+struct CaptureFrame {
+  std::string path;               // image file, resolved as the manifest's paths are
+  std::string object;             // the object it shows; a name absent from the model set: unknown
+  std::optional<double> azimuth;  // degrees as the device read them; empty: no sensor
+  std::string sequence;           // the query it belongs to
+
+  friend bool operator==(const CaptureFrame&, const CaptureFrame&) = default;
+};
+
+// Reads query captures: a CSV file whose header names path, object, sequence and optionally
+// azimuth, in any order, with the manifest's rules otherwise (ReadManifest); an empty azimuth
+// field means "no reading". Throws std::runtime_error as ReadManifest does ("FILE:LINE:
+// problem", "empty sequence" too), and "FILE: no frames" when there are no data rows.
+std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv);
+
 // One object of a dataset: the images sharing a name.
 struct DatasetObject {
   std::string name;

@@ -69,6 +69,11 @@ std::string MarkdownReport(const EvaluationReport& report) {
       << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
       << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
       << Format("%.1f", report.trial_seconds) << " s.\n\n";
+  if (report.query_sequences > 0) {
+    out << "Queries: " << report.query_sequences << " captured sequences, "
+        << report.query_frames << " frames (`--queries`), against every image of the model set; "
+           "a sequence shorter than n is not counted at n.\n\n";
+  }
   const EngineOptions& e = report.engine;
   out << "Engines: window " << e.window << ", N_L " << e.list_length << ", w "
       << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "

@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <functional>
+#include <map>
 #include <memory>
 #include <mutex>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -83,6 +85,20 @@ EvaluationOptions WithProductVariant(EvaluationOptions options) {
 // The longest query, n. REQUIRES: options.query_lengths is not empty (ValidateOptions).
 int LargestN(const EvaluationOptions& options) {
   return *std::max_element(options.query_lengths.begin(), options.query_lengths.end());
+}
+
+// A report with what `options` say filled in: seed, search, orientation, index, threads and
+// the engines' options with the window raised to the longest query.
+EvaluationReport ReportOf(const EvaluationOptions& options) {
+  EvaluationReport report;
+  report.seed = options.seed;
+  report.search = options.index.search;
+  report.use_orientation = options.use_orientation;
+  report.index = options.index;
+  report.threads = options.threads > 0 ? options.threads : AvailableCpus();
+  report.engine = options.engine;
+  report.engine.window = std::max(report.engine.window, LargestN(options));
+  return report;
 }
 
 // The evaluated images and their objects. Images: the known ones, then the unknown ones.
@@ -222,6 +238,30 @@ struct Outcome {
   double seconds = 0;     // wall-clock time in ObserveSequence
 };
 
+// The outcome of `update` for a query whose right answer is object `expected`, or kUnknown
+// when `expected` is 0 (an object outside the model set).
+void Judge(const FrameUpdate& update, ObjectId expected, Outcome& outcome) {
+  if (expected != 0) {
+    outcome.hit = IsTopOneHit(update.ranking, expected);
+    outcome.accepted = outcome.hit && update.decision == Decision::kAccept;
+  } else {
+    outcome.rejected = update.decision == Decision::kUnknown;
+  }
+}
+
+// Adds one query's outcome to its cell.
+void Count(const Outcome& outcome, bool known, EvaluationCell& cell) {
+  cell.seconds += outcome.seconds;
+  if (known) {
+    ++cell.trials;
+    cell.hits += outcome.hit;
+    cell.accepted += outcome.accepted;
+  } else {
+    ++cell.unknown_trials;
+    cell.rejected += outcome.rejected;
+  }
+}
+
 // Whether `method` is evaluated on descriptors of `variant`: the product pipeline only on its own
 // variant (core/product_pipeline.h), every faithful method on every variant.
 bool Evaluates(std::string_view method, DescriptorVariant variant) {
@@ -330,12 +370,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         const FrameUpdate update = engines[m]->ObserveSequence(snapshot, frames);
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
         outcome.seconds = SecondsSince(start);
-        if (is_known) {
-          outcome.hit = IsTopOneHit(update.ranking, expected);
-          outcome.accepted = outcome.hit && update.decision == Decision::kAccept;
-        } else {
-          outcome.rejected = update.decision == Decision::kUnknown;
-        }
+        Judge(update, is_known ? expected : 0, outcome);
       }
     }
     pool.Give(std::move(engines));
@@ -362,16 +397,7 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
           for (std::size_t object = 0; object < grid.objects; ++object) {
             for (std::size_t trial = 0; trial < grid.trials; ++trial) {
               const std::size_t task = grid.TaskNumber({v, object, s, trial});
-              const Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
-              cell.seconds += outcome.seconds;
-              if (dataset.is_known(object)) {
-                ++cell.trials;
-                cell.hits += outcome.hit;
-                cell.accepted += outcome.accepted;
-              } else {
-                ++cell.unknown_trials;
-                cell.rejected += outcome.rejected;
-              }
+              Count(outcomes[grid.OutcomeSlot(task, d, m)], dataset.is_known(object), cell);
             }
           }
           cells.push_back(std::move(cell));
@@ -432,17 +458,10 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
                                const EvaluationOptions& requested) {
   const EvaluationOptions options = WithProductVariant(requested);
   const EvaluationDataset dataset = ValidateAndGroup(known, unknown, options);
-  EvaluationReport report;
+  EvaluationReport report = ReportOf(options);
   report.known_objects = dataset.known.size();
   report.unknown_objects = dataset.unknown.size();
   report.images = dataset.images.size();
-  report.seed = options.seed;
-  report.search = options.index.search;
-  report.use_orientation = options.use_orientation;
-  report.index = options.index;
-  report.threads = options.threads > 0 ? options.threads : AvailableCpus();
-  report.engine = options.engine;
-  report.engine.window = std::max(report.engine.window, LargestN(options));
 
   const Clock::time_point descriptor_start = Clock::now();
   const DescribedImages described = DescribeImages(dataset, options, report.threads);
@@ -460,6 +479,133 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   report.trial_seconds = SecondsSince(trial_start);
 
   report.cells = AggregateCells(outcomes, grid, dataset, options);
+  return report;
+}
+
+namespace {
+
+// A captured query: its object and its frames' positions in the captures, in file order.
+struct CapturedSequence {
+  std::string name;
+  std::string object;
+  std::vector<std::size_t> frames;
+};
+
+std::vector<CapturedSequence> GroupSequences(const std::vector<CaptureFrame>& captures) {
+  std::vector<CapturedSequence> sequences;
+  std::map<std::string, std::size_t> position;
+  for (std::size_t f = 0; f < captures.size(); ++f) {
+    const CaptureFrame& frame = captures[f];
+    const auto [at, added] = position.emplace(frame.sequence, sequences.size());
+    if (added) sequences.push_back({frame.sequence, frame.object, {}});
+    CapturedSequence& sequence = sequences[at->second];
+    if (sequence.object != frame.object) {
+      throw std::invalid_argument("sequence \"" + sequence.name + "\" shows two objects (\"" +
+                                  sequence.object + "\" and \"" + frame.object + "\")");
+    }
+    sequence.frames.push_back(f);
+  }
+  return sequences;
+}
+
+}  // namespace
+
+EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
+                                      const std::vector<CaptureFrame>& captures,
+                                      const EvaluationOptions& requested) {
+  const EvaluationOptions options = WithProductVariant(requested);
+  ValidateOptions(known, options);
+  EvaluationDataset dataset;
+  dataset.known = GroupByObject(known);
+  for (const DatasetImage& image : known) dataset.images.push_back(&image);
+  const std::vector<CapturedSequence> sequences = GroupSequences(captures);
+
+  EvaluationReport report = ReportOf(options);
+  report.known_objects = dataset.known.size();
+  std::set<std::string> unknown_objects;
+  std::vector<ObjectId> expected(sequences.size(), 0);  // 0: not in the model set
+  for (std::size_t s = 0; s < sequences.size(); ++s) {
+    for (std::size_t o = 0; o < dataset.known.size(); ++o) {
+      if (dataset.known[o].name == sequences[s].object) expected[s] = static_cast<ObjectId>(o + 1);
+    }
+    if (expected[s] == 0) unknown_objects.insert(sequences[s].object);
+  }
+  report.unknown_objects = unknown_objects.size();
+  report.images = known.size() + captures.size();
+  report.query_sequences = sequences.size();
+  report.query_frames = captures.size();
+
+  // Step 1: the model views, then every captured frame's query descriptors.
+  const Clock::time_point descriptor_start = Clock::now();
+  DescribedImages described(known.size());
+  std::vector<std::vector<DescribedImage>> frames(captures.size());
+  RunStage(known.size() + captures.size(), report.threads, "descriptors", options,
+           [&](std::size_t i) {
+             if (i < known.size()) {
+               described[i] = DescribeImage(known[i], i, options.variants, {}, options.seed);
+               return;
+             }
+             const CaptureFrame& frame = captures[i - known.size()];
+             frames[i - known.size()] =
+                 DescribeImage({frame.path, frame.object, 0, std::nullopt}, i, options.variants,
+                               options.distortions, options.seed);
+           });
+  report.descriptor_seconds = SecondsSince(descriptor_start);
+  const std::vector<VariantModels> models = BuildModels(dataset, described, options);
+  for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
+
+  // Step 3: one task per (variant, sequence, n).
+  const std::size_t ns = options.query_lengths.size();
+  const std::size_t distortions = options.distortions.size(), methods = options.methods.size();
+  const std::size_t tasks = options.variants.size() * sequences.size() * ns;
+  std::vector<Outcome> outcomes(tasks * distortions * methods);
+  const Clock::time_point trial_start = Clock::now();
+  EnginePool pool(options.methods, report.engine);
+  RunStage(tasks, report.threads, "trials", options, [&](std::size_t task) {
+    const std::size_t v = task / ns / sequences.size(), s = task / ns % sequences.size();
+    const int n = options.query_lengths[task % ns];
+    const CapturedSequence& sequence = sequences[s];
+    if (static_cast<int>(sequence.frames.size()) < n) return;
+    EnginePool::Engines engines = pool.Take();
+    std::vector<QueryFrame> query(static_cast<std::size_t>(n));
+    for (std::size_t d = 0; d < distortions; ++d) {
+      for (int k = 0; k < n; ++k) {
+        const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
+        query[k].descriptor = {options.variants[v], frames[f][v].queries[d]};
+        query[k].azimuth = options.use_orientation ? captures[f].azimuth : std::nullopt;
+      }
+      for (std::size_t m = 0; m < methods; ++m) {
+        if (!Evaluates(options.methods[m], options.variants[v])) continue;
+        const Clock::time_point start = Clock::now();
+        const FrameUpdate update = engines[m]->ObserveSequence(models[v].full_index, query);
+        Outcome& outcome = outcomes[(task * distortions + d) * methods + m];
+        outcome.seconds = SecondsSince(start);
+        Judge(update, expected[s], outcome);
+      }
+    }
+    pool.Give(std::move(engines));
+  });
+  report.trial_seconds = SecondsSince(trial_start);
+
+  for (std::size_t v = 0; v < options.variants.size(); ++v) {
+    for (std::size_t d = 0; d < distortions; ++d) {
+      for (std::size_t m = 0; m < methods; ++m) {
+        if (!Evaluates(options.methods[m], options.variants[v])) continue;
+        for (std::size_t slot = 0; slot < ns; ++slot) {
+          EvaluationCell& cell = report.cells.emplace_back();
+          cell.method = options.methods[m];
+          cell.variant = options.variants[v];
+          cell.distortion = options.distortions[d].name;
+          cell.n = options.query_lengths[slot];
+          for (std::size_t s = 0; s < sequences.size(); ++s) {
+            if (static_cast<int>(sequences[s].frames.size()) < cell.n) continue;
+            const std::size_t task = (v * sequences.size() + s) * ns + slot;
+            Count(outcomes[(task * distortions + d) * methods + m], expected[s] != 0, cell);
+          }
+        }
+      }
+    }
+  }
   return report;
 }
 

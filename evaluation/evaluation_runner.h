@@ -111,6 +111,9 @@ struct EvaluationReport {
   std::size_t known_objects = 0;
   std::size_t unknown_objects = 0;
   std::size_t images = 0;
+  // RunCaptureEvaluation: the captured query sequences and their frames (0 for the protocol).
+  std::size_t query_sequences = 0;
+  std::size_t query_frames = 0;
   std::uint64_t seed = 0;
   int threads = 0;                  // worker threads used
   SearchMode search = SearchMode::kExact;
@@ -157,5 +160,20 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
 EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
                                const std::vector<DatasetImage>& unknown,
                                const EvaluationOptions& options);
+
+// Recognises captured query sequences (`orbit eval --queries`: a user's own camera frames,
+// evaluation/dataset.h ReadQueryCaptures) against the model set of `known`, every image of
+// which is a model view (nothing is left out: the captures are other images). A sequence is one
+// query; for each n of the options it is asked with its first n frames (sequences shorter than
+// n are not counted at that n), each frame under each of the options' distortions (df: as
+// captured), with the frame's azimuth when it has one and options.use_orientation. A sequence
+// of an object that is not in the model set counts as an unknown query (right when rejected).
+// `trials` is not used. Cells as RunEvaluation's.
+//
+// Throws std::invalid_argument as RunEvaluation does for the options and `known`, and when a
+// sequence shows more than one object; std::runtime_error naming an image that cannot be read.
+EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
+                                      const std::vector<CaptureFrame>& captures,
+                                      const EvaluationOptions& options);
 
 }  // namespace orbit

@@ -182,6 +182,30 @@ TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
   EXPECT_THAT(r.out, HasSubstr("| gn:var=0.004+jpeg:q=30 | hmm |"));
 }
 
+// --sweep: only the swept distortions run (no --distortions given), the report gains the sweep's
+// table, --csv holds the sweep and --plot draws hit rate against strength.
+TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
+  const auto csv = dir_ / "sweep.csv", plot = dir_ / "sweep.png";
+  const auto r = testing::RunCommand(
+      testing::OrbitBinary() + " eval --data " + coil_ +
+      " --objects 1-3 --n 1 --trials 1 --methods product --no-progress --sweep jpeg:20..60"
+      " --sweep-steps 3 --csv " + csv.string() + " --plot " + plot.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("### Sweep: JPEG quality (hit rate %, top-1)"));
+  EXPECT_THAT(r.out, HasSubstr("| method | n | 20 | 40 | 60 | worst |"));
+  EXPECT_THAT(r.out, HasSubstr("| product (cedd-robust) | 1 |"));
+  EXPECT_THAT(r.out, Not(HasSubstr("| DF |")));
+  const auto [header, rows] = ReadCsv(csv);
+  EXPECT_EQ(header, "axis,strength,distortion,method,variant,n,trials,hits,hit_rate");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[1].field.at("distortion"), "jpeg:q=40");
+  EXPECT_FALSE(cv::imread(plot.string()).empty());
+  const auto bad = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
+                                       " --sweep noise");
+  EXPECT_NE(bad.exit_code, 0);
+  EXPECT_THAT(bad.err, HasSubstr("unknown axis \"noise\" (mb, gn, jpeg, gain)"));
+}
+
 // --orientation ignore runs the methods without azimuths: vci then answers as vci-w0 does with
 // them (tests/core/recognition_engine_test.cc), so the two rows' hit counts are equal.
 TEST_F(EvalCommandTest, OrientationIgnoreRunsTheMethodsWithoutAzimuths) {

@@ -87,6 +87,31 @@ TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
   }
 }
 
+// A device without an orientation sensor sends no azimuth: the server recognises from the
+// descriptors alone, and the same frames in another order give the same final answer.
+TEST(RecognitionSession, RecognisesFramesWithoutAzimuth) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 5);
+  std::vector<v1::SessionUpdate> last;
+  for (const std::vector<int> order : {std::vector<int>{0, 1, 2, 3, 4, 5}, {5, 3, 1, 0, 4, 2}}) {
+    auto session = RecognitionSession::Open(connection, testing::TopK(3));
+    for (const int k : order) {
+      session->Push(CoilImage(4, static_cast<int>(TrueAzimuth(k))), std::nullopt);
+    }
+    const std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 6);
+    EXPECT_TRUE(session->Close().ok());
+    ASSERT_EQ(updates.size(), 6u);
+    EXPECT_EQ(updates.back().candidates(0).name(), "obj4");
+    last.push_back(updates.back());
+  }
+  ASSERT_EQ(last[0].candidates_size(), last[1].candidates_size());
+  for (int i = 0; i < last[0].candidates_size(); ++i) {
+    EXPECT_EQ(last[0].candidates(i).id(), last[1].candidates(i).id());
+    EXPECT_NEAR(last[0].candidates(i).score(), last[1].candidates(i).score(), 1e-6);
+  }
+}
+
 TEST(RecognitionSession, DeliversUpdatesToACallbackInOrderAndResetsNumbering) {
   ServerProcess server;
   const Connection connection(testing::At(server.address()));

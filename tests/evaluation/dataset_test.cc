@@ -160,6 +160,40 @@ TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
               HasSubstr("cannot read"));
 }
 
+TEST(ReadQueryCapturesTest, ReadsSequencesWithOrWithoutAzimuths) {
+  ScratchDir dir;
+  const auto csv = dir.Write("q.csv",
+                             "sequence,path,object,azimuth\n"
+                             "walk1,f0.png,mug,12.5\n"
+                             "walk1,/abs/f1.png,mug,\n"
+                             "\"walk, 2\",f2.png,cup,-30\n");
+  const std::vector<CaptureFrame> frames = ReadQueryCaptures(csv);
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(frames[0], (CaptureFrame{(dir.path() / "f0.png").string(), "mug", 12.5, "walk1"}));
+  EXPECT_EQ(frames[1], (CaptureFrame{"/abs/f1.png", "mug", std::nullopt, "walk1"}));
+  EXPECT_EQ(frames[2].sequence, "walk, 2");
+  EXPECT_EQ(frames[2].azimuth, -30);  // as the device read it: only differences matter
+  // No azimuth column at all: a device without an orientation sensor.
+  EXPECT_FALSE(ReadQueryCaptures(dir.Write("n.csv", "path,object,sequence\na.png,x,s\n"))[0]
+                   .azimuth.has_value());
+}
+
+TEST(ReadQueryCapturesTest, ErrorsNameTheFileAndLine) {
+  ScratchDir dir;
+  const auto error = [&](const std::string& text) {
+    const auto csv = dir.Write("bad.csv", text);
+    return ErrorMessageOf<std::runtime_error>([&] { ReadQueryCaptures(csv); });
+  };
+  EXPECT_THAT(error("path,object,azimuth\na.png,x,5\n"),
+              HasSubstr(":1: header lacks the column \"sequence\" (expected "
+                        "path,object,sequence[,azimuth])"));
+  EXPECT_THAT(error("path,object,sequence,elevation\n"), HasSubstr(":1: unknown column \"elevation\""));
+  EXPECT_THAT(error("path,object,sequence\na.png,x,\n"), HasSubstr(":2: empty sequence"));
+  EXPECT_THAT(error("path,object,sequence,azimuth\na.png,x,s,east\n"),
+              HasSubstr(":2: azimuth \"east\" is not a finite number"));
+  EXPECT_THAT(error("path,object,sequence\n"), HasSubstr("bad.csv: no frames"));
+}
+
 TEST(GroupByObjectTest, ObjectsInOrderOfFirstAppearanceWithTheirPositions) {
   const std::vector<DatasetImage> images{{"1.png", "mug", 0, {}},  {"2.png", "cup", 0, {}},
                                          {"3.png", "mug", 90, {}}, {"4.png", "box", 0, {}},

@@ -144,5 +144,51 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   EXPECT_EQ(report.memory[1].variant, Product().variant);
 }
 
+// Captured sequences against a model set: objects 1-3 of COIL-100 every 10 degrees are the
+// models; the queries are views in between (5, 15, ... degrees: images the model set does not
+// hold) of objects 1 and 2, and of object 9, which is not in the model set.
+TEST(RunCaptureEvaluationTest, EachSequenceIsOneQueryAskedWithItsFirstNFrames) {
+  std::vector<DatasetImage> known;
+  for (const DatasetImage& image : ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3})) {
+    if (static_cast<int>(image.azimuth) % 10 == 0) known.push_back(image);
+  }
+  const auto frame = [](int object, int azimuth, const std::string& sequence) {
+    return CaptureFrame{(testing::DataDir() / "coil-100" /
+                         ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+                            .string(),
+                        "obj" + std::to_string(object), double(azimuth), sequence};
+  };
+  const std::vector<CaptureFrame> captures{
+      frame(1, 5, "a"),   frame(1, 15, "a"),  frame(1, 25, "a"), frame(2, 105, "b"),
+      frame(2, 115, "b"), frame(9, 5, "c"),   frame(9, 15, "c")};
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod)};
+  options.variants = {Product().variant};
+  options.distortions = {ParseDistortionSpec("df")};
+  options.query_lengths = {1, 3};
+
+  const EvaluationReport report = RunCaptureEvaluation(known, captures, options);
+  EXPECT_EQ(report.query_sequences, 3u);
+  EXPECT_EQ(report.query_frames, 7u);
+  EXPECT_EQ(report.known_objects, 3u);
+  EXPECT_EQ(report.unknown_objects, 1u);
+  EXPECT_EQ(report.memory.at(0).views, 3u * 36);  // every model image, nothing left out
+  ASSERT_EQ(report.cells.size(), 2u);
+  // n = 1: sequences a and b (known), c (unknown); n = 3: only a is long enough.
+  EXPECT_EQ(report.cells[0].n, 1);
+  EXPECT_EQ(report.cells[0].trials, 2);
+  EXPECT_EQ(report.cells[0].unknown_trials, 1);
+  EXPECT_EQ(report.cells[0].hits, 2);  // clean views 5 degrees from a model view
+  EXPECT_EQ(report.cells[1].n, 3);
+  EXPECT_EQ(report.cells[1].trials, 1);
+  EXPECT_EQ(report.cells[1].unknown_trials, 0);
+  EXPECT_EQ(report.cells[1].hits, 1);
+
+  std::vector<CaptureFrame> mixed = captures;
+  mixed[1].object = "obj2";
+  EXPECT_EQ(testing::ErrorMessageOf([&] { RunCaptureEvaluation(known, mixed, options); }),
+            "sequence \"a\" shows two objects (\"obj1\" and \"obj2\")");
+}
+
 }  // namespace
 }  // namespace orbit
