@@ -1,5 +1,6 @@
 // Fuzz target: a dataset manifest (evaluation/dataset.h, ReadManifest: the CSV file
-// `orbit import` and `orbit eval` read with --layout manifest) and the object selection of both
+// `orbit import` and `orbit eval` read with --layout manifest), the same text read as query
+// captures (ReadQueryCaptures: `orbit eval --queries`), and the object selection of both
 // commands (SelectDataset, with --objects and --unknown-objects parsed by ParseObjectRange).
 //
 // Input: "OBJECTS\0UNKNOWN\0CSV" (the two selections, then the manifest's text), or the
@@ -8,7 +9,9 @@
 //
 // Checked beyond "no crash": only the documented exceptions are thrown; a manifest read holds at
 // least one image, each with a path, an object name, an azimuth in [0, 360) and a finite
-// elevation when it has one; GroupByObject puts each image in exactly one object; and a
+// elevation when it has one; captures read hold at least one frame, each with a path, an
+// object, a sequence and a finite azimuth when it has one; GroupByObject puts each image in
+// exactly one object; and a
 // selection's known and unknown images are images of the manifest in its order, of disjoint
 // objects.
 #include <unistd.h>
@@ -70,6 +73,16 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   {
     std::ofstream out(csv, std::ios::binary | std::ios::trunc);
     out.write(input.data(), static_cast<std::streamsize>(input.size()));
+  }
+
+  try {
+    const std::vector<CaptureFrame> frames = ReadQueryCaptures(csv);
+    ORBIT_FUZZ_CHECK(!frames.empty());
+    for (const CaptureFrame& frame : frames) {
+      ORBIT_FUZZ_CHECK(!frame.path.empty() && !frame.object.empty() && !frame.sequence.empty());
+      ORBIT_FUZZ_CHECK(!frame.azimuth || std::isfinite(*frame.azimuth));
+    }
+  } catch (const std::runtime_error&) {
   }
 
   std::vector<DatasetImage> all;
