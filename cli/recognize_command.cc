@@ -2,6 +2,7 @@
 // server's update for each frame as it arrives.
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -25,8 +26,11 @@ struct RecognizeOptions {
 };
 
 int RunRecognize(const RecognizeOptions& options) {
-  // Every image is read before the session opens: a bad file fails the command at once.
-  const std::vector<cv::Mat> frames = ReadImageArguments(options.images, options.azimuths);
+  // Every image is read before the session opens: a bad file fails the command at once. No
+  // --azimuth at all: frames without azimuth, as from a device without an orientation sensor.
+  const bool azimuths = !options.azimuths.empty();
+  const std::vector<cv::Mat> frames = ReadImageArguments(
+      options.images, azimuths ? options.azimuths : std::vector<double>(options.images.size()));
 
   const Connection connection(ToConnectionOptions(options.network));
   SessionOptions session_options = ToSessionOptions(options.session);
@@ -34,7 +38,10 @@ int RunRecognize(const RecognizeOptions& options) {
   session_options.on_update = [json](const v1::SessionUpdate& u) { PrintUpdate(u, json); };
   auto session = RecognitionSession::Open(connection, std::move(session_options));
   try {
-    for (std::size_t i = 0; i < frames.size(); ++i) session->Push(frames[i], options.azimuths[i]);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      session->Push(frames[i],
+                    azimuths ? std::optional<double>(options.azimuths[i]) : std::nullopt);
+    }
   } catch (const RpcError&) {
     // The session ended early; Close() reports why.
   }
@@ -50,15 +57,16 @@ void AddRecognizeCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "recognize",
       "Stream images as the frames of one recognition session (--image F --azimuth A, once per\n"
-      "frame, in capture order; only azimuth differences matter) and print the server's update\n"
+      "frame, in capture order; only azimuth differences matter; no --azimuth at all: a device\n"
+      "without an orientation sensor) and print the server's update\n"
       "for each frame: one line, or with --json one JSON object with frame, decision, move,\n"
       "candidates [{id, name, score}] best first, and processing_time_us.");
   AddNetworkOptions(*command, options->network, /*server_required=*/true);
   AddSessionFlags(*command, options->session);
   command->add_option("--image", options->images, "a frame's image file (repeat)")->required();
   command->add_option("--azimuth", options->azimuths,
-                      "that frame's device azimuth in degrees (repeat, in the order of --image)")
-      ->required();
+                      "that frame's device azimuth in degrees (repeat, in the order of --image; "
+                      "give none for frames without azimuth)");
   command->add_flag("--json", options->json, "one JSON object per update");
   command->callback([options, &exit_code] { exit_code = RunRecognize(*options); });
 }

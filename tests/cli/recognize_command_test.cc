@@ -81,6 +81,21 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   ASSERT_EQ(text_lines.size(), 4u);
   EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     move ", 0), 0u) << text_lines[3];
   EXPECT_NE(text_lines[3].find(" obj2 (id 2) "), std::string::npos) << text_lines[3];
+
+  // No --azimuth at all: a device without an orientation sensor, recognised from the images.
+  std::string images;
+  for (const int azimuth : {30, 50, 70, 90}) {
+    images += " --image " + testing::CoilDir() + "/obj2__" + std::to_string(azimuth) + ".png";
+  }
+  const auto blind = RunCommand(orbit + "recognize --json" + at + images);
+  ASSERT_EQ(blind.exit_code, 0) << blind.err;
+  ASSERT_EQ(OutputLines(blind.out).size(), 4u);
+  EXPECT_EQ(nlohmann::json::parse(OutputLines(blind.out).back())["candidates"][0]["name"], "obj2");
+  const auto uneven = RunCommand(orbit + "recognize" + at + images + " --azimuth 30");
+  EXPECT_EQ(uneven.exit_code, 1);
+  EXPECT_NE(uneven.err.find("give one --azimuth per --image (4 images, 1 azimuths)"),
+            std::string::npos)
+      << uneven.err;
 }
 
 }  // namespace
