@@ -166,9 +166,17 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
 // power a similarity under about 0.065 underflows to 0: an object that matches a frame that
 // poorly in every state gets an arbitrary path through it and reads 0 there, which changes
 // nothing for the objects that can rank.
+// Values that would fall below FLT_MIN are set to 0 at once: subnormal floats cost the
+// multiplications here and in BatchViterbi tens of cycles each.
 ORBIT_AVX2_CLONES void Sharpen(float* __restrict values, std::size_t count, int squarings) {
-  for (int s = 0; s < squarings; ++s) {
-    for (std::size_t k = 0; k < count; ++k) values[k] *= values[k];
+  if (squarings == 0) return;
+  // The smallest value whose 2^squarings-th power is a normal float.
+  const float smallest =
+      std::pow(std::numeric_limits<float>::min(), 1.0f / static_cast<float>(1 << squarings));
+  for (std::size_t k = 0; k < count; ++k) {
+    float v = values[k] < smallest ? 0.0f : values[k];
+    for (int s = 0; s < squarings; ++s) v *= v;
+    values[k] = v;
   }
 }
 
@@ -190,7 +198,6 @@ class OrientationHmm final : public RecognitionEngine {
         states_(options.hmm_states),
         sectors_(EqualSectors(states_)),
         unknown_turn_(UnknownTurnTransitions(sectors_)),
-        sharpness_root_(1.0f / static_cast<float>(1 << options.hmm_sharpness)),
         viterbi_(InitialProbabilities(sectors_)) {}
 
  protected:
@@ -323,7 +330,7 @@ class OrientationHmm final : public RecognitionEngine {
  private:
   // What the engine keeps of a frame while it is in the window, [state * objects + object].
   struct WindowFrame {
-    std::vector<float> emission;       // EmissionsFromSimilarities(), then Sharpen()
+    std::vector<float> emission;       // EmissionsFromSimilarities() (Decode sharpens copies)
     std::vector<std::uint8_t> unseen;  // [object]: 1 when every state's TC is 0
     std::vector<float> best;           // [object]: its highest emission, 0 when unseen
     SparseTransitions step;         // from the previous frame (empty for the first)
@@ -337,7 +344,10 @@ class OrientationHmm final : public RecognitionEngine {
     const std::size_t lanes = positions.size();
     lane_.assign(objects, -1);
     for (std::size_t j = 0; j < lanes; ++j) lane_[positions[j]] = static_cast<std::int32_t>(j);
-    const bool all = lanes == objects;  // every object: decode the window's own arrays
+    // Every object and no sharpening: decode the window's own arrays; else gathered copies
+    // (sharpened as they are copied: the window keeps the similarities themselves).
+    const int sharpness = options().hmm_sharpness;
+    const bool all = lanes == objects && sharpness == 0;
     gathered_.resize(all ? 0 : frames);
     std::vector<const float*> emissions;
     std::vector<const SparseTransitions*> steps;
@@ -351,6 +361,7 @@ class OrientationHmm final : public RecognitionEngine {
           float* out = &lanes_of_frame[static_cast<std::size_t>(i) * lanes];
           for (std::size_t j = 0; j < lanes; ++j) out[j] = row[positions[j]];
         }
+        Sharpen(lanes_of_frame.data(), lanes_of_frame.size(), sharpness);
         emission = lanes_of_frame.data();
       }
       emissions.push_back(emission);
@@ -361,16 +372,11 @@ class OrientationHmm final : public RecognitionEngine {
     for (std::size_t j = 0; j < lanes; ++j) {
       const std::size_t lane = all ? positions[j] : j;
       const std::span<const std::uint16_t> path = viterbi_.path(lane);
-      const std::size_t width = all ? objects : lanes;
       for (std::size_t t = 0; t < frames; ++t) {
-        if (frames_[t].unseen[positions[j]]) continue;
-        const float emission = emissions[t][path[t] * width + lane];
-        // A sharpened emission's root is the TC again, within rounding: kept at most the
-        // frame's best, so that no sum exceeds its object's bound (Assess).
-        sums[j] += sharpness_root_ == 1.0f
-                       ? emission
-                       : std::min(std::pow(emission, sharpness_root_),
-                                  frames_[t].best[positions[j]]);
+        // The TC of the path's state, from the window's own (unsharpened) array.
+        if (!frames_[t].unseen[positions[j]]) {
+          sums[j] += frames_[t].emission[path[t] * objects + positions[j]];
+        }
       }
       lane_[positions[j]] = static_cast<std::int32_t>(lane);
     }
@@ -387,13 +393,11 @@ class OrientationHmm final : public RecognitionEngine {
     std::vector<float> sum(objects);
     EmissionsFromSimilarities(frame.emission.data(), states_, sum.data(), frame.unseen.data(),
                               frame.best.data(), objects);
-    Sharpen(frame.emission.data(), frame.emission.size(), options().hmm_sharpness);
   }
 
   const int states_;
   const std::vector<Arc> sectors_;
   const SparseTransitions unknown_turn_;  // the step to or from a frame without azimuth
-  const float sharpness_root_;            // 2^-hmm_sharpness: from an emission back to its TC
   BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
