@@ -15,7 +15,8 @@ std::string DescribeProduct() {
   const ProductPipeline& p = Product();
   std::ostringstream text;
   text << p.engine << " (" << p.options.hmm_states << " states, window " << p.options.window
-       << ", emissions to the power " << (1 << p.options.hmm_sharpness) << ") on " << VariantName(p.variant) << " (CEDD of a canonical frame: resampled to "
+       << ", emissions to the power " << (1 << p.options.hmm_sharpness) << ") on "
+       << VariantName(p.variant) << " (CEDD of a canonical frame: resampled to "
        << kCanonicalArea << " pixels, Gaussian blur of " << kCanonicalBlurSigma
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
        << "th percentile of the brightest channel is " << kBrightnessTarget << ")";

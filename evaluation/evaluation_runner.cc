@@ -535,20 +535,29 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   report.query_sequences = sequences.size();
   report.query_frames = captures.size();
 
-  // Step 1: the model views, then every captured frame's query descriptors.
+  // Step 1: the model views, then every captured frame's query descriptors,
+  // queries[frame][variant][distortion] (a frame is no model view: only its queries are made).
   const Clock::time_point descriptor_start = Clock::now();
   DescribedImages described(known.size());
-  std::vector<std::vector<DescribedImage>> frames(captures.size());
+  std::vector<std::vector<std::vector<DescriptorValues>>> queries(captures.size());
   RunStage(known.size() + captures.size(), report.threads, "descriptors", options,
            [&](std::size_t i) {
              if (i < known.size()) {
                described[i] = DescribeImage(known[i], i, options.variants, {}, options.seed);
                return;
              }
-             const CaptureFrame& frame = captures[i - known.size()];
-             frames[i - known.size()] =
-                 DescribeImage({frame.path, frame.object, 0, std::nullopt}, i, options.variants,
-                               options.distortions, options.seed);
+             const cv::Mat image = ReadImageFile(captures[i - known.size()].path);
+             auto& frame = queries[i - known.size()];
+             frame.assign(options.variants.size(), {});
+             for (const DistortionSpec& distortion : options.distortions) {
+               const cv::Mat query = distortion.steps.empty()
+                                         ? image
+                                         : ApplyDistortion(image, distortion,
+                                                           ImageNoiseSeed(options.seed, i));
+               for (std::size_t v = 0; v < options.variants.size(); ++v) {
+                 frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
+               }
+             }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);
   const std::vector<VariantModels> models = BuildModels(dataset, described, options);
@@ -571,7 +580,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
     for (std::size_t d = 0; d < distortions; ++d) {
       for (int k = 0; k < n; ++k) {
         const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
-        query[k].descriptor = {options.variants[v], frames[f][v].queries[d]};
+        query[k].descriptor = {options.variants[v], queries[f][v][d]};
         query[k].azimuth = options.use_orientation ? captures[f].azimuth : std::nullopt;
       }
       for (std::size_t m = 0; m < methods; ++m) {
