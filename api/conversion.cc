@@ -71,6 +71,21 @@ v1::Decision ToProtoDecision(Decision decision) {
   return v1::DECISION_UNSPECIFIED;
 }
 
+v1::Rejection ToProtoRejection(RejectionRule rule) {
+  return rule == RejectionRule::kCalibrated ? v1::REJECTION_CALIBRATED : v1::REJECTION_TH;
+}
+
+std::optional<RejectionRule> FromProtoRejection(v1::Rejection rule) {
+  switch (rule) {
+    case v1::REJECTION_TH:
+      return RejectionRule::kTypicalDistance;
+    case v1::REJECTION_CALIBRATED:
+      return RejectionRule::kCalibrated;
+    default:
+      return std::nullopt;
+  }
+}
+
 v1::Move ToProtoMove(SuggestedMove move) {
   switch (move) {
     case SuggestedMove::kNone:
@@ -96,6 +111,11 @@ v1::SessionUpdate ToSessionUpdate(const FrameUpdate& update, const ViewIndexSnap
   }
   out.set_decision(ToProtoDecision(update.decision));
   out.set_move(ToProtoMove(update.move));
+  out.set_confidence(update.confidence);
+  if (update.pose) {
+    out.mutable_pose()->set_azimuth_deg(update.pose->azimuth);
+    out.mutable_pose()->set_spread_deg(update.pose->spread);
+  }
   return out;
 }
 

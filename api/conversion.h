@@ -36,6 +36,9 @@ v1::View ToProtoView(const ModelView& view, const std::string& thumbnail = "");
 
 v1::Decision ToProtoDecision(Decision decision);
 v1::Move ToProtoMove(SuggestedMove move);
+v1::Rejection ToProtoRejection(RejectionRule rule);
+// nullopt for REJECTION_UNSPECIFIED and values no rule has.
+std::optional<RejectionRule> FromProtoRejection(v1::Rejection rule);
 
 // An engine's update as the wire carries it, with each candidate's name from `index` (the
 // snapshot the update was computed on).

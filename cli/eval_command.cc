@@ -14,6 +14,7 @@
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
 #include "evaluation/evaluation_plot.h"
+#include "evaluation/recognition_report.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
 #include "cli/progress_bar.h"
@@ -53,6 +54,9 @@ struct EvalOptions {
   int kd_checks = ViewIndexOptions{}.kd_checks;
   int kd_candidates = ViewIndexOptions{}.kd_candidates;
   double threshold = EngineOptions{}.threshold;
+  std::string rejection = std::string(RejectionRuleName(EngineOptions{}.rejection));
+  double false_accept_rate = EngineOptions{}.false_accept_rate;
+  std::string verdicts;
   double orientation_weight = EngineOptions{}.orientation_weight;
   int list_length = EngineOptions{}.list_length;
   int hmm_states = EngineOptions{}.hmm_states;
@@ -89,6 +93,8 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.index.kd_checks = o.kd_checks;
   options.index.kd_candidates = o.kd_candidates;
   options.engine.threshold = o.threshold;
+  options.engine.rejection = ParseRejectionRule(o.rejection);
+  options.engine.false_accept_rate = o.false_accept_rate;
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
   options.engine.hmm_states = o.hmm_states;
@@ -125,11 +131,19 @@ int RunEval(const EvalOptions& o) {
     const std::vector<DistortionSweep> sweeps = Sweeps(o);
     std::cout << MarkdownReport(report);
     if (!sweeps.empty()) std::cout << SweepMarkdown(report, sweeps);
+    if (report.unknown_objects > 0 || !o.verdicts.empty()) {
+      std::cout << RecognitionMarkdown(report) << ReliabilityMarkdown(report);
+    }
     std::cout << std::flush;
     if (!o.csv.empty()) {
       std::ofstream csv(o.csv);
       if (csv) sweeps.empty() ? WriteCsv(report, csv) : WriteSweepCsv(report, sweeps, csv);
       if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
+    }
+    if (!o.verdicts.empty()) {
+      std::ofstream verdicts(o.verdicts);
+      if (!verdicts) throw std::runtime_error(o.verdicts + ": cannot write the verdicts file");
+      WriteVerdictsCsv(report, verdicts);
     }
     if (!o.plot.empty()) {
       if (sweeps.empty()) {
@@ -244,6 +258,19 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--threshold", o->threshold, "Th of the accept / unknown rule")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  command->add_option("--rejection", o->rejection,
+                      "accept / unknown rule of the thesis' engines: th (SPEC.md's, --threshold) "
+                      "or calibrated (the product's, --false-accept-rate); the product always "
+                      "uses its own")
+      ->check(CLI::IsMember({"th", "calibrated"}))
+      ->capture_default_str();
+  command->add_option("--false-accept-rate", o->false_accept_rate,
+                      "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
+      ->check(CLI::Range(1e-6, 1 - 1e-6))
+      ->capture_default_str();
+  command->add_option("--verdicts", o->verdicts,
+                      "also write every query's answer as CSV (decision, unknown statistic, "
+                      "p-value, confidence, pose error)");
   command->add_option("--orientation-weight", o->orientation_weight, "w of vci's orientation term, per radian")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

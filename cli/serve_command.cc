@@ -22,6 +22,7 @@ struct ServeOptions {
   std::string variant;  // "": the store's objects', the product's for an empty store
   std::string index = "kdtree";
   std::string engine{Product().engine};
+  std::string rejection{RejectionRuleName(Product().options.rejection)};
 };
 
 int RunServe(ServeOptions& o) {
@@ -33,6 +34,7 @@ int RunServe(ServeOptions& o) {
   if (!o.variant.empty()) config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
   config.session_defaults.engine = ParseSessionEngine(o.engine);
+  config.session_defaults.options.rejection = ParseRejectionRule(o.rejection);
   server::ValidateServerConfig(config);  // before the account below claims it will run
 
   // SIGTERM and SIGINT are taken by sigwait below: block them before any server thread exists,
@@ -112,8 +114,18 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--window", c.session_defaults.options.window, "default window W")
       ->check(CLI::Range(1, kMaxWindow))
       ->capture_default_str();
+  cmd->add_option("--rejection", o->rejection,
+                  "default accept / unknown rule: calibrated (the product's: a threshold from "
+                  "--false-accept-rate, computed from the model set) or th (SPEC.md's, --threshold)")
+      ->check(CLI::IsMember({"calibrated", "th"}))
+      ->capture_default_str();
+  cmd->add_option("--false-accept-rate", c.session_defaults.options.false_accept_rate,
+                  "the calibrated rule's target share of unknown objects accepted, in (0, 1); "
+                  "measured on COIL-100 in docs/results/recognition.md")
+      ->check(CLI::Range(1e-6, 1 - 1e-6))
+      ->capture_default_str();
   cmd->add_option("--threshold", c.session_defaults.options.threshold,
-                  "default rejection threshold Th")
+                  "Th of the th rule")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-sessions", c.limits.max_sessions, "concurrent sessions")

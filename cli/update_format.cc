@@ -24,12 +24,18 @@ std::string_view MoveText(v1::Move move) {
 }
 
 std::string UpdateLine(const v1::SessionUpdate& update) {
-  char head[96];
-  std::snprintf(head, sizeof head, "frame %lld  %-9s  move %-5s ",
+  char head[160];
+  std::snprintf(head, sizeof head, "frame %lld  %-9s  confidence %.2f  move %-5s ",
                 static_cast<long long>(update.frame_index()),
-                std::string(DecisionText(update.decision())).c_str(),
+                std::string(DecisionText(update.decision())).c_str(), update.confidence(),
                 std::string(MoveText(update.move())).c_str());
   std::string line = head;
+  if (update.has_pose()) {
+    char pose[64];
+    std::snprintf(pose, sizeof pose, " seen from %.0f deg (+-%.0f) ", update.pose().azimuth_deg(),
+                  update.pose().spread_deg());
+    line += pose;
+  }
   if (update.candidates().empty()) line += " (no objects)";
   for (int i = 0; i < update.candidates_size(); ++i) {
     const v1::Candidate& c = update.candidates(i);
@@ -51,10 +57,15 @@ nlohmann::ordered_json UpdateJson(const v1::SessionUpdate& update) {
   nlohmann::ordered_json line = {
       {"frame", update.frame_index()},
       {"decision", DecisionText(update.decision())},
+      {"confidence", update.confidence()},
       {"move", MoveText(update.move())},
       {"candidates", std::move(candidates)},
       {"processing_time_us", update.processing_time_us()},
   };
+  if (update.has_pose()) {
+    line["pose"] = {{"azimuth_deg", update.pose().azimuth_deg()},
+                    {"spread_deg", update.pose().spread_deg()}};
+  }
   if (update.has_timestamp_us()) line["timestamp_us"] = update.timestamp_us();
   return line;
 }

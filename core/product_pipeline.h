@@ -27,6 +27,7 @@ struct ProductPipeline {
   EngineOptions options = [] {
     EngineOptions options;
     options.hmm_sharpness = kMaxHmmSharpness;
+    options.rejection = RejectionRule::kCalibrated;
     return options;
   }();
 };

@@ -9,10 +9,14 @@
 #include "core/active_vision.h"
 #include "core/angles.h"
 #include "core/baseline_engines.h"
+#include "core/confidence.h"
 #include "core/hough_voter.h"
 #include "core/orientation_hmm.h"
+#include "core/pose_estimate.h"
 #include "core/rejection.h"
+#include "core/rejection_calibration.h"
 #include "core/similarity.h"
+#include "core/unknown_statistic.h"
 
 namespace orbit {
 namespace {
@@ -38,6 +42,8 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.hmm_states >= 1 && o.hmm_states <= kMaxHmmStates,
           "hmm_states must be in 1.." + std::to_string(kMaxHmmStates));
   Require(std::isfinite(o.threshold) && o.threshold > 0, "threshold (Th) must be finite and > 0");
+  Require(o.false_accept_rate > 0 && o.false_accept_rate < 1,
+          "false_accept_rate must be in (0, 1)");
   Require(o.top_k >= 1, "top_k must be at least 1");
   Require(o.averaged_views >= 2 && o.averaged_views <= 360, "averaged_views must be in 2..360");
   Require(std::isfinite(o.ambiguity_margin) && o.ambiguity_margin >= 0,
@@ -47,6 +53,18 @@ void ValidateEngineOptions(const EngineOptions& o) {
 std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to) {
   if (!from.azimuth || !to.azimuth) return std::nullopt;
   return AzimuthChange(*from.azimuth, *to.azimuth);
+}
+
+std::string_view RejectionRuleName(RejectionRule rule) {
+  return rule == RejectionRule::kCalibrated ? "calibrated" : "th";
+}
+
+RejectionRule ParseRejectionRule(std::string_view name) {
+  for (const RejectionRule rule : {RejectionRule::kTypicalDistance, RejectionRule::kCalibrated}) {
+    if (name == RejectionRuleName(rule)) return rule;
+  }
+  throw std::invalid_argument("unknown rejection rule \"" + std::string(name) +
+                              "\" (known: th, calibrated)");
 }
 
 std::string_view DecisionName(Decision decision) {
@@ -138,6 +156,10 @@ FrameUpdate RecognitionEngine::ObserveSequence(std::shared_ptr<const ViewIndexSn
   return Answer();
 }
 
+void RecognitionEngine::SetCalibration(std::shared_ptr<const RejectionCalibration> calibration) {
+  calibration_ = std::move(calibration);
+}
+
 void RecognitionEngine::Reset() {
   Clear();
   window_.clear();
@@ -151,8 +173,10 @@ FrameUpdate RecognitionEngine::Answer() {
   std::vector<Assessment> assessments = Assess(*index_, window_);
   if (assessments.empty()) return update;
   const std::size_t shown = std::min<std::size_t>(assessments.size(), options_.top_k);
-  // Only the shown objects need ordering (an HMM session assesses every object per frame).
-  std::partial_sort(assessments.begin(), assessments.begin() + static_cast<std::ptrdiff_t>(shown),
+  // Only the shown objects need ordering (an HMM session assesses every object per frame), and
+  // the runner-up for the calibrated rule.
+  const std::size_t ordered = std::min<std::size_t>(assessments.size(), std::max<std::size_t>(shown, 2));
+  std::partial_sort(assessments.begin(), assessments.begin() + static_cast<std::ptrdiff_t>(ordered),
                     assessments.end(), [](const Assessment& a, const Assessment& b) {
                       return a.score > b.score ||
                              (a.score == b.score && a.object->id() < b.object->id());
@@ -161,15 +185,33 @@ FrameUpdate RecognitionEngine::Answer() {
     update.ranking.push_back({assessments[i].object->id(), assessments[i].score});
   }
 
-  // Recognition: the winner's matched views against their typical distances.
+  // Recognition: accept or unknown, by the options' rule.
   Assessment& winner = assessments.front();
   Complete(*index_, window_, winner);
-  std::vector<MatchedDistance> distances;
-  for (const MatchedView& match : winner.matched) {
-    distances.push_back({1.0 - match.similarity,
-                         winner.object->model().views[match.view].typical_distance});
+  const IndexedObject* runner_up = ordered > 1 ? assessments[1].object : nullptr;
+  update.unknown_statistic = UnknownStatistic(window_, *winner.object, runner_up);
+  update.confidence = Confidence(update.unknown_statistic);
+  const bool calibrated = calibration_ != nullptr && calibration_->calibrated();
+  const int frames = static_cast<int>(window_.size());
+  if (calibrated) {
+    update.unknown_p_value = calibration_->FalseAcceptRate(update.unknown_statistic, frames);
   }
-  update.decision = DecideRecognition(distances, options_.threshold);
+  if (options_.rejection == RejectionRule::kCalibrated) {
+    if (calibrated) {
+      update.decision =
+          update.unknown_statistic <= calibration_->Threshold(frames, options_.false_accept_rate)
+              ? Decision::kAccept
+              : Decision::kUnknown;
+    }
+  } else {
+    std::vector<MatchedDistance> distances;
+    for (const MatchedView& match : winner.matched) {
+      distances.push_back({1.0 - match.similarity,
+                           winner.object->model().views[match.view].typical_distance});
+    }
+    update.decision = DecideRecognition(distances, options_.threshold);
+  }
+  update.pose = EstimatePose(window_, *winner.object);
 
   // Active vision among the objects scoring within the margin of the winner.
   std::vector<MoveCandidate> candidates{{winner.object, winner.latest_azimuth}};

@@ -54,6 +54,8 @@
 
 namespace orbit {
 
+class RejectionCalibration;
+
 inline constexpr int kMaxWindow = 64;
 // Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
 inline constexpr int kMaxHmmStates = 360;
@@ -61,6 +63,16 @@ inline constexpr int kMaxHmmSharpness = 5;  // emissions up to the 32nd power
 // w, per radian: at most this. A turn of 1 degree then already costs 17 similarity points, so
 // larger weights change nothing but can overflow a score to infinity (a request's 1e308).
 inline constexpr double kMaxOrientationWeight = 1000;
+
+enum class RejectionRule {
+  kTypicalDistance,  // "th": SPEC.md's rule
+  kCalibrated,       // "calibrated": the product's (issue 12)
+};
+
+// "th", "calibrated".
+std::string_view RejectionRuleName(RejectionRule rule);
+// The rule called `name`; throws std::invalid_argument naming the known ones otherwise.
+RejectionRule ParseRejectionRule(std::string_view name);
 
 struct EngineOptions {
   int window = 8;                   // W: frames kept (1..kMaxWindow)
@@ -73,7 +85,19 @@ struct EngineOptions {
   // path through poorly matching sectors wins. Sharpened, the path follows the similarities
   // within what the turns allow. Scores stay the mean TC along the path.
   int hmm_sharpness = 0;
+  // The accept / unknown rule. kTypicalDistance is SPEC.md's: accept when T_M / mean Ttyp <=
+  // threshold. kCalibrated (core/unknown_statistic.h, core/rejection_calibration.h) accepts
+  // when the unknown statistic U is at or below the threshold that a model-set calibration
+  // gives for false_accept_rate; without a calibration (RecognitionEngine::SetCalibration) its
+  // decision is kUndecided.
+  RejectionRule rejection = RejectionRule::kTypicalDistance;
   double threshold = 2.0;           // Th: accept when T_M / mean Ttyp <= Th (> 0)
+  // kCalibrated's target, in (0, 1). 0.15: the share of unknown objects' windows accepted when
+  // unknown objects resemble the known ones as much as the known ones resemble each other,
+  // look-alike pairs included; on COIL-100 that leaves 2% (no look-alike among the unknowns)
+  // to 15% (two of ten) accepted at n = 8 while 97-98% of known objects' DF queries are
+  // accepted (docs/results/recognition.md).
+  double false_accept_rate = 0.15;
   int top_k = 5;                    // objects in each update's ranking (>= 1)
   int averaged_views = 8;           // N_avg: active vision's averaged views per object (2..360)
   // Active vision: objects whose score is within this margin of the best are the ambiguous
@@ -113,11 +137,29 @@ enum class Decision {
 // device azimuth, LEFT toward decreasing.
 enum class SuggestedMove { kNone, kLeft, kRight };
 
+// Where the winner is seen from (core/pose_estimate.h): the model azimuth (degrees, [0, 360),
+// in the object's own model frame) facing the camera at the latest frame, and how far from it
+// (degrees, 0..180) other azimuths fit the window's frames about as well: 0 when one side is
+// unmistakable, 180 for an object that looks the same from every side.
+struct PoseEstimate {
+  double azimuth = 0;
+  double spread = 180;
+};
+
 struct FrameUpdate {
   std::int64_t frame_index = 0;      // 0 for the first frame after construction or Reset()
   std::vector<RankedObject> ranking;  // best first, at most options.top_k; empty index: empty
   Decision decision = Decision::kUndecided;
   SuggestedMove move = SuggestedMove::kNone;
+  // The winner's unknown statistic U (core/unknown_statistic.h; 0 for an empty index) and the
+  // share of unknown objects' windows that look at least as known as this one (the
+  // calibration's p-value; 1 when there is no calibration).
+  double unknown_statistic = 0;
+  double unknown_p_value = 1;
+  // How likely the top-1 object is the one in front of the camera, in [0, 1]
+  // (core/confidence.h); 0 for an empty index.
+  double confidence = 0;
+  std::optional<PoseEstimate> pose;  // the winner's; none for an empty index
 };
 
 std::string_view DecisionName(Decision decision);     // "ACCEPT", "UNKNOWN", "UNDECIDED"
@@ -145,6 +187,11 @@ class RecognitionEngine {
 
   // Forgets every frame; the next frame has index 0.
   void Reset();
+
+  // The calibration the kCalibrated rule takes its threshold from, from the next frame on
+  // (typically the model set's, recomputed as it changes; null: none). Ignored by the
+  // kTypicalDistance rule.
+  void SetCalibration(std::shared_ptr<const RejectionCalibration> calibration);
 
   std::string_view name() const { return name_; }
   const EngineOptions& options() const { return options_; }
@@ -197,6 +244,7 @@ class RecognitionEngine {
   const std::string_view name_;
   const EngineOptions options_;
   std::shared_ptr<const ViewIndexSnapshot> index_;
+  std::shared_ptr<const RejectionCalibration> calibration_;
   std::vector<QueryFrame> window_;  // oldest first
   std::int64_t frames_seen_ = 0;
 };

@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cmath>
 #include <chrono>
 #include <functional>
 #include <map>
@@ -14,7 +15,9 @@
 #include <vector>
 
 #include "client/image_file.h"
+#include "core/angles.h"
 #include "core/cedd.h"
+#include "core/rejection_calibration.h"
 #include "core/seeded_random.h"
 #include "core/parallel_for.h"
 #include "core/product_pipeline.h"
@@ -169,6 +172,9 @@ struct VariantModels {
   // The index of all of them, which unknown objects are queried against (immutable, shared by
   // all threads).
   std::shared_ptr<const ViewIndexSnapshot> full_index;
+  // The calibrated rejection rule's null distributions, from the full index (a trial's index
+  // lacks a few views of one object: the calibration barely moves, and is computed once).
+  std::shared_ptr<const RejectionCalibration> calibration;
   ModelMemory memory;
 };
 
@@ -200,6 +206,8 @@ std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
     variants[v].full_index = index.Snapshot();
     const std::size_t after = HeapBytesInUse();
     memory.index_bytes = after > before ? after - before : 0;
+    variants[v].calibration = std::make_shared<const RejectionCalibration>(
+        RejectionCalibration::FromIndex(*variants[v].full_index));
   }
   return variants;
 }
@@ -232,34 +240,42 @@ struct TrialGrid {
 
 // One method's answer to one query.
 struct Outcome {
-  bool hit = false;       // known object: top-1 right
-  bool accepted = false;  // known object: top-1 right and accepted
-  bool rejected = false;  // unknown object: answered kUnknown
+  QueryVerdict verdict;
   double seconds = 0;     // wall-clock time in ObserveSequence
 };
 
 // The outcome of `update` for a query whose right answer is object `expected`, or kUnknown
-// when `expected` is 0 (an object outside the model set).
-void Judge(const FrameUpdate& update, ObjectId expected, Outcome& outcome) {
-  if (expected != 0) {
-    outcome.hit = IsTopOneHit(update.ranking, expected);
-    outcome.accepted = outcome.hit && update.decision == Decision::kAccept;
-  } else {
-    outcome.rejected = update.decision == Decision::kUnknown;
+// when `expected` is 0 (an object outside the model set). `true_azimuth`: the model azimuth
+// the latest frame was taken at, when known (the protocol's views), for the pose error.
+void Judge(const FrameUpdate& update, ObjectId expected, std::optional<double> true_azimuth,
+           Outcome& outcome) {
+  QueryVerdict& verdict = outcome.verdict;
+  verdict.known = expected != 0;
+  verdict.hit = verdict.known && IsTopOneHit(update.ranking, expected);
+  verdict.decision = update.decision;
+  verdict.unknown_statistic = update.unknown_statistic;
+  verdict.unknown_p_value = update.unknown_p_value;
+  verdict.confidence = update.confidence;
+  if (verdict.hit && true_azimuth && update.pose) {
+    verdict.pose_error = std::abs(AzimuthChange(*true_azimuth, update.pose->azimuth));
+    verdict.pose_spread = update.pose->spread;
   }
 }
 
 // Adds one query's outcome to its cell.
-void Count(const Outcome& outcome, bool known, EvaluationCell& cell) {
+void Count(const Outcome& outcome, EvaluationCell& cell) {
+  const QueryVerdict& verdict = outcome.verdict;
   cell.seconds += outcome.seconds;
-  if (known) {
+  if (verdict.known) {
     ++cell.trials;
-    cell.hits += outcome.hit;
-    cell.accepted += outcome.accepted;
+    cell.hits += verdict.hit;
+    cell.accepted += verdict.hit && verdict.decision == Decision::kAccept;
+    cell.accepted_wrong += !verdict.hit && verdict.decision == Decision::kAccept;
   } else {
     ++cell.unknown_trials;
-    cell.rejected += outcome.rejected;
+    cell.rejected += verdict.decision == Decision::kUnknown;
   }
+  cell.verdicts.push_back(verdict);
 }
 
 // Whether `method` is evaluated on descriptors of `variant`: the product pipeline only on its own
@@ -278,6 +294,7 @@ class EnginePool {
   EnginePool(const std::vector<std::string>& methods, const EngineOptions& options)
       : methods_(methods), options_(options), product_options_(Product().options) {
     product_options_.window = std::max(product_options_.window, options.window);
+    product_options_.false_accept_rate = options.false_accept_rate;
   }
 
   Engines Take() {
@@ -364,13 +381,16 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         frames[k].azimuth =
             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
       }
+      const double latest_azimuth =
+          dataset.images[target.images[query.views.back()]]->azimuth;
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
+        engines[m]->SetCalibration(models[t.variant].calibration);
         const Clock::time_point start = Clock::now();
         const FrameUpdate update = engines[m]->ObserveSequence(snapshot, frames);
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
         outcome.seconds = SecondsSince(start);
-        Judge(update, is_known ? expected : 0, outcome);
+        Judge(update, is_known ? expected : 0, latest_azimuth, outcome);
       }
     }
     pool.Give(std::move(engines));
@@ -397,7 +417,7 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
           for (std::size_t object = 0; object < grid.objects; ++object) {
             for (std::size_t trial = 0; trial < grid.trials; ++trial) {
               const std::size_t task = grid.TaskNumber({v, object, s, trial});
-              Count(outcomes[grid.OutcomeSlot(task, d, m)], dataset.is_known(object), cell);
+              Count(outcomes[grid.OutcomeSlot(task, d, m)], cell);
             }
           }
           cells.push_back(std::move(cell));
@@ -585,11 +605,12 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
       }
       for (std::size_t m = 0; m < methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[v])) continue;
+        engines[m]->SetCalibration(models[v].calibration);
         const Clock::time_point start = Clock::now();
         const FrameUpdate update = engines[m]->ObserveSequence(models[v].full_index, query);
         Outcome& outcome = outcomes[(task * distortions + d) * methods + m];
         outcome.seconds = SecondsSince(start);
-        Judge(update, expected[s], outcome);
+        Judge(update, expected[s], std::nullopt, outcome);
       }
     }
     pool.Give(std::move(engines));
@@ -609,7 +630,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
           for (std::size_t s = 0; s < sequences.size(); ++s) {
             if (static_cast<int>(sequences[s].frames.size()) < cell.n) continue;
             const std::size_t task = (v * sequences.size() + s) * ns + slot;
-            Count(outcomes[(task * distortions + d) * methods + m], expected[s] != 0, cell);
+            Count(outcomes[(task * distortions + d) * methods + m], cell);
           }
         }
       }

@@ -25,6 +25,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <limits>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -68,6 +69,20 @@ struct EvaluationOptions {
   std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;
 };
 
+// One method's answer to one query, as the recognition reports need it.
+struct QueryVerdict {
+  bool known = false;  // the query's object is in the model set
+  bool hit = false;    // known, and the top-1 object is right
+  Decision decision = Decision::kUndecided;
+  double unknown_statistic = 0;  // FrameUpdate's
+  double unknown_p_value = 1;
+  double confidence = 0;
+  // Known hits of the protocol only: |true azimuth of the latest frame - estimated pose|
+  // (degrees, 0..180) and the estimate's spread; NaN otherwise.
+  double pose_error = std::numeric_limits<double>::quiet_NaN();
+  double pose_spread = std::numeric_limits<double>::quiet_NaN();
+};
+
 // Counts for one method, variant, distortion and n.
 struct EvaluationCell {
   std::string method;
@@ -77,9 +92,11 @@ struct EvaluationCell {
   int trials = 0;           // queries of known objects
   int hits = 0;             // ... whose top-1 object was right
   int accepted = 0;         // ... whose top-1 object was right and was accepted (kAccept)
+  int accepted_wrong = 0;   // ... whose top-1 object was wrong and was accepted
   int unknown_trials = 0;   // queries of unknown objects
   int rejected = 0;         // ... answered kUnknown
   double seconds = 0;       // wall-clock time in ObserveSequence over all queries counted here
+  std::vector<QueryVerdict> verdicts;  // every query counted here, known and unknown
 
   double hit_rate() const { return trials > 0 ? double(hits) / trials : 0; }
   double accept_rate() const { return trials > 0 ? double(accepted) / trials : 0; }

@@ -64,6 +64,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::shared_ptr<const ViewIndexSnapshot> index = SmallIndex();
   static const server::ServerLimits limits = fuzz::FuzzLimits();
   static const server::SessionSettings defaults;
+  static const auto calibration =
+      std::make_shared<const RejectionCalibration>(RejectionCalibration::FromIndex(*index));
 
   fuzz::SilenceProtobufLogs();
   v1::RecognizeRequest request;
@@ -82,11 +84,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::uint8_t value : query.descriptor.values) ORBIT_FUZZ_CHECK(value <= kDescriptorMaxValue);
     FrameUpdate update;
     try {
-      update = engine.Observe(index, query);
+      update = engine.Observe(index, calibration, query);
     } catch (const std::exception&) {
       return 0;  // the service answers with the exception's status (StatusFromException)
     }
     ORBIT_FUZZ_CHECK(update.ranking.size() <= static_cast<std::size_t>(settings.options.top_k));
+    ORBIT_FUZZ_CHECK(update.confidence >= 0 && update.confidence <= 1);
+    ORBIT_FUZZ_CHECK(!update.pose || (update.pose->azimuth >= 0 && update.pose->azimuth < 360 &&
+                                      update.pose->spread >= 0 && update.pose->spread <= 180));
     for (const RankedObject& ranked : update.ranking) {
       ORBIT_FUZZ_CHECK(index->Find(ranked.object) != nullptr);
       ORBIT_FUZZ_CHECK(std::isfinite(ranked.score));

@@ -66,6 +66,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
   catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
                                                 metrics_->store_writes());
+  calibrator_ = std::make_unique<RejectionCalibrator>(catalogue_->Snapshot());
   const int cpus = AvailableCpus();
   pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);
   bulk_pool_ = std::make_unique<WorkerPool>(
@@ -73,7 +74,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
       kBulkWorkerNice);
   registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
   recognition_ = std::make_unique<RecognitionService>(
-      SessionEnvironment{*catalogue_, *pool_, *bulk_pool_, *registry_, config_.limits,
+      SessionEnvironment{*catalogue_, *calibrator_, *pool_, *bulk_pool_, *registry_, config_.limits,
                          config_.session_defaults, *metrics_},
       access_);
   models_ = std::make_unique<ModelsService>(ModelsEnvironment{

@@ -29,6 +29,7 @@ class MetricsEndpoint;
 class ModelCatalogue;
 class ModelsService;
 class RecognitionService;
+class RejectionCalibrator;
 class ServerMetrics;
 class SessionRegistry;
 class WorkerPool;
@@ -70,6 +71,7 @@ class OrbitServer {
   std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<ModelStore> store_;
   std::unique_ptr<ModelCatalogue> catalogue_;
+  std::unique_ptr<RejectionCalibrator> calibrator_;
   std::unique_ptr<WorkerPool> pool_;
   std::unique_ptr<WorkerPool> bulk_pool_;
   std::unique_ptr<SessionRegistry> registry_;

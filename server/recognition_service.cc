@@ -65,7 +65,7 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
         return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kImageBudget));
       }
       v1::SessionUpdate* update = response->add_updates();
-      *update = ToSessionUpdate(engine.Observe(index, query), *index);
+      *update = ToSessionUpdate(engine.Observe(index, env_.calibrator.For(index), query), *index);
       if (frame.has_timestamp_us()) update->set_timestamp_us(frame.timestamp_us());
       const Clock::duration spent = Clock::now() - start;
       update->set_processing_time_us(

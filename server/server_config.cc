@@ -55,8 +55,13 @@ std::string ServerConfig::Describe() const {
       << "  session defaults    engine " << SessionEngineName(d.engine) << ", top-k " << d.options.top_k
       << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
       << d.options.list_length << ", HMM states " << d.options.hmm_states << ", HMM sharpness "
-      << d.options.hmm_sharpness << ", Th "
-      << d.options.threshold << "\n"
+      << d.options.hmm_sharpness << ", rejection " << RejectionRuleName(d.options.rejection);
+  if (d.options.rejection == RejectionRule::kCalibrated) {
+    out << " (false-accept rate " << d.options.false_accept_rate << ")\n";
+  } else {
+    out << " (Th " << d.options.threshold << ")\n";
+  }
+  out
       << "  limits              " << limits.max_sessions << " sessions, "
       << limits.max_frames_per_second << " frames/s per session, window <= "
       << limits.max_window << ", HMM window x states <= " << limits.max_hmm_cells

@@ -21,7 +21,9 @@ SessionEngine::SessionEngine(const SessionSettings& settings) : top_k_(settings.
 }
 
 FrameUpdate SessionEngine::Observe(const std::shared_ptr<const ViewIndexSnapshot>& index,
+                                   const std::shared_ptr<const RejectionCalibration>& calibration,
                                    const QueryFrame& frame) {
+  for (auto& engine : engines_) engine->SetCalibration(calibration);
   if (engines_.size() == 1) return engines_[0]->Observe(index, frame);
 
   // Both engines validate identically, so the first throws before either changes state.
@@ -48,6 +50,10 @@ FrameUpdate SessionEngine::Observe(const std::shared_ptr<const ViewIndexSnapshot
     for (const FrameUpdate& u : updates) {
       if (!u.ranking.empty() && u.ranking[0].object == combined.ranking[0].object) {
         combined.decision = u.decision;
+        combined.unknown_statistic = u.unknown_statistic;
+        combined.unknown_p_value = u.unknown_p_value;
+        combined.confidence = u.confidence;
+        combined.pose = u.pose;
         break;
       }
     }

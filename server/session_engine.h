@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "core/recognition_engine.h"
+#include "core/rejection_calibration.h"
 #include "server/session_settings.h"
 
 namespace orbit::server {
@@ -23,9 +24,11 @@ class SessionEngine {
   // REQUIRES: settings came from ResolveSessionSettings.
   explicit SessionEngine(const SessionSettings& settings);
 
-  // One frame in, one update out. Throws std::invalid_argument as RecognitionEngine::Observe
-  // (the session's state is then unchanged).
+  // One frame in, one update out, decided with `calibration` (the calibrated rule's; may be
+  // null). Throws std::invalid_argument as RecognitionEngine::Observe (the session's state is
+  // then unchanged).
   FrameUpdate Observe(const std::shared_ptr<const ViewIndexSnapshot>& index,
+                      const std::shared_ptr<const RejectionCalibration>& calibration,
                       const QueryFrame& frame);
 
   void Reset();

@@ -125,7 +125,7 @@ void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
   if (status.ok()) {
     try {
       const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-      update = ToSessionUpdate(engine_->Observe(index, query), *index);
+      update = ToSessionUpdate(engine_->Observe(index, env_.calibrator.For(index), query), *index);
     } catch (const std::exception& e) {
       status = StatusFromException(e);
       reason = RefusalReasonOf(e);

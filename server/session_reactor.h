@@ -22,6 +22,7 @@
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "server/frame_rate_limit.h"
 #include "server/model_catalogue.h"
+#include "server/rejection_calibrator.h"
 #include "server/refusal_reason.h"
 #include "server/server_metrics.h"
 #include "server/session_engine.h"
@@ -34,6 +35,7 @@ namespace orbit::server {
 // What every session of a server shares.
 struct SessionEnvironment {
   ModelCatalogue& catalogue;
+  RejectionCalibrator& calibrator;  // the calibrated rule's thresholds for the catalogue's index
   WorkerPool& pool;       // Recognize calls of descriptors (a session's run in its reactions)
   WorkerPool& bulk_pool;  // image frames (decoding), so they never delay descriptor frames
   SessionRegistry& registry;

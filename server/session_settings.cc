@@ -83,6 +83,21 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
     if (!std::isfinite(th) || th <= 0) return InvalidArgument("options.threshold must be > 0");
     o.threshold = th;
   }
+  if (requested.rejection() != v1::REJECTION_UNSPECIFIED) {
+    const std::optional<RejectionRule> rule = FromProtoRejection(requested.rejection());
+    if (!rule) {
+      return InvalidArgument("options.rejection " + std::to_string(requested.rejection()) +
+                             " is not a rule (REJECTION_TH = 1, REJECTION_CALIBRATED = 2)");
+    }
+    o.rejection = *rule;
+  }
+  if (requested.has_false_accept_rate()) {
+    const double rate = requested.false_accept_rate();
+    if (!(rate > 0 && rate < 1)) {
+      return InvalidArgument("options.false_accept_rate must be in (0, 1)");
+    }
+    o.false_accept_rate = rate;
+  }
   if (auto s = CheckHmmCells(settings, limits); !s.ok()) return s;
   try {
     ValidateEngineOptions(o);
@@ -102,6 +117,8 @@ v1::SessionOptions DescribeSettings(const SessionSettings& settings, DescriptorV
   o.set_list_length(settings.options.list_length);
   o.set_hmm_states(settings.options.hmm_states);
   o.set_threshold(settings.options.threshold);
+  o.set_rejection(ToProtoRejection(settings.options.rejection));
+  o.set_false_accept_rate(settings.options.false_accept_rate);
   o.set_variant(ToProtoVariant(variant));
   return o;
 }

@@ -6,6 +6,8 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "core/angles.h"
 #include <nlohmann/json.hpp>
 
 #include "tests/support/client_test_support.h"
@@ -74,12 +76,16 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_EQ(last["candidates"][0]["name"], "obj2");
   EXPECT_EQ(last["candidates"][0]["id"], 2);
   EXPECT_EQ(last["decision"], "ACCEPT");
+  EXPECT_GT(last["confidence"].get<double>(), 0.5);
+  // Its latest frame shows obj2 at 90 degrees, between the enrolled 80 and 100.
+  EXPECT_LE(std::abs(AzimuthChange(last["pose"]["azimuth_deg"].get<double>(), 90)), 15) << lines.back();
 
   const auto text = RunCommand(orbit + "recognize" + at + frames);
   ASSERT_EQ(text.exit_code, 0) << text.err;
   const std::vector<std::string> text_lines = OutputLines(text.out);
   ASSERT_EQ(text_lines.size(), 4u);
-  EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     move ", 0), 0u) << text_lines[3];
+  EXPECT_EQ(text_lines[3].rfind("frame 3  ACCEPT     confidence ", 0), 0u) << text_lines[3];
+  EXPECT_NE(text_lines[3].find(" seen from "), std::string::npos) << text_lines[3];
   EXPECT_NE(text_lines[3].find(" obj2 (id 2) "), std::string::npos) << text_lines[3];
 
   // No --azimuth at all: a device without an orientation sensor, recognised from the images.

@@ -1,6 +1,7 @@
 // RecognitionSession against a real `orbit serve` process: streaming COIL-100 frames, updates by
 // blocking read and by callback, errors that end a session, and reconnection across a server
 // restart without losing or repeating a frame.
+#include <cmath>
 #include <csignal>
 #include <future>
 #include <mutex>
@@ -12,6 +13,7 @@
 #include "client/connection.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
+#include "core/angles.h"
 #include "core/cedd.h"
 #include "core/distortion.h"
 #include "core/product_pipeline.h"
@@ -85,6 +87,36 @@ TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
     }
     EXPECT_EQ(updates.back().candidates(0).name(), "obj" + std::to_string(object));
     EXPECT_EQ(updates.back().decision(), v1::DECISION_ACCEPT);
+  }
+}
+
+// The calibrated accept / unknown rule end to end: a sweep round an enrolled object ends ACCEPT,
+// confident, with the side of the object the camera faces; the same sweep round an object the
+// server has never seen ends UNKNOWN and not confident.
+TEST(RecognitionSession, TellsAnUnknownObjectFromAKnownOneAndSaysWhichSideItSees) {
+  ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  EnrollCoilObjects(connection, 1, 12);
+  for (const int object : {7, 60}) {
+    auto session = RecognitionSession::Open(connection, testing::TopK(3));
+    for (int k = 0; k < 8; ++k) PushSweepFrame(*session, object, k);
+    const std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 8);
+    EXPECT_TRUE(session->Close().ok());
+    ASSERT_EQ(updates.size(), 8u);
+    const v1::SessionUpdate& last = updates.back();
+    ASSERT_GT(last.candidates_size(), 0);
+    if (object == 7) {
+      EXPECT_EQ(last.candidates(0).name(), "obj7");
+      EXPECT_EQ(last.decision(), v1::DECISION_ACCEPT);
+      EXPECT_GT(last.confidence(), 0.9);
+      // The latest frame shows the object at 175 degrees (its views at 170 and 180 are enrolled).
+      ASSERT_TRUE(last.has_pose());
+      EXPECT_LE(std::abs(AzimuthChange(last.pose().azimuth_deg(), TrueAzimuth(7))), 15)
+          << last.pose().azimuth_deg();
+    } else {
+      EXPECT_EQ(last.decision(), v1::DECISION_UNKNOWN) << last.candidates(0).name();
+      EXPECT_LT(last.confidence(), 0.5);
+    }
   }
 }
 

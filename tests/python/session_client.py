@@ -122,9 +122,14 @@ def main():
                 check(update.timestamp_us == k, "update %d echoes timestamp %d" % (k, update.timestamp_us))
                 check(1 <= len(update.candidates) <= 2,
                       "update %d has %d candidates" % (k, len(update.candidates)))
-                print("frame %d: %s %s" % (k, recognition_pb2.Decision.Name(update.decision),
-                                          ", ".join("%s %.3f" % (c.name, c.score)
-                                                    for c in update.candidates)))
+                check(0 <= update.confidence <= 1,
+                      "update %d has confidence %f" % (k, update.confidence))
+                check(update.HasField("pose") and 0 <= update.pose.azimuth_deg < 360,
+                      "update %d has no pose in [0, 360)" % k)
+                print("frame %d: %s confidence %.2f pose %.0f deg %s" % (
+                    k, recognition_pb2.Decision.Name(update.decision), update.confidence,
+                    update.pose.azimuth_deg,
+                    ", ".join("%s %.3f" % (c.name, c.score) for c in update.candidates)))
             if updates and updates[-1].candidates:
                 top = updates[-1].candidates[0].name
                 check(top == "obj2", "top candidate after the last frame is %s, not obj2" % top)

@@ -1,0 +1,126 @@
+#include "evaluation/recognition_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <sstream>
+#include <stdexcept>
+
+#include "evaluation/evaluation_report.h"
+
+namespace orbit {
+namespace {
+
+std::string Percent(int count, int total) {
+  if (total == 0) return "-";
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1f", 100.0 * count / total);
+  return text;
+}
+
+std::string Degrees(double value) {
+  if (std::isnan(value)) return "-";
+  char text[16];
+  std::snprintf(text, sizeof text, "%.1f", value);
+  return text;
+}
+
+// The q-quantile of `values` (nearest rank), NaN when empty.
+double Quantile(std::vector<double> values, double q) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const auto rank = static_cast<std::size_t>(std::ceil(q * static_cast<double>(values.size())));
+  return values[std::clamp<std::size_t>(rank, 1, values.size()) - 1];
+}
+
+}  // namespace
+
+std::string RecognitionMarkdown(const EvaluationReport& report) {
+  std::ostringstream out;
+  out << "\n### Recognition (%): known queries right and accepted / rejected / accepted but "
+         "wrong; unknown queries rejected / accepted; pose error of known hits (degrees)\n\n"
+      << "| method | variant | distortion | n | known right+accepted | known rejected | "
+         "known accepted wrong | unknown rejected | unknown accepted | pose median | pose p90 |\n"
+      << "|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const EvaluationCell& cell : report.cells) {
+    int rejected_known = 0;
+    std::vector<double> pose_errors;
+    for (const QueryVerdict& verdict : cell.verdicts) {
+      if (verdict.known && verdict.decision == Decision::kUnknown) ++rejected_known;
+      if (!std::isnan(verdict.pose_error)) pose_errors.push_back(verdict.pose_error);
+    }
+    const int accepted_unknown = cell.unknown_trials - cell.rejected;
+    out << "| " << cell.method << " | " << VariantName(cell.variant) << " | "
+        << DistortionLabel(cell.distortion) << " | " << cell.n << " | "
+        << Percent(cell.accepted, cell.trials) << " | " << Percent(rejected_known, cell.trials)
+        << " | " << Percent(cell.accepted_wrong, cell.trials) << " | "
+        << Percent(cell.rejected, cell.unknown_trials) << " | "
+        << Percent(accepted_unknown, cell.unknown_trials) << " | "
+        << Degrees(Quantile(pose_errors, 0.5)) << " | " << Degrees(Quantile(pose_errors, 0.9))
+        << " |\n";
+  }
+  return out.str();
+}
+
+std::vector<ReliabilityBin> Reliability(const std::vector<const EvaluationCell*>& cells) {
+  std::vector<ReliabilityBin> bins(10);
+  std::vector<double> confidence_sum(10, 0);
+  for (int b = 0; b < 10; ++b) bins[b] = {b / 10.0, (b + 1) / 10.0, 0, 0, 0};
+  for (const EvaluationCell* cell : cells) {
+    for (const QueryVerdict& verdict : cell->verdicts) {
+      const int b = std::clamp(static_cast<int>(verdict.confidence * 10), 0, 9);
+      ++bins[b].updates;
+      bins[b].right += verdict.hit;
+      confidence_sum[b] += verdict.confidence;
+    }
+  }
+  for (int b = 0; b < 10; ++b) {
+    if (bins[b].updates > 0) bins[b].mean_confidence = confidence_sum[b] / bins[b].updates;
+  }
+  return bins;
+}
+
+std::string ReliabilityMarkdown(const EvaluationReport& report) {
+  std::map<std::string, std::vector<const EvaluationCell*>> by_method;
+  std::vector<std::string> order;
+  for (const EvaluationCell& cell : report.cells) {
+    const std::string key = cell.method + " on " + std::string(VariantName(cell.variant));
+    if (by_method.find(key) == by_method.end()) order.push_back(key);
+    by_method[key].push_back(&cell);
+  }
+  std::ostringstream out;
+  out << "\n### Reliability of the confidence: every update of known and unknown queries, all "
+         "distortions and n (right = a known query whose top-1 object is right)\n";
+  for (const std::string& key : order) {
+    out << "\n" << key << "\n\n| confidence | updates | mean confidence | right (%) |\n"
+        << "|---|---|---|---|\n";
+    for (const ReliabilityBin& bin : Reliability(by_method[key])) {
+      if (bin.updates == 0) continue;
+      char row[128];
+      std::snprintf(row, sizeof row, "| %.1f-%.1f | %d | %.3f | %s |\n", bin.low, bin.high,
+                    bin.updates, bin.mean_confidence, Percent(bin.right, bin.updates).c_str());
+      out << row;
+    }
+  }
+  return out.str();
+}
+
+void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
+  out << "method,variant,distortion,n,known,hit,decision,unknown_statistic,unknown_p_value,"
+         "confidence,pose_error,pose_spread\n";
+  char numbers[160];
+  for (const EvaluationCell& cell : report.cells) {
+    for (const QueryVerdict& v : cell.verdicts) {
+      std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g", v.unknown_statistic,
+                    v.unknown_p_value, v.confidence);
+      out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion << ','
+          << cell.n << ',' << v.known << ',' << v.hit << ',' << DecisionName(v.decision) << ','
+          << numbers << ',' << (std::isnan(v.pose_error) ? "" : Degrees(v.pose_error)) << ','
+          << (std::isnan(v.pose_spread) ? "" : Degrees(v.pose_spread)) << '\n';
+    }
+  }
+  if (!out) throw std::runtime_error("cannot write the verdicts");
+}
+
+}  // namespace orbit

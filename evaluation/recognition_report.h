@@ -1,0 +1,42 @@
+// The recognition reports of `orbit eval` (issue 12): what the accept / unknown decision, the
+// confidence and the pose estimate did, per method x variant x distortion x n, from the
+// per-query verdicts the runner keeps (EvaluationCell::verdicts).
+//
+//   known queries:   right and accepted / rejected / accepted but wrong (top-1 wrong)
+//   unknown queries: rejected / accepted
+//   pose: median and 90th percentile of the error of known hits, degrees
+//   reliability: confidence in bins of 0.1 against the share of those updates that were right
+//                (a right update: a known query whose top-1 object is right)
+//
+// Pure functions of the report; thread-safe.
+#pragma once
+
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "evaluation/evaluation_runner.h"
+
+namespace orbit {
+
+// The recognition table (one row per cell with queries) and the pose errors, as Markdown.
+std::string RecognitionMarkdown(const EvaluationReport& report);
+
+// One row per bin of confidence [b/10, (b+1)/10) over the updates of `cells`.
+struct ReliabilityBin {
+  double low = 0, high = 0;
+  int updates = 0;
+  int right = 0;
+  double mean_confidence = 0;
+};
+std::vector<ReliabilityBin> Reliability(const std::vector<const EvaluationCell*>& cells);
+
+// The reliability table of every method's cells pooled over distortions and n, as Markdown.
+std::string ReliabilityMarkdown(const EvaluationReport& report);
+
+// Every query's verdict as CSV: method,variant,distortion,n,known,hit,decision,
+// unknown_statistic,unknown_p_value,confidence,pose_error,pose_spread (empty pose fields when
+// not measured). Throws std::runtime_error when the stream fails.
+void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out);
+
+}  // namespace orbit
