@@ -25,7 +25,9 @@ struct ModelChange {
   std::int64_t seq = 0;  // increases with each write, in commit order; never reused
   ObjectId object_id = 0;
   ModelChangeKind kind = ModelChangeKind::kEnroll;
-  std::string committed_at;  // UTC, ISO 8601 with milliseconds, as ObjectSummary's times
+  // When the write recorded it, just before its commit: UTC, ISO 8601 with milliseconds, as
+  // ObjectSummary's times. For people; followers go by seq.
+  std::string committed_at;
 
   bool operator==(const ModelChange&) const = default;
 };

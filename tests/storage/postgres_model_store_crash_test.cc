@@ -1,7 +1,9 @@
-// kill -9 of a process in the middle of enrolling into the PostgreSQL store: the server rolls the
-// dead session's transaction back, so every object left is whole and logged once, and every
-// enrollment acknowledged before the kill is there.
+// Crashes around the PostgreSQL store. kill -9 of a process in the middle of enrolling: the server
+// rolls the dead session's transaction back, so every object left is whole and logged once, and
+// every enrollment acknowledged before the kill is there. A crash of the database server: every
+// acknowledged write is there after its restart.
 #include <cstdio>
+#include <filesystem>
 #include <set>
 #include <string>
 #include <thread>
@@ -70,6 +72,33 @@ TEST(PostgresStoreCrashTest, KillingAWriterMidEnrollmentLeavesOnlyWholeLoggedObj
     EXPECT_EQ(change.kind, ModelChangeKind::kEnroll);
     EXPECT_TRUE(store.Get(change.object_id).has_value()) << change.object_id;
   }
+}
+
+// The database server itself crashes (pg_ctl stop --mode immediate: no shutdown checkpoint,
+// the restart replays the write-ahead log) right after the store acknowledged two writes: both
+// are there after the restart, and the same store carries on with fresh connections. On a
+// private server: the shared one serves other tests meanwhile.
+TEST(PostgresStoreCrashTest, AcknowledgedWritesSurviveACrashOfTheDatabaseServer) {
+  const testing::ScratchDir scratch;
+  const std::filesystem::path folder = scratch / "cluster";
+  struct StopAtEnd {
+    std::filesystem::path folder;
+    ~StopAtEnd() { testing::PostgresTestCluster::Stop(folder); }
+  } stop_at_end{folder};
+  testing::PostgresTestCluster::Start(folder);
+  PostgresModelStore store("host=" + folder.string() + " user=orbit dbname=postgres");
+  const ObjectId id = store.Enroll(SyntheticObject("mug", 72));
+  store.Rename(id, "cup");
+
+  testing::PostgresTestCluster::Crash(folder);
+  testing::PostgresTestCluster::Restart(folder);
+
+  const std::optional<ObjectSummary> cup = store.Find("cup");
+  ASSERT_TRUE(cup.has_value());
+  EXPECT_EQ(cup->id, id);
+  EXPECT_EQ(cup->view_count, 72);
+  EXPECT_EQ(store.ChangesAfter(0).size(), 2u);
+  EXPECT_GT(store.Enroll(SyntheticObject("jar", 2)), id);
 }
 
 }  // namespace

@@ -91,7 +91,7 @@ std::string PgCtl() { return Program("pg_ctl"); }
 
 void PostgresTestCluster::Start(const std::filesystem::path& folder) {
   const std::string initdb = Program("initdb");
-  const std::string pg_ctl = PgCtl();
+  PgCtl();
   Program("postgres");
   Stop(folder);
   std::filesystem::create_directories(folder);
@@ -106,14 +106,26 @@ void PostgresTestCluster::Start(const std::filesystem::path& folder) {
     throw std::runtime_error("initdb failed in " + folder.string() + ":\n" +
                              FileText(folder / "commands.log"));
   }
+  Restart(folder);
+}
+
+void PostgresTestCluster::Restart(const std::filesystem::path& folder) {
   const std::string settings = "-c listen_addresses='' -c unix_socket_directories='" +
                                folder.string() +
                                "' -c fsync=off -c shared_buffers=16MB -c max_connections=200";
-  if (RunAsServerUser(folder, {pg_ctl, "start", "--pgdata", data, "--wait", "--timeout", "60",
-                               "--silent", "--log", (folder / "server.log").string(), "-o",
-                               settings}) != 0) {
+  if (RunAsServerUser(folder, {PgCtl(), "start", "--pgdata", (folder / "data").string(), "--wait",
+                               "--timeout", "60", "--silent", "--log",
+                               (folder / "server.log").string(), "-o", settings}) != 0) {
     throw std::runtime_error("PostgreSQL did not start in " + folder.string() + ":\n" +
                              FileText(folder / "commands.log") + FileText(folder / "server.log"));
+  }
+}
+
+void PostgresTestCluster::Crash(const std::filesystem::path& folder) {
+  if (RunAsServerUser(folder, {PgCtl(), "stop", "--pgdata", (folder / "data").string(), "--wait",
+                               "--silent", "--mode", "immediate"}) != 0) {
+    throw std::runtime_error("pg_ctl stop --mode immediate failed in " + folder.string() + ":\n" +
+                             FileText(folder / "commands.log"));
   }
 }
 
@@ -137,7 +149,12 @@ PostgresTestCluster& PostgresTestCluster::Shared() {
     }
     const std::filesystem::path folder = std::filesystem::temp_directory_path() /
                                          ("orbit_test_postgres_" + std::to_string(::getpid()));
-    Start(folder);
+    try {
+      Start(folder);
+    } catch (...) {
+      Stop(folder);  // a server that started too slowly, a half-made folder
+      throw;
+    }
     return PostgresTestCluster(folder, /*owned=*/true);
   }();
   return cluster;

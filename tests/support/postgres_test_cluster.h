@@ -33,6 +33,11 @@ class PostgresTestCluster {
   static void Start(const std::filesystem::path& folder);
   // Stops the cluster in `folder` (if running) and removes the folder. Never throws.
   static void Stop(const std::filesystem::path& folder);
+  // Stops the server in `folder` the way a crash would (pg_ctl stop --mode immediate: no
+  // shutdown checkpoint; the next start replays the write-ahead log), keeping its data.
+  static void Crash(const std::filesystem::path& folder);
+  // Starts the server of the cluster in `folder` again, after Crash. Throws as Start.
+  static void Restart(const std::filesystem::path& folder);
 
   // The cluster this process's tests use: the one in $ORBIT_TEST_POSTGRES, or one started in a
   // fresh temporary folder on the first call and stopped at exit.
