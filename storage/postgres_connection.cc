@@ -182,7 +182,9 @@ PostgresResult PostgresConnection::Check(PGresult* raw, std::string_view sql) {
                       "PostgreSQL refused `" + std::string(start) + "`");
 }
 
-void PostgresConnection::Execute(const std::string& sql) { Check(PQexec(connection_, sql.c_str()), sql); }
+void PostgresConnection::Execute(const std::string& sql) {
+  Check(PQexec(connection_, sql.c_str()), sql);
+}
 
 PostgresResult PostgresConnection::Query(const std::string& sql, const PostgresParams& params) {
   std::vector<const char*> values(params.values_.size());
