@@ -1,4 +1,5 @@
-// orbit serve: runs the recognition server on its embedded SQLite store until SIGTERM or SIGINT.
+// orbit serve: runs the recognition server on its embedded SQLite store, or on a PostgreSQL store
+// that several servers share, until SIGTERM or SIGINT.
 #include <pthread.h>
 #include <signal.h>
 
@@ -27,6 +28,10 @@ struct ServeOptions {
 
 int RunServe(ServeOptions& o) {
   server::ServerConfig& config = o.config;
+  if (o.database.empty() == config.store.empty()) {
+    throw CLI::ValidationError("serve", "give the model store: --db FILE (SQLite) or --store "
+                                        "postgresql://... (PostgreSQL), not both");
+  }
   config.database = o.database;
   if (!o.tokens.empty()) config.tokens_file = o.tokens;
   if (!o.tls_cert.empty()) config.tls_cert = o.tls_cert;
@@ -73,14 +78,19 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   server::ServerConfig& c = o->config;
   CLI::App* cmd = app.add_subcommand(
       "serve",
-      "Run the recognition server (gRPC) on an embedded SQLite model store, until SIGTERM or\n"
-      "SIGINT. Every option can also come from the environment (ORBIT_...) or from a config\n"
-      "file (--config FILE, `option = value` lines). Without --tokens the server accepts\n"
-      "anyone, so it listens on loopback only unless --allow-remote-without-tokens is given.");
+      "Run the recognition server (gRPC) on an embedded SQLite model store (--db), or on a\n"
+      "PostgreSQL one that replicas share (--store), until SIGTERM or SIGINT. Every option\n"
+      "can also come from the environment (ORBIT_...) or from a config file (--config FILE,\n"
+      "`option = value` lines). Without --tokens the server accepts anyone, so it listens on\n"
+      "loopback only unless --allow-remote-without-tokens is given.");
   cmd->set_config("--config", "", "read options from this TOML/INI file");
   cmd->add_option("--db", o->database, "the model store (SQLite file; created when missing)")
-      ->required()
       ->envname("ORBIT_DB");
+  cmd->add_option("--store", c.store,
+                  "a PostgreSQL model store instead of --db, which several servers may share:\n"
+                  "a libpq connection string, postgresql://USER:PASSWORD@HOST:PORT/DBNAME or\n"
+                  "\"host=... dbname=...\" (tables created in an empty schema; docs/storage.md)")
+      ->envname("ORBIT_STORE");
   cmd->add_option("--listen", c.listen, "HOST:PORT to serve on (port 0: any free port)")
       ->capture_default_str()
       ->envname("ORBIT_LISTEN");

@@ -18,6 +18,7 @@
 #include "server/server_metrics.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
+#include "storage/postgres_model_store.h"
 #include "storage/sqlite_model_store.h"
 #include "storage/view_index_loading.h"
 
@@ -47,6 +48,15 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerConfig& config)
   return grpc::SslServerCredentials(options);
 }
 
+// The PostgreSQL store when a connection string is given, else the SQLite file (created when
+// missing).
+std::unique_ptr<ModelStore> OpenModelStore(const ServerConfig& config) {
+  if (!config.store.empty()) return std::make_unique<PostgresModelStore>(config.store);
+  SqliteModelStoreOptions options;
+  options.create_if_missing = true;
+  return std::make_unique<SqliteModelStore>(config.database, options);
+}
+
 }  // namespace
 
 OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
@@ -60,9 +70,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
         " listen on 127.0.0.1, or pass --allow-remote-without-tokens if you really mean it");
   }
   metrics_ = std::make_unique<ServerMetrics>();
-  SqliteModelStoreOptions store_options;
-  store_options.create_if_missing = true;
-  store_ = std::make_unique<SqliteModelStore>(config_.database, store_options);
+  store_ = OpenModelStore(config_);
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
   catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
                                                 metrics_->store_writes());

@@ -5,6 +5,7 @@
 
 #include "api/engine_names.h"
 #include "core/product_pipeline.h"
+#include "storage/postgres_connection.h"
 
 namespace orbit::server {
 
@@ -28,13 +29,35 @@ void ValidateServerConfig(const ServerConfig& config) {
                                 std::to_string(config.limits.max_hmm_cells));
   }
   ValidateEngineOptions(config.session_defaults.options);
+  if (!config.store.empty()) {
+    try {
+      RedactedTarget(config.store);
+    } catch (const std::invalid_argument& e) {
+      throw std::invalid_argument(std::string("--store: ") + e.what());
+    }
+  }
 }
+
+namespace {
+
+// The model store as the start-up account names it: the password of a connection string never
+// appears.
+std::string DescribeStore(const ServerConfig& config) {
+  if (config.store.empty()) return "SQLite " + config.database.string();
+  try {
+    return "PostgreSQL " + RedactedTarget(config.store);
+  } catch (const std::invalid_argument&) {
+    return "PostgreSQL (an invalid connection string)";
+  }
+}
+
+}  // namespace
 
 std::string ServerConfig::Describe() const {
   const SessionSettings& d = session_defaults;
   std::ostringstream out;
   out << "orbit serve " << "configuration:\n"
-      << "  database            " << database.string() << "\n"
+      << "  model store         " << DescribeStore(*this) << "\n"
       << "  listen              " << listen << "\n"
       << "  access control      "
       << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"

@@ -13,6 +13,10 @@ namespace orbit::server {
 
 struct ServerConfig {
   std::filesystem::path database;           // the SQLite model store; created when missing
+  // A PostgreSQL model store instead (storage/postgres_model_store.h): a libpq connection
+  // string, postgresql://USER:PASSWORD@HOST:PORT/DBNAME or "host=... dbname=...". Several
+  // servers may share it. Empty: the SQLite store in `database`.
+  std::string store;
   std::string listen = "127.0.0.1:50051";   // HOST:PORT; port 0 picks a free port
   std::optional<std::filesystem::path> tokens_file;  // server/access_control.h
   std::optional<std::filesystem::path> tls_cert;     // PEM certificate chain (with tls_key)
@@ -44,7 +48,8 @@ struct ServerConfig {
 
 // The rules `orbit serve` checks at start-up, before anything is opened: the default session
 // must be one the server would admit (the HMM memory rule of session_settings.h, engine options
-// in range). Throws std::invalid_argument naming the option. OrbitServer calls it.
+// in range), and `store`, when given, must be a connection string. Throws std::invalid_argument
+// naming the option. OrbitServer calls it.
 void ValidateServerConfig(const ServerConfig& config);
 
 // True for 127.0.0.0/8, ::1 and "localhost" (HOST of a HOST:PORT address, brackets allowed).

@@ -1,9 +1,10 @@
 // ModelStore: where the server keeps its object models between runs (SPEC.md, "Service
 // behaviour": enrollment is atomic and durable).
 //
-// An abstract interface so that a networked database can replace the embedded SQLite store
-// (storage/sqlite_model_store.h) without touching core/ or server/. Every implementation keeps
-// the contracts written here.
+// An abstract interface so that a networked database (storage/postgres_model_store.h) can
+// replace the embedded SQLite store (storage/sqlite_model_store.h) without touching core/. Every
+// implementation keeps the contracts written here; tests/storage/model_store_test.cc checks
+// them on each.
 //
 // Thread safety: an implementation is safe for concurrent use from many threads without external
 // synchronisation. Writes are serialised (one writer); reads run beside them and see only whole,

@@ -20,6 +20,7 @@
 #include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "tests/support/postgres_test_cluster.h"
 #include "tests/support/server_process.h"
 #include "tests/support/test_data.h"
 
@@ -650,6 +651,45 @@ TEST(Server, AcknowledgedEnrollmentSurvivesKillNine) {
   EXPECT_EQ(list.objects(0).view_count(), 72);
   const auto session = client.Session(v1::SessionOptions(), {CoilFrame(90, 45, 0)});
   EXPECT_EQ(session.updates.at(0).candidates(0).name(), "obj90");
+}
+
+// ---- a PostgreSQL store shared by servers ----
+
+TEST(Server, PostgresStoreIsSharedByServersStartedOnIt) {
+  const testing::TestDatabase database;
+  ServerProcess first({.store = database.conninfo()});
+  v1::ObjectInfo info;
+  ASSERT_TRUE(Client(first.address()).Enroll("obj92", 92, &info).ok());
+
+  ServerProcess second({.store = database.conninfo()});  // indexes what the first stored
+  Client client(second.address());
+  v1::ListObjectsResponse list;
+  ASSERT_TRUE(client.List(&list).ok());
+  ASSERT_EQ(list.objects_size(), 1);
+  EXPECT_EQ(list.objects(0).view_count(), 72);
+  const auto session = client.Session(v1::SessionOptions(), {CoilFrame(92, 45, 0)});
+  ASSERT_TRUE(session.status.ok()) << session.status.error_message();
+  EXPECT_EQ(session.updates.at(0).candidates(0).name(), "obj92");
+  EXPECT_NE(second.Log().find("model store         PostgreSQL user=orbit dbname=" +
+                              database.name()),
+            std::string::npos)
+      << second.Log();
+}
+
+TEST(Server, PostgresStoreOutOfReachStopsTheStartWithAClearMessage) {
+  const testing::ScratchDir scratch;  // no server's socket in it
+  const std::string store = "postgresql://orbit:s3cret@/models?host=" + scratch.path().string();
+  const auto refused =
+      testing::StartServerExpectingRefusal({"serve", "--store", store, "--listen", "127.0.0.1:0"});
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_NE(refused.log.find("cannot connect to PostgreSQL"), std::string::npos) << refused.log;
+  EXPECT_NE(refused.log.find("host=" + scratch.path().string()), std::string::npos);
+  EXPECT_EQ(refused.log.find("s3cret"), std::string::npos) << refused.log;
+
+  const auto both = testing::StartServerExpectingRefusal(
+      {"serve", "--store", store, "--db", (scratch.path() / "models.db").string()});
+  EXPECT_EQ(both.exit_code, 2);
+  EXPECT_NE(both.log.find("--db FILE (SQLite) or --store"), std::string::npos) << both.log;
 }
 
 TEST(Server, HalfSentEnrollmentLeavesNothing) {

@@ -50,5 +50,30 @@ TEST(ServerConfigTest, DescribeNamesEngineAndLimits) {
   EXPECT_NE(text.find("access control      none (loopback only)"), std::string::npos) << text;
 }
 
+TEST(ServerConfigTest, TheStoreIsNamedWithoutItsPasswordAndAMalformedOneIsRefused) {
+  ServerConfig config;
+  config.database = "/var/lib/orbit/models.db";
+  EXPECT_NE(config.Describe().find("model store         SQLite /var/lib/orbit/models.db\n"),
+            std::string::npos)
+      << config.Describe();
+
+  config.store = "postgresql://orbit:s3cret@db.example/models";
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  const std::string text = config.Describe();
+  EXPECT_NE(text.find("model store         PostgreSQL user=orbit dbname=models host=db.example\n"),
+            std::string::npos)
+      << text;
+  EXPECT_EQ(text.find("s3cret"), std::string::npos) << text;
+
+  config.store = "host=db.example dbname";
+  try {
+    ValidateServerConfig(config);
+    ADD_FAILURE() << "accepted a malformed connection string";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_EQ(std::string(e.what()).rfind("--store: invalid PostgreSQL connection string", 0), 0u)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace orbit::server

@@ -1,8 +1,6 @@
 // kill -9 in the middle of writing: the store reopens intact, every object in it is whole, and
 // every write that was acknowledged before the kill is there (SPEC.md, "Service behaviour":
 // "when the server says OK, the object survives a kill -9").
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <chrono>
@@ -16,76 +14,18 @@
 #include <gtest/gtest.h>
 
 #include "storage/sqlite_model_store.h"
+#include "tests/support/child_process.h"
 #include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
 
+using testing::Acknowledged;
+using testing::Child;
 using testing::RawDatabase;
 using testing::ScratchDir;
 using testing::SyntheticObject;
-
-// A child process whose stdout the test reads line by line, to be killed with SIGKILL.
-class Child {
- public:
-  // Runs `body` in a forked child with stdout on a pipe; `body` returns the exit status.
-  template <typename Body>
-  explicit Child(Body body) {
-    int fds[2];
-    if (::pipe(fds) != 0) throw std::runtime_error("pipe failed");
-    std::fflush(nullptr);
-    pid_ = ::fork();
-    if (pid_ < 0) throw std::runtime_error("fork failed");
-    if (pid_ == 0) {
-      ::close(fds[0]);
-      ::dup2(fds[1], STDOUT_FILENO);
-      ::close(fds[1]);
-      ::_exit(body());
-    }
-    ::close(fds[1]);
-    out_ = ::fdopen(fds[0], "r");
-  }
-  ~Child() {
-    if (pid_ > 0 && !reaped_) {
-      ::kill(pid_, SIGKILL);
-      ::waitpid(pid_, nullptr, 0);
-    }
-    if (out_ != nullptr) std::fclose(out_);
-  }
-
-  // The next line the child printed, without "\n"; "" at end of output.
-  std::string ReadLine() {
-    std::string line;
-    for (int c = std::fgetc(out_); c != EOF && c != '\n'; c = std::fgetc(out_)) line += char(c);
-    return line;
-  }
-
-  // SIGKILL, then the lines printed before it. Returns false when the child had already exited
-  // (the kill came too late to be a crash).
-  bool Kill(std::vector<std::string>& rest) {
-    const bool running = ::kill(pid_, SIGKILL) == 0;
-    int status = 0;
-    ::waitpid(pid_, &status, 0);
-    reaped_ = true;
-    for (std::string line = ReadLine(); !line.empty(); line = ReadLine()) rest.push_back(line);
-    return running && WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL;
-  }
-
- private:
-  pid_t pid_ = -1;
-  bool reaped_ = false;
-  FILE* out_ = nullptr;
-};
-
-// The names in lines "enrolled NAME ...".
-std::set<std::string> Acknowledged(const std::vector<std::string>& lines) {
-  std::set<std::string> names;
-  for (const std::string& line : lines) {
-    if (line.rfind("enrolled ", 0) == 0) names.insert(line.substr(9, line.find(' ', 9) - 9));
-  }
-  return names;
-}
 
 // The checks after a crash, on the file as the next process finds it: SQLite's own integrity
 // check, no view without its object, every object with all `views_per_object`, and every

@@ -69,8 +69,13 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   log_file_ = temp_dir_ / "server.log";
   owns_database_ = !options.database.has_value();
   database_ = options.database.value_or(temp_dir_ / "models.db");
-  std::vector<std::string> args = {"serve", "--db", database_.string(), "--listen", options.listen,
-                                   "--workers", std::to_string(options.workers)};
+  std::vector<std::string> args = {"serve", "--listen", options.listen, "--workers",
+                                   std::to_string(options.workers)};
+  if (options.store) {
+    args.insert(args.end(), {"--store", *options.store});
+  } else {
+    args.insert(args.end(), {"--db", database_.string()});
+  }
   if (options.tokens_file) args.insert(args.end(), {"--tokens", options.tokens_file->string()});
   if (options.tls_cert) args.insert(args.end(), {"--tls-cert", options.tls_cert->string()});
   if (options.tls_key) args.insert(args.end(), {"--tls-key", options.tls_key->string()});

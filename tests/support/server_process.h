@@ -21,6 +21,8 @@ namespace orbit::testing {
 struct ServerProcessOptions {
   // The model store; a fresh file in a temporary folder when unset (removed afterwards).
   std::optional<std::filesystem::path> database = std::nullopt;
+  // A PostgreSQL model store (`--store`, a connection string) instead of the SQLite file.
+  std::optional<std::string> store = std::nullopt;
   std::string listen = "127.0.0.1:0";  // port 0: the server picks a free one
   int workers = 2;  // --workers
   std::optional<std::filesystem::path> tokens_file = std::nullopt;

@@ -1,5 +1,6 @@
-// What the storage tests share: synthetic object models (scratch folders: test_data.h), and a raw SQLite
-// connection to look at a store's file from outside the store.
+// What the storage tests share: synthetic object models (scratch folders: test_data.h), the
+// StoreError a call throws, and a raw SQLite connection to look at a store's file from outside
+// the store.
 #pragma once
 
 
@@ -8,12 +9,14 @@
 #include <random>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <sqlite3.h>
 
 #include "core/object_model.h"
 #include "storage/model_store.h"
+#include "storage/store_error.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::testing {
@@ -37,6 +40,18 @@ inline Enrollment SyntheticObject(const std::string& name, int view_count, int s
     enrollment.views.push_back(SyntheticView(seed + f, 360.0 * f / view_count));
   }
   return enrollment;
+}
+
+// The StoreError code and message `call` throws; fails the test when it throws none.
+template <typename Call>
+std::pair<StoreError::Code, std::string> StoreErrorOf(Call call) {
+  try {
+    call();
+  } catch (const StoreError& e) {
+    return {e.code(), e.what()};
+  }
+  ADD_FAILURE() << "no StoreError thrown";
+  return {StoreError::Code::kInternal, ""};
 }
 
 // A plain SQLite connection to a store's file, bypassing the store: to count rows, check

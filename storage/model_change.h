@@ -1,0 +1,35 @@
+// ModelChange: one committed write of a shared model store, as its change log records it
+// (storage/postgres_model_store.h: the table model_changes). Replicas of the server follow the
+// log to learn what other replicas wrote.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "core/object_model.h"
+
+namespace orbit {
+
+enum class ModelChangeKind { kEnroll, kAddViews, kDelete, kRename };
+
+// The kind's name in the change log: "enroll", "add_views", "delete" or "rename".
+std::string_view ModelChangeKindName(ModelChangeKind kind);
+
+// Inverse of ModelChangeKindName; nullopt for any other text.
+std::optional<ModelChangeKind> ParseModelChangeKind(std::string_view name);
+
+struct ModelChange {
+  std::int64_t seq = 0;  // increases with each write, in commit order; never reused
+  ObjectId object_id = 0;
+  ModelChangeKind kind = ModelChangeKind::kEnroll;
+  // When the write recorded it, just before its commit: UTC, ISO 8601 with milliseconds, as
+  // ObjectSummary's times. For people; followers go by seq.
+  std::string committed_at;
+
+  bool operator==(const ModelChange&) const = default;
+};
+
+}  // namespace orbit

@@ -1,0 +1,390 @@
+#include "storage/postgres_model_store.h"
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+#include "core/angles.h"
+#include "storage/model_validation.h"
+#include "storage/postgres_connection.h"
+#include "storage/postgres_schema.h"
+#include "storage/postgres_transaction.h"
+#include "storage/store_error.h"
+
+namespace orbit {
+namespace {
+
+// A timestamptz column as ObjectSummary's text: UTC, ISO 8601 with milliseconds.
+#define ORBIT_PG_TIME(column) \
+  "to_char(" column " AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
+
+// The columns SummaryFromRow reads, in order.
+#define ORBIT_PG_SUMMARY_COLUMNS                                         \
+  "o.id, o.name, o.variant, " ORBIT_PG_TIME("o.created_at") ", "        \
+      ORBIT_PG_TIME("o.updated_at") ", o.metadata, "                    \
+      "(SELECT count(*) FROM views v WHERE v.object_id = o.id)"
+
+DescriptorVariant VariantFromColumn(const std::string& text, ObjectId id) {
+  const std::optional<DescriptorVariant> variant = ParseVariant(text);
+  if (!variant) {
+    throw StoreError(StoreError::Code::kCorrupt, "object " + std::to_string(id) +
+                                                     " has an unknown descriptor variant \"" +
+                                                     text + "\"");
+  }
+  return *variant;
+}
+
+ObjectSummary SummaryFromRow(const PostgresResult& rows, int row) {
+  ObjectSummary summary;
+  summary.id = rows.Int64(row, 0);
+  summary.name = rows.Text(row, 1);
+  summary.variant = VariantFromColumn(rows.Text(row, 2), summary.id);
+  summary.created_at = rows.Text(row, 3);
+  summary.updated_at = rows.Text(row, 4);
+  summary.metadata = rows.Text(row, 5);
+  summary.view_count = rows.Int64(row, 6);
+  return summary;
+}
+
+// The view in columns first_column.. of `row`: azimuth, elevation, descriptor, typical distance.
+ModelView ViewFromRow(const PostgresResult& rows, int row, int first_column, ObjectId object) {
+  ModelView view;
+  view.azimuth = rows.Double(row, first_column);
+  if (!rows.IsNull(row, first_column + 1)) view.elevation = rows.Double(row, first_column + 1);
+  const std::string descriptor = rows.Bytes(row, first_column + 2);
+  try {
+    view.descriptor = DescriptorFromBytes(
+        {reinterpret_cast<const std::uint8_t*>(descriptor.data()), descriptor.size()});
+  } catch (const std::invalid_argument& e) {
+    throw StoreError(StoreError::Code::kCorrupt,
+                     "a view of object " + std::to_string(object) + ": " + e.what());
+  }
+  view.typical_distance = rows.Double(row, first_column + 3);
+  return view;
+}
+
+StoreError NotFound(ObjectId id) {
+  return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
+}
+
+StoreError NameTaken(std::string_view name, ObjectId owner) {
+  return StoreError(StoreError::Code::kAlreadyExists,
+                    "an object named \"" + std::string(name) + "\" already exists (id " +
+                        std::to_string(owner) + ")");
+}
+
+// The id of the object named `name`, if any.
+std::optional<ObjectId> FindId(PostgresConnection& connection, std::string_view name) {
+  const PostgresResult found =
+      connection.Query("SELECT id FROM objects WHERE name = $1", PostgresParams().Add(name));
+  if (found.rows() == 0) return std::nullopt;
+  return found.Int64(0, 0);
+}
+
+// Appends the change to the log and tells the listeners, in the caller's write transaction (the
+// notification is delivered when it commits).
+void RecordChange(PostgresConnection& connection, ObjectId id, ModelChangeKind kind) {
+  connection.Query(std::string("WITH change AS (INSERT INTO model_changes (object_id, kind) "
+                               "VALUES ($1, $2) RETURNING seq) "
+                               "SELECT pg_notify('") +
+                       kModelChangesChannel + "', seq::text) FROM change",
+                   PostgresParams().Add(id).Add(ModelChangeKindName(kind)));
+}
+
+}  // namespace
+
+// A connection on loan from the store's pool for the span of one call; back to the pool when
+// it is fit for reuse (up, outside any transaction), closed otherwise.
+class PostgresModelStore::Lease {
+ public:
+  explicit Lease(PostgresModelStore& store) : store_(store) {
+    for (;;) {
+      {
+        std::lock_guard lock(store_.pool_mutex_);
+        if (store_.idle_.empty()) break;
+        connection_ = std::move(store_.idle_.back());
+        store_.idle_.pop_back();
+      }
+      if (connection_->StillOpen()) break;
+      connection_.reset();  // closed by the server while idle (a restart): try the next
+    }
+    if (!connection_) {
+      connection_ = std::make_unique<PostgresConnection>(
+          store_.conninfo_, store_.options_.busy_timeout.count());
+    }
+  }
+  ~Lease() {
+    if (!connection_->Reusable()) return;  // closed here; the next call connects afresh
+    std::lock_guard lock(store_.pool_mutex_);
+    if (store_.idle_.size() < static_cast<std::size_t>(store_.options_.max_idle_connections)) {
+      store_.idle_.push_back(std::move(connection_));
+    }
+  }
+  Lease(const Lease&) = delete;
+  Lease& operator=(const Lease&) = delete;
+
+  PostgresConnection& operator*() const { return *connection_; }
+
+ private:
+  PostgresModelStore& store_;
+  std::unique_ptr<PostgresConnection> connection_;
+};
+
+PostgresModelStore::PostgresModelStore(const std::string& conninfo,
+                                       const PostgresModelStoreOptions& options)
+    : conninfo_(conninfo), target_(RedactedTarget(conninfo)), options_(options) {
+  if (options_.max_idle_connections < 0) {
+    throw std::invalid_argument("max_idle_connections must not be negative");
+  }
+  try {
+    Lease lease(*this);
+    MigratePostgresSchema(*lease);
+  } catch (const StoreError& e) {
+    // Most messages name the target already ("cannot connect to PostgreSQL <target>: ...").
+    const std::string what = e.what();
+    throw StoreError(e.code(), what.find(target_) != std::string::npos
+                                   ? "cannot open model store: " + what
+                                   : "cannot open model store " + target_ + ": " + what);
+  }
+}
+
+PostgresModelStore::~PostgresModelStore() = default;
+
+ObjectId PostgresModelStore::Enroll(const Enrollment& enrollment) {
+  ValidateObjectName(enrollment.name);
+  ValidateViews(enrollment.views, enrollment.thumbnails);
+  ValidateMetadata(enrollment.metadata);
+
+  std::lock_guard lock(write_mutex_);
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
+  if (const std::optional<ObjectId> owner = FindId(connection, enrollment.name)) {
+    throw NameTaken(enrollment.name, *owner);
+  }
+  const ObjectId id =
+      connection
+          .Query("INSERT INTO objects (name, variant, created_at, updated_at, metadata) "
+                 "VALUES ($1, $2, now(), now(), $3) RETURNING id",
+                 PostgresParams()
+                     .Add(std::string_view(enrollment.name))
+                     .Add(VariantName(enrollment.variant))
+                     .Add(std::string_view(enrollment.metadata)))
+          .Int64(0, 0);
+  InsertViews(connection, id, enrollment.views, enrollment.thumbnails);
+  RecordChange(connection, id, ModelChangeKind::kEnroll);
+  transaction.Commit();
+  return id;
+}
+
+void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views,
+                                  const std::vector<std::string>& thumbnails) {
+  ValidateViews(views, thumbnails);
+
+  std::lock_guard lock(write_mutex_);
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
+  const PostgresResult count = connection.Query(
+      "SELECT (SELECT count(*) FROM views WHERE object_id = $1) FROM objects WHERE id = $1",
+      PostgresParams().Add(id));
+  if (count.rows() == 0) throw NotFound(id);
+  const auto existing = static_cast<std::size_t>(count.Int64(0, 0));
+  if (existing + views.size() > kMaxViewsPerObject) {
+    throw std::invalid_argument("object " + std::to_string(id) + " has " +
+                                std::to_string(existing) + " views; " +
+                                std::to_string(views.size()) + " more would exceed the limit of " +
+                                std::to_string(kMaxViewsPerObject) + " per object");
+  }
+  InsertViews(connection, id, views, thumbnails);
+  connection.Query("UPDATE objects SET updated_at = now() WHERE id = $1",
+                   PostgresParams().Add(id));
+  RecordChange(connection, id, ModelChangeKind::kAddViews);
+  transaction.Commit();
+}
+
+void PostgresModelStore::InsertViews(PostgresConnection& connection, ObjectId id,
+                                     const std::vector<ModelView>& views,
+                                     const std::vector<std::string>& thumbnails) {
+  // One statement for all the views (at most kMaxViewsPerObject x 6 parameters, far below
+  // PostgreSQL's 65535): one round trip, however many views.
+  constexpr int kColumns = 6;
+  std::string sql =
+      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, "
+      "thumbnail) VALUES ";
+  PostgresParams params;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const ModelView& view = views[i];
+    const int first = static_cast<int>(i) * kColumns + 1;
+    sql += i == 0 ? "(" : ", (";
+    for (int c = 0; c < kColumns; ++c) sql += (c == 0 ? "$" : ", $") + std::to_string(first + c);
+    sql += ")";
+    params.Add(id).Add(NormaliseAzimuth(view.azimuth));
+    if (view.elevation) {
+      params.Add(*view.elevation);
+    } else {
+      params.AddNull();
+    }
+    params.AddBytes(view.descriptor).Add(view.typical_distance);
+    if (i < thumbnails.size() && !thumbnails[i].empty()) {
+      const std::string& thumbnail = thumbnails[i];
+      params.AddBytes({reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
+    } else {
+      params.AddNull();
+    }
+  }
+  connection.Query(sql, params);
+}
+
+void PostgresModelStore::Delete(ObjectId id) {
+  std::lock_guard lock(write_mutex_);
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
+  // The views go with it: ON DELETE CASCADE.
+  if (connection.Query("DELETE FROM objects WHERE id = $1 RETURNING id", PostgresParams().Add(id))
+          .rows() == 0) {
+    throw NotFound(id);
+  }
+  RecordChange(connection, id, ModelChangeKind::kDelete);
+  transaction.Commit();
+}
+
+void PostgresModelStore::Rename(ObjectId id, std::string_view new_name) {
+  ValidateObjectName(new_name);
+
+  std::lock_guard lock(write_mutex_);
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
+  if (const std::optional<ObjectId> owner = FindId(connection, new_name)) {
+    if (*owner == id) return;  // already so named: nothing written, nothing logged
+    throw NameTaken(new_name, *owner);
+  }
+  if (connection
+          .Query("UPDATE objects SET name = $2, updated_at = now() WHERE id = $1 RETURNING id",
+                 PostgresParams().Add(id).Add(new_name))
+          .rows() == 0) {
+    throw NotFound(id);
+  }
+  RecordChange(connection, id, ModelChangeKind::kRename);
+  transaction.Commit();
+}
+
+std::vector<ObjectSummary> PostgresModelStore::List(const ListRequest& request) {
+  if (request.limit < 1 || request.limit > kMaxListLimit) {
+    throw std::invalid_argument("list limit " + std::to_string(request.limit) +
+                                " is outside 1.." + std::to_string(kMaxListLimit));
+  }
+  Lease lease(*this);
+  // One statement, one snapshot; pages continue after the last id given, so no object is
+  // listed twice and none present throughout is skipped.
+  const PostgresResult rows = (*lease).Query(
+      "SELECT " ORBIT_PG_SUMMARY_COLUMNS
+      " FROM objects o WHERE o.id > $1 ORDER BY o.id LIMIT $2",
+      PostgresParams().Add(request.after_id).Add(std::int64_t{request.limit}));
+  std::vector<ObjectSummary> page;
+  for (int row = 0; row < rows.rows(); ++row) page.push_back(SummaryFromRow(rows, row));
+  return page;
+}
+
+std::optional<StoredObject> PostgresModelStore::Get(ObjectId id) {
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction snapshot(connection, PostgresTransaction::Mode::kSnapshot);
+  const PostgresResult found = connection.Query(
+      "SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id = $1",
+      PostgresParams().Add(id));
+  if (found.rows() == 0) return std::nullopt;
+  StoredObject object;
+  object.summary = SummaryFromRow(found, 0);
+  const PostgresResult views = connection.Query(
+      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
+      "WHERE object_id = $1 ORDER BY azimuth, id",
+      PostgresParams().Add(id));
+  for (int row = 0; row < views.rows(); ++row) {
+    object.views.push_back(ViewFromRow(views, row, 0, id));
+    object.thumbnails.push_back(views.Bytes(row, 4));
+  }
+  snapshot.Commit();
+  return object;
+}
+
+std::optional<ObjectSummary> PostgresModelStore::Find(std::string_view name) {
+  Lease lease(*this);
+  const PostgresResult found = (*lease).Query(
+      "SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.name = $1",
+      PostgresParams().Add(name));
+  if (found.rows() == 0) return std::nullopt;
+  return SummaryFromRow(found, 0);
+}
+
+std::vector<ObjectModel> PostgresModelStore::LoadAll() {
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction snapshot(connection, PostgresTransaction::Mode::kSnapshot);
+  std::vector<ObjectModel> models;
+  std::unordered_map<ObjectId, std::size_t> position;  // object id -> index in models
+  {
+    const PostgresResult objects =
+        connection.Query("SELECT id, name, variant FROM objects ORDER BY id");
+    models.reserve(objects.rows());
+    for (int row = 0; row < objects.rows(); ++row) {
+      ObjectModel& model = models.emplace_back();
+      model.id = objects.Int64(row, 0);
+      model.name = objects.Text(row, 1);
+      model.variant = VariantFromColumn(objects.Text(row, 2), model.id);
+      position.emplace(model.id, models.size() - 1);
+    }
+  }
+  {
+    // Ordered as Get orders them; the snapshot guarantees every view's object was read above.
+    const PostgresResult views = connection.Query(
+        "SELECT object_id, azimuth, elevation, descriptor, typical_distance FROM views "
+        "ORDER BY object_id, azimuth, id");
+    for (int row = 0; row < views.rows(); ++row) {
+      const ObjectId object = views.Int64(row, 0);
+      models[position.at(object)].views.push_back(ViewFromRow(views, row, 1, object));
+    }
+  }
+  snapshot.Commit();
+  return models;
+}
+
+void PostgresModelStore::Backup(const std::filesystem::path& destination) {
+  throw StoreError(StoreError::Code::kIncompatible,
+                   "cannot back up " + target_ + " to " + destination.string() +
+                       ": a PostgreSQL model store is backed up with pg_dump "
+                       "(pg_dump --format=custom, restored with pg_restore), which keeps ids, "
+                       "id sequences and the change log");
+}
+
+std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq, int limit) {
+  if (limit < 1 || limit > kMaxListLimit) {
+    throw std::invalid_argument("change limit " + std::to_string(limit) + " is outside 1.." +
+                                std::to_string(kMaxListLimit));
+  }
+  Lease lease(*this);
+  const PostgresResult rows = (*lease).Query(
+      "SELECT seq, object_id, kind, " ORBIT_PG_TIME("committed_at")
+      " FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2",
+      PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  std::vector<ModelChange> changes;
+  for (int row = 0; row < rows.rows(); ++row) {
+    const std::optional<ModelChangeKind> kind = ParseModelChangeKind(rows.Text(row, 2));
+    if (!kind) {
+      throw StoreError(StoreError::Code::kCorrupt, "change " + rows.Text(row, 0) +
+                                                       " has an unknown kind \"" +
+                                                       rows.Text(row, 2) + "\"");
+    }
+    changes.push_back({.seq = rows.Int64(row, 0),
+                       .object_id = rows.Int64(row, 1),
+                       .kind = *kind,
+                       .committed_at = rows.Text(row, 3)});
+  }
+  return changes;
+}
+
+}  // namespace orbit
