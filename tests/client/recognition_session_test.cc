@@ -127,7 +127,7 @@ TEST(RecognitionSession, RecognisesFramesWithoutAzimuth) {
   const Connection connection(testing::At(server.address()));
   EnrollCoilObjects(connection, 1, 5);
   std::vector<v1::SessionUpdate> last;
-  for (const std::vector<int> order : {std::vector<int>{0, 1, 2, 3, 4, 5}, {5, 3, 1, 0, 4, 2}}) {
+  for (const std::vector<int>& order : {std::vector<int>{0, 1, 2, 3, 4, 5}, {5, 3, 1, 0, 4, 2}}) {
     auto session = RecognitionSession::Open(connection, testing::TopK(3));
     for (const int k : order) {
       session->Push(CoilImage(4, static_cast<int>(TrueAzimuth(k))), std::nullopt);
