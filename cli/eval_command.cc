@@ -57,6 +57,7 @@ struct EvalOptions {
   std::string rejection = std::string(RejectionRuleName(EngineOptions{}.rejection));
   double false_accept_rate = EngineOptions{}.false_accept_rate;
   std::string verdicts;
+  std::string recognition_plot;
   double orientation_weight = EngineOptions{}.orientation_weight;
   int list_length = EngineOptions{}.list_length;
   int hmm_states = EngineOptions{}.hmm_states;
@@ -139,6 +140,9 @@ int RunEval(const EvalOptions& o) {
       std::ofstream csv(o.csv);
       if (csv) sweeps.empty() ? WriteCsv(report, csv) : WriteSweepCsv(report, sweeps, csv);
       if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
+    }
+    if (!o.recognition_plot.empty()) {
+      WritePng(DrawLineFigure(RecognitionCurves(report)), o.recognition_plot);
     }
     if (!o.verdicts.empty()) {
       std::ofstream verdicts(o.verdicts);
@@ -271,6 +275,10 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--verdicts", o->verdicts,
                       "also write every query's answer as CSV (decision, unknown statistic, "
                       "p-value, confidence, pose error)");
+  command->add_option("--recognition-plot", o->recognition_plot,
+                      "with --unknown-objects: also draw known queries right and accepted "
+                      "against unknown queries accepted as the target false-accept rate sweeps "
+                      "0.001..1 (PNG)");
   command->add_option("--orientation-weight", o->orientation_weight, "w of vci's orientation term, per radian")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();

@@ -190,7 +190,7 @@ FrameUpdate RecognitionEngine::Answer() {
   Complete(*index_, window_, winner);
   const IndexedObject* runner_up = ordered > 1 ? assessments[1].object : nullptr;
   update.unknown_statistic = UnknownStatistic(window_, *winner.object, runner_up);
-  update.confidence = Confidence(update.unknown_statistic);
+  update.confidence = Confidence(update.unknown_statistic, static_cast<int>(window_.size()));
   const bool calibrated = calibration_ != nullptr && calibration_->calibrated();
   const int frames = static_cast<int>(window_.size());
   if (calibrated) {

@@ -157,7 +157,7 @@ cv::Mat DrawLineFigure(const LineFigure& figure) {
     }
     cv::rectangle(image, {left, top}, {right, bottom}, kBlack, 1);
     PutCentred(image, panel.x_label, (left + right) / 2, bottom + 40, 0.45);
-    PutVertical(image, "hit rate (%)", {panel_x + 16, (top + bottom) / 2}, 0.45);
+    PutVertical(image, panel.y_label, {panel_x + 16, (top + bottom) / 2}, 0.45);
 
     for (const LineSeries& line : panel.series) {
       const int m = static_cast<int>(std::find(series.begin(), series.end(), line.name) -

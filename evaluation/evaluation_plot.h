@@ -26,6 +26,7 @@ struct LineSeries {
 struct LinePanel {
   std::string title;
   std::string x_label;
+  std::string y_label = "hit rate (%)";
   std::vector<std::pair<double, std::string>> ticks;  // (x, label), ascending x: the axis' span
   std::vector<LineSeries> series;
 };

@@ -106,6 +106,46 @@ std::string ReliabilityMarkdown(const EvaluationReport& report) {
   return out.str();
 }
 
+LineFigure RecognitionCurves(const EvaluationReport& report) {
+  static constexpr double kTargets[] = {0.001, 0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3,
+                                        0.4,   0.5,  0.7,  0.85, 1.0};
+  LineFigure figure;
+  figure.title = "Known queries right and accepted against unknown queries accepted, as the "
+                 "target false-accept rate goes from 0.001 to 1";
+  std::map<std::string, std::size_t> panel_of;
+  for (const EvaluationCell& cell : report.cells) {
+    if (cell.trials == 0 || cell.unknown_trials == 0) continue;
+    const std::string title =
+        std::string(VariantName(cell.variant)) + ", " + DistortionLabel(cell.distortion);
+    auto [at, added] = panel_of.emplace(title, figure.panels.size());
+    if (added) {
+      LinePanel& panel = figure.panels.emplace_back();
+      panel.title = title;
+      panel.x_label = "unknown queries accepted (%)";
+      panel.y_label = "known right and accepted (%)";
+      for (int x = 0; x <= 100; x += 25) panel.ticks.push_back({x / 100.0, std::to_string(x)});
+    }
+    LineSeries series{cell.method + " n=" + std::to_string(cell.n), {}};
+    for (const double target : kTargets) {
+      int right = 0, accepted_unknown = 0;
+      for (const QueryVerdict& v : cell.verdicts) {
+        const bool accepted = v.unknown_p_value <= target;
+        if (v.known) right += v.hit && accepted;
+        if (!v.known) accepted_unknown += accepted;
+      }
+      series.points.push_back({static_cast<double>(accepted_unknown) / cell.unknown_trials,
+                               static_cast<double>(right) / cell.trials});
+    }
+    figure.panels[at->second].series.push_back(std::move(series));
+  }
+  if (figure.panels.empty()) {
+    throw std::invalid_argument("the recognition curves need known and unknown queries "
+                                "(orbit eval --unknown-objects)");
+  }
+  figure.columns = static_cast<int>(std::min<std::size_t>(figure.panels.size(), 3));
+  return figure;
+}
+
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
   out << "method,variant,distortion,n,known,hit,decision,unknown_statistic,unknown_p_value,"
          "confidence,pose_error,pose_spread\n";

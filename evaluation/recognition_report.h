@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "evaluation/evaluation_plot.h"
 #include "evaluation/evaluation_runner.h"
 
 namespace orbit {
@@ -33,6 +34,13 @@ std::vector<ReliabilityBin> Reliability(const std::vector<const EvaluationCell*>
 
 // The reliability table of every method's cells pooled over distortions and n, as Markdown.
 std::string ReliabilityMarkdown(const EvaluationReport& report);
+
+// The threshold sweep (`orbit eval --recognition-plot`): for targets t from 0.01 to 1, the
+// share of known queries right and accepted (accepted: p-value <= t) against the share of
+// unknown queries accepted, one panel per variant x distortion, one line per method x n. The
+// product's operating point is t = its false_accept_rate. Throws std::invalid_argument when no
+// cell has both known and unknown queries.
+LineFigure RecognitionCurves(const EvaluationReport& report);
 
 // Every query's verdict as CSV: method,variant,distortion,n,known,hit,decision,
 // unknown_statistic,unknown_p_value,confidence,pose_error,pose_spread (empty pose fields when

@@ -30,7 +30,11 @@ TEST(SessionSettingsTest, UnsetFieldsKeepTheDefaultsAndSetOnesWin) {
   requested.set_hmm_states(16);
   requested.set_threshold(0.5);
   requested.set_variant(v1::CEDD_LIRE);
+  requested.set_rejection(v1::REJECTION_TH);
+  requested.set_false_accept_rate(0.02);
   ASSERT_TRUE(Resolve(requested, &settings).ok());
+  EXPECT_EQ(settings.options.rejection, RejectionRule::kTypicalDistance);
+  EXPECT_EQ(settings.options.false_accept_rate, 0.02);
   EXPECT_EQ(settings.engine, v1::ENGINE_VCI);
   EXPECT_EQ(settings.options.top_k, 3);
   EXPECT_EQ(settings.options.window, 64);
@@ -60,6 +64,12 @@ TEST(SessionSettingsTest, OutOfRangeValuesAreInvalidArgumentNamingTheField) {
       {[](v1::SessionOptions& o) { o.set_list_length(65); }, "options.list_length must be 1..64"},
       {[](v1::SessionOptions& o) { o.set_hmm_states(361); }, "options.hmm_states must be 1..360"},
       {[](v1::SessionOptions& o) { o.set_threshold(0); }, "options.threshold must be > 0"},
+      {[](v1::SessionOptions& o) { o.set_rejection(static_cast<v1::Rejection>(7)); },
+       "options.rejection 7 is not a rule (REJECTION_TH = 1, REJECTION_CALIBRATED = 2)"},
+      {[](v1::SessionOptions& o) { o.set_false_accept_rate(1); },
+       "options.false_accept_rate must be in (0, 1)"},
+      {[](v1::SessionOptions& o) { o.set_false_accept_rate(0); },
+       "options.false_accept_rate must be in (0, 1)"},
       {[](v1::SessionOptions& o) { o.set_variant(v1::CEDD_FULL); },
        "options.variant is cedd-full but this server's models are cedd-lire; variants cannot be "
        "mixed"},
@@ -127,6 +137,8 @@ TEST(SessionSettingsTest, DescribeSettingsFillsEveryField) {
   EXPECT_EQ(described.list_length(), 4);
   EXPECT_EQ(described.hmm_states(), 8);
   EXPECT_EQ(described.threshold(), 2.0);
+  EXPECT_EQ(described.rejection(), v1::REJECTION_CALIBRATED);  // the product's
+  EXPECT_EQ(described.false_accept_rate(), 0.15);
   EXPECT_EQ(described.variant(), v1::CEDD_FULL);
 }
 

@@ -1,0 +1,133 @@
+// The recognition reports of `orbit eval` on a hand-made report whose every figure is counted
+// by hand below.
+#include "evaluation/recognition_report.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+#include <gtest/gtest.h>
+
+namespace orbit {
+namespace {
+
+QueryVerdict Known(bool hit, Decision decision, double p, double confidence, double pose_error) {
+  QueryVerdict v;
+  v.known = true;
+  v.hit = hit;
+  v.decision = decision;
+  v.unknown_p_value = p;
+  v.confidence = confidence;
+  if (hit) {
+    v.pose_error = pose_error;
+    v.pose_spread = 0;
+  }
+  return v;
+}
+
+QueryVerdict Unknown(Decision decision, double p, double confidence) {
+  QueryVerdict v;
+  v.decision = decision;
+  v.unknown_p_value = p;
+  v.confidence = confidence;
+  return v;
+}
+
+// One product cell, DF, n = 8: four known queries and two unknown ones.
+//   known: right+accepted (p 0.01, conf 0.95, pose 10), right+accepted (p 0.1, conf 0.92,
+//          pose 30), right+rejected (p 0.5, conf 0.4, pose 20), wrong+accepted (p 0.05,
+//          conf 0.85)
+//   unknown: rejected (p 0.6, conf 0.1), accepted (p 0.02, conf 0.88)
+EvaluationReport HandMadeReport() {
+  EvaluationCell cell;
+  cell.method = "product";
+  cell.variant = DescriptorVariant::kCeddRobust;
+  cell.distortion = "df";
+  cell.n = 8;
+  cell.verdicts = {Known(true, Decision::kAccept, 0.01, 0.95, 10),
+                   Known(true, Decision::kAccept, 0.1, 0.92, 30),
+                   Known(true, Decision::kUnknown, 0.5, 0.4, 20),
+                   Known(false, Decision::kAccept, 0.05, 0.85, 0),
+                   Unknown(Decision::kUnknown, 0.6, 0.1),
+                   Unknown(Decision::kAccept, 0.02, 0.88)};
+  cell.trials = 4;
+  cell.hits = 3;
+  cell.accepted = 2;
+  cell.accepted_wrong = 1;
+  cell.unknown_trials = 2;
+  cell.rejected = 1;
+  EvaluationReport report;
+  report.cells.push_back(cell);
+  report.unknown_objects = 1;
+  return report;
+}
+
+TEST(RecognitionReportTest, CountsEachOutcomeAndThePoseErrors) {
+  const std::string markdown = RecognitionMarkdown(HandMadeReport());
+  // 2 of 4 right+accepted, 1 rejected, 1 accepted wrong; 1 of 2 unknown rejected; pose errors
+  // 10, 20, 30: median 20, 90th percentile (nearest rank 3 of 3) 30.
+  EXPECT_NE(markdown.find("| product | cedd-robust | DF | 8 | 50.0 | 25.0 | 25.0 | 50.0 | 50.0 | "
+                          "20.0 | 30.0 |"),
+            std::string::npos)
+      << markdown;
+}
+
+TEST(RecognitionReportTest, BinsConfidenceAgainstRightAnswers) {
+  const EvaluationReport report = HandMadeReport();
+  const std::vector<ReliabilityBin> bins = Reliability({&report.cells[0]});
+  ASSERT_EQ(bins.size(), 10u);
+  // 0.9-1.0: conf 0.95 and 0.92, both right.
+  EXPECT_EQ(bins[9].updates, 2);
+  EXPECT_EQ(bins[9].right, 2);
+  EXPECT_NEAR(bins[9].mean_confidence, 0.935, 1e-12);
+  // 0.8-0.9: 0.85 (wrong) and 0.88 (an unknown object, wrong).
+  EXPECT_EQ(bins[8].updates, 2);
+  EXPECT_EQ(bins[8].right, 0);
+  // 0.4-0.5: the rejected right answer counts as right: its top-1 object was right.
+  EXPECT_EQ(bins[4].updates, 1);
+  EXPECT_EQ(bins[4].right, 1);
+  EXPECT_EQ(bins[1].updates, 1);
+  EXPECT_EQ(bins[0].updates, 0);
+}
+
+TEST(RecognitionReportTest, SweepsTheTargetRate) {
+  const LineFigure figure = RecognitionCurves(HandMadeReport());
+  ASSERT_EQ(figure.panels.size(), 1u);
+  ASSERT_EQ(figure.panels[0].series.size(), 1u);
+  const auto& points = figure.panels[0].series[0].points;
+  ASSERT_EQ(points.size(), 13u);
+  // t = 0.001: nothing accepted. t = 0.01 (index 1): 1 of 4 known right, 0 of 2 unknown.
+  EXPECT_EQ(points[0], std::make_pair(0.0, 0.0));
+  EXPECT_EQ(points[1], std::make_pair(0.0, 0.25));
+  // t = 0.02: the unknown at 0.02 joins. t = 0.1 (index 4): known right 0.01 and 0.1.
+  EXPECT_EQ(points[2], std::make_pair(0.5, 0.25));
+  EXPECT_EQ(points[4], std::make_pair(0.5, 0.5));
+  // t = 1: every right answer and every unknown accepted.
+  EXPECT_EQ(points[12], std::make_pair(1.0, 0.75));
+  EvaluationReport known_only = HandMadeReport();
+  known_only.cells[0].unknown_trials = 0;
+  EXPECT_THROW(RecognitionCurves(known_only), std::invalid_argument);
+}
+
+TEST(RecognitionReportTest, WritesOneCsvLinePerQuery) {
+  std::ostringstream out;
+  WriteVerdictsCsv(HandMadeReport(), out);
+  std::istringstream lines(out.str());
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_EQ(line, "method,variant,distortion,n,known,hit,decision,unknown_statistic,"
+                  "unknown_p_value,confidence,pose_error,pose_spread");
+  std::getline(lines, line);
+  EXPECT_EQ(line, "product,cedd-robust,df,8,1,1,ACCEPT,0,0.01,0.95,10.0,0.0");
+  int count = 1;
+  std::string last;
+  while (std::getline(lines, line)) {
+    ++count;
+    last = line;
+  }
+  EXPECT_EQ(count, 6);
+  EXPECT_EQ(last, "product,cedd-robust,df,8,0,0,ACCEPT,0,0.02,0.88,,");
+}
+
+}  // namespace
+}  // namespace orbit
