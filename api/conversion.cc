@@ -71,6 +71,25 @@ v1::Decision ToProtoDecision(Decision decision) {
   return v1::DECISION_UNSPECIFIED;
 }
 
+v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,
+                                        const ViewIndexSnapshot& index) {
+  v1::EnrollmentReport report;
+  for (const AzimuthGap& gap : feedback.gaps) {
+    v1::AzimuthGap* out = report.add_gaps();
+    out->set_from_deg(gap.from);
+    out->set_to_deg(gap.to);
+  }
+  for (const double azimuth : feedback.redundant_azimuths) report.add_redundant_azimuths_deg(azimuth);
+  for (const Confusion& confusion : feedback.confusable) {
+    v1::ConfusableObject* out = report.add_confusable();
+    out->set_id(confusion.object);
+    if (const IndexedObject* object = index.Find(confusion.object)) out->set_name(object->model().name);
+    out->set_similarity(confusion.similarity);
+    out->set_closer_views(confusion.closer_views);
+  }
+  return report;
+}
+
 v1::Rejection ToProtoRejection(RejectionRule rule) {
   return rule == RejectionRule::kCalibrated ? v1::REJECTION_CALIBRATED : v1::REJECTION_TH;
 }

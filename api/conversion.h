@@ -11,6 +11,7 @@
 
 #include "core/descriptor.h"
 #include "core/object_model.h"
+#include "core/enrollment_feedback.h"
 #include "core/recognition_engine.h"
 #include "core/view_index.h"
 #include "orbit/v1/models.pb.h"
@@ -36,6 +37,9 @@ v1::View ToProtoView(const ModelView& view, const std::string& thumbnail = "");
 
 v1::Decision ToProtoDecision(Decision decision);
 v1::Move ToProtoMove(SuggestedMove move);
+// Object ids are named from `index` (the name left empty for an id it does not hold).
+v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,
+                                        const ViewIndexSnapshot& index);
 v1::Rejection ToProtoRejection(RejectionRule rule);
 // nullopt for REJECTION_UNSPECIFIED and values no rule has.
 std::optional<RejectionRule> FromProtoRejection(v1::Rejection rule);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/enrollment_report_text.h"
 #include "cli/image_arguments.h"
 #include "cli/network_options.h"
 #include "client/enroller.h"
@@ -34,7 +35,8 @@ int RunEnroll(const EnrollOptions& options) {
   Enroller enroller(connection, {.seed = options.seed, .threads = options.threads});
   const v1::ObjectInfo object = enroller.Enroll(options.name, images, options.metadata);
   std::cout << "enrolled " << object.name() << " (id " << object.id() << ", "
-            << object.view_count() << " views)\n";
+            << object.view_count() << " views)\n"
+            << EnrollmentReportText(object.report());
   return 0;
 }
 

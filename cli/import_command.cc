@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/enrollment_report_text.h"
 #include "cli/network_options.h"
 #include "api/conversion.h"
 #include "client/enroller.h"
@@ -20,6 +21,7 @@
 #include "evaluation/dataset.h"
 #include "client/image_file.h"
 #include "cli/progress_bar.h"
+#include "core/enrollment_feedback.h"
 #include "core/parallel_for.h"
 #include "core/product_pipeline.h"
 #include "core/view_description.h"
@@ -65,7 +67,8 @@ struct ImportTarget {
   std::string where;        // "in the store" / "on the server", for skipped objects
   std::string destination;  // "in FILE" / "on HOST:PORT", for the summary
   std::function<std::optional<ObjectId>(const std::string& name)> find;
-  std::function<ObjectId(const Enrollment& enrollment)> enroll;
+  // Enrolls the object; returns its id and what the enrollment got.
+  std::function<std::pair<ObjectId, v1::EnrollmentReport>(const Enrollment& enrollment)> enroll;
 };
 
 ImportTarget StoreTarget(const ImportOptions& options) {
@@ -89,7 +92,16 @@ ImportTarget StoreTarget(const ImportOptions& options) {
     if (std::optional<ObjectSummary> existing = store->Find(name)) return existing->id;
     return std::nullopt;
   };
-  target.enroll = [store](const Enrollment& enrollment) { return store->Enroll(enrollment); };
+  // The store's objects indexed, to report on each new one against those before it.
+  std::shared_ptr<ViewIndex> index = LoadViewIndex(*store, target.variant, {});
+  target.enroll = [store, index](const Enrollment& enrollment) {
+    ObjectModel model{store->Enroll(enrollment), enrollment.name, enrollment.variant,
+                      enrollment.views};
+    index->Add(model);
+    const std::shared_ptr<const ViewIndexSnapshot> snapshot = index->Snapshot();
+    return std::make_pair(model.id,
+                          ToEnrollmentReport(AssessEnrollment(model, *snapshot), *snapshot));
+  };
   return target;
 }
 
@@ -116,7 +128,8 @@ ImportTarget ServerTarget(const ImportOptions& options) {
   target.enroll = [connection, enroller](const Enrollment& enrollment) {
     std::vector<v1::View> views;
     for (const ModelView& view : enrollment.views) views.push_back(ToProtoView(view));
-    return enroller->EnrollViews(enrollment.name, views).id();
+    const v1::ObjectInfo object = enroller->EnrollViews(enrollment.name, views);
+    return std::make_pair(object.id(), object.report());
   };
   return target;
 }
@@ -149,10 +162,11 @@ int RunImport(const ImportOptions& options) {
     enrollment.name = object.name;
     enrollment.variant = variant;
     enrollment.views = ComputeViews(images, object, variant, options.seed, options.threads);
-    const ObjectId id = target.enroll(enrollment);
+    const auto [id, report] = target.enroll(enrollment);
     // Printed only once the object is durable: a line here is a promise.
     std::cout << "enrolled " << object.name << " (id " << id << ", " << enrollment.views.size()
-              << " views)" << std::endl;
+              << " views)\n"
+              << EnrollmentReportText(report) << std::flush;
     ++enrolled;
   }
   progress.Update("import", objects.size(), objects.size());

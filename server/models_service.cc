@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "core/enrollment_feedback.h"
 #include "server/enrollment_stream.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"
@@ -19,6 +20,16 @@ namespace {
 
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
+
+// The enrollment report of object `summary.id` as the index holds it now
+// (core/enrollment_feedback.h); left unset when another call deleted it meanwhile.
+void AddEnrollmentReport(ModelCatalogue& catalogue, const ObjectSummary& summary,
+                         v1::ObjectInfo* info) {
+  const std::shared_ptr<const ViewIndexSnapshot> index = catalogue.Snapshot();
+  const IndexedObject* object = index->Find(summary.id);
+  if (object == nullptr) return;
+  *info->mutable_report() = ToEnrollmentReport(AssessEnrollment(object->model(), *index), *index);
+}
 
 v1::ObjectInfo ToObjectInfo(const ObjectSummary& summary) {
   v1::ObjectInfo info;
@@ -117,7 +128,9 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
   grpc::Status Commit() {
     Enrollment enrollment;
     if (grpc::Status s = stream_.ToEnrollment(env_.limits, &enrollment); !s.ok()) return s;
-    *response_ = ToObjectInfo(env_.catalogue.Enroll(enrollment));
+    const ObjectSummary summary = env_.catalogue.Enroll(enrollment);
+    *response_ = ToObjectInfo(summary);
+    AddEnrollmentReport(env_.catalogue, summary, response_);
     return grpc::Status::OK;
   }
 
@@ -153,7 +166,9 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
         !s.ok()) {
       return env_.metrics.Refuse(s, ReasonOfCheck(s, RefusalReason::kImageBudget));
     }
-    *response = ToObjectInfo(env_.catalogue.AddViews(id, views, thumbnails));
+    const ObjectSummary summary = env_.catalogue.AddViews(id, views, thumbnails);
+    *response = ToObjectInfo(summary);
+    AddEnrollmentReport(env_.catalogue, summary, response);
     return grpc::Status::OK;
   });
 }

@@ -30,6 +30,7 @@ using ::testing::HasSubstr;
 using testing::CoilDir;
 using testing::OrbitBinary;
 using testing::OutputLines;
+using testing::UnindentedLines;
 using testing::RunCommand;
 using testing::RunOrbit;
 using testing::ScratchDir;
@@ -106,8 +107,15 @@ TEST(ImportCommandTest, ImportFromAManifestWithElevationsAndVariant) {
             " --variant cedd-full");
 
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
-  EXPECT_THAT(OutputLines(imported.out),
-              ElementsAre("enrolled mug (id 1, 2 views)", "enrolled cup (id 2, 1 views)"));
+  // Each object with what its enrollment got: mug's views at 0 and 90 leave two gaps, cup's one
+  // view the whole circle; cup is compared with mug, enrolled before it.
+  const std::vector<std::string> lines = OutputLines(imported.out);
+  ASSERT_EQ(lines.size(), 5u) << imported.out;
+  EXPECT_EQ(lines[0], "enrolled mug (id 1, 2 views)");
+  EXPECT_EQ(lines[1], "  coverage: 2 gaps wider than 30 degrees: 0-90 (90), 90-0 (270)");
+  EXPECT_EQ(lines[2], "enrolled cup (id 2, 1 views)");
+  EXPECT_EQ(lines[3], "  coverage: 1 gap wider than 30 degrees: 330-330 (360)");
+  EXPECT_THAT(lines[4], ::testing::StartsWith("  confusable: mug (similarity 0."));
   SqliteModelStore store(db);
   const StoredObject cup = *store.Get(2);
   EXPECT_EQ(cup.summary.variant, DescriptorVariant::kCeddFull);
@@ -145,7 +153,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const std::string coil = " --layout coil100 --data " + (testing::DataDir() / "coil-100").string();
   const auto imported = RunCommand(orbit + "import" + at + coil + " --objects 1-2");
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
-  EXPECT_EQ(OutputLines(imported.out),
+  EXPECT_EQ(UnindentedLines(imported.out),
             (std::vector<std::string>{"enrolled obj1 (id 1, 72 views)",
                                       "enrolled obj2 (id 2, 72 views)"}));
   EXPECT_NE(imported.err.find("2 objects enrolled, 0 already present, on " + server.address()),
@@ -153,7 +161,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
       << imported.err;
   const auto resumed = RunCommand(orbit + "import" + at + coil + " --objects 1-3");
   ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_EQ(OutputLines(resumed.out),
+  EXPECT_EQ(UnindentedLines(resumed.out),
             (std::vector<std::string>{"skipped obj1 (already on the server as id 1)",
                                       "skipped obj2 (already on the server as id 2)",
                                       "enrolled obj3 (id 3, 72 views)"}));

@@ -20,6 +20,7 @@ using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
 using testing::CoilDir;
 using testing::OutputLines;
+using testing::UnindentedLines;
 using testing::RunOrbit;
 using testing::ScratchDir;
 
@@ -30,7 +31,7 @@ TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   const testing::CommandResult imported =
       RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() + " --objects 1-3");
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
-  EXPECT_THAT(OutputLines(imported.out),
+  EXPECT_THAT(UnindentedLines(imported.out),
               ElementsAre("enrolled obj1 (id 1, 72 views)", "enrolled obj2 (id 2, 72 views)",
                           "enrolled obj3 (id 3, 72 views)"));
   EXPECT_THAT(imported.err, HasSubstr("3 objects enrolled, 0 already present"));
@@ -72,7 +73,7 @@ TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   const testing::CommandResult resumed =
       RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() + " --objects 1-3");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_THAT(OutputLines(resumed.out),
+  EXPECT_THAT(UnindentedLines(resumed.out),
               ElementsAre("skipped obj1 (already in the store as id 1)",
                           "enrolled obj2 (id 4, 72 views)",
                           "skipped obj3 (already in the store as id 3)"));

@@ -32,8 +32,10 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
     const auto r = RunCommand(orbit + "enroll" + at + " --name obj" + std::to_string(object) +
                               CoilImageArguments(object, EveryTwentyDegrees()));
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_EQ(r.out, "enrolled obj" + std::to_string(object) + " (id " + std::to_string(object) +
-                         ", 18 views)\n");
+    // Every 20 degrees: no gap; the report says so under the object's line.
+    EXPECT_EQ(OutputLines(r.out)[0], "enrolled obj" + std::to_string(object) + " (id " +
+                                         std::to_string(object) + ", 18 views)");
+    EXPECT_EQ(OutputLines(r.out)[1], "  coverage: no gap wider than 30 degrees");
   }
   const auto again =
       RunCommand(orbit + "enroll" + at + " --name obj1" + CoilImageArguments(1, {0, 20}));

@@ -300,6 +300,7 @@ TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
   Client client(server.address());
   ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {11, 12, 13}, AzimuthsAwayFrom(60, 90), /*typical=*/true));
   v1::SessionOptions options;
+  options.set_rejection(v1::REJECTION_TH);  // SPEC.md's rule, by name
   options.set_threshold(1.0);
   const auto known = client.Session(options, CoilSweep(12, 60, 10, 4, 0));
   ASSERT_EQ(known.updates.size(), 4u);

@@ -103,4 +103,10 @@ std::vector<std::string> OutputLines(const std::string& text) {
   return lines;
 }
 
+std::vector<std::string> UnindentedLines(const std::string& text) {
+  std::vector<std::string> lines = OutputLines(text);
+  std::erase_if(lines, [](const std::string& line) { return line.starts_with(' '); });
+  return lines;
+}
+
 }  // namespace orbit::testing

@@ -73,5 +73,8 @@ std::string ErrorMessageOf(Call call) {
 
 // The lines of a command's output, without their "\n".
 std::vector<std::string> OutputLines(const std::string& text);
+// The lines of `text` that do not start with a space: `orbit enroll` and `orbit import` print
+// each object's enrollment report indented under its line.
+std::vector<std::string> UnindentedLines(const std::string& text);
 
 }  // namespace orbit::testing
