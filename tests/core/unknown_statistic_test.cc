@@ -6,14 +6,12 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/support/hand_made_descriptors.h"
+
 namespace orbit {
 namespace {
 
-DescriptorValues Bins(std::initializer_list<std::pair<int, int>> bins) {
-  DescriptorValues values{};
-  for (const auto& [bin, value] : bins) values[bin] = static_cast<std::uint8_t>(value);
-  return values;
-}
+using testing::Bins;
 
 IndexedObject Object(ObjectId id, std::vector<std::pair<DescriptorValues, double>> views) {
   ObjectModel model;
