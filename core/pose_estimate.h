@@ -20,6 +20,7 @@
 
 #include "core/indexed_object.h"
 #include "core/recognition_engine.h"
+#include "core/similarity_rows.h"
 
 namespace orbit {
 
@@ -29,5 +30,9 @@ inline constexpr double kPoseSimilarityTolerance = 0.01;
 
 // Throws std::invalid_argument when `window` is empty or `object` has no views.
 PoseEstimate EstimatePose(std::span<const QueryFrame> window, const IndexedObject& object);
+
+// The same from the window's similarity rows of the object (core/similarity_rows.h), as
+// sessions compute it. REQUIRES: one row per window frame, the window not empty.
+PoseEstimate EstimatePose(std::span<const QueryFrame> window, const ObjectRows& object);
 
 }  // namespace orbit

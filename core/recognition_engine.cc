@@ -16,6 +16,7 @@
 #include "core/rejection.h"
 #include "core/rejection_calibration.h"
 #include "core/similarity.h"
+#include "core/similarity_rows.h"
 #include "core/unknown_statistic.h"
 
 namespace orbit {
@@ -89,6 +90,7 @@ RecognitionEngine::RecognitionEngine(std::string_view name, const EngineOptions&
     : name_(name), options_(options) {
   ValidateEngineOptions(options_);
   window_.reserve(options_.window);
+  rows_ = std::make_unique<SimilarityRows>();
 }
 
 RecognitionEngine::~RecognitionEngine() = default;
@@ -119,8 +121,10 @@ void RecognitionEngine::Push(const QueryFrame& frame) {
   if (static_cast<int>(window_.size()) == options_.window) {
     DropOldest();
     window_.erase(window_.begin());
+    rows_->DropOldest();
   }
   window_.push_back(frame);
+  rows_->PushFrame();
   Append(*index_, frame);
   ++frames_seen_;
 }
@@ -136,6 +140,8 @@ FrameUpdate RecognitionEngine::Observe(std::shared_ptr<const ViewIndexSnapshot> 
       Rebase(*index_, *index, *index->ChangeSince(*index_), window_);
     }
     index_ = std::move(index);
+    rows_->Clear();
+    for (std::size_t k = 0; k < window_.size(); ++k) rows_->PushFrame();
   }
   Push(frame);
   return Answer();
@@ -163,6 +169,7 @@ void RecognitionEngine::SetCalibration(std::shared_ptr<const RejectionCalibratio
 void RecognitionEngine::Reset() {
   Clear();
   window_.clear();
+  rows_->Clear();
   index_.reset();
   frames_seen_ = 0;
 }
@@ -188,8 +195,13 @@ FrameUpdate RecognitionEngine::Answer() {
   // Recognition: accept or unknown, by the options' rule.
   Assessment& winner = assessments.front();
   Complete(*index_, window_, winner);
-  const IndexedObject* runner_up = ordered > 1 ? assessments[1].object : nullptr;
-  update.unknown_statistic = UnknownStatistic(window_, *winner.object, runner_up);
+  const ObjectRows winner_rows = rows_->For(window_, *winner.object);
+  if (ordered > 1) {
+    const ObjectRows runner_up_rows = rows_->For(window_, *assessments[1].object);
+    update.unknown_statistic = UnknownStatistic(winner_rows, &runner_up_rows);
+  } else {
+    update.unknown_statistic = UnknownStatistic(winner_rows, nullptr);
+  }
   update.confidence = Confidence(update.unknown_statistic, static_cast<int>(window_.size()));
   const bool calibrated = calibration_ != nullptr && calibration_->calibrated();
   const int frames = static_cast<int>(window_.size());
@@ -211,7 +223,7 @@ FrameUpdate RecognitionEngine::Answer() {
     }
     update.decision = DecideRecognition(distances, options_.threshold);
   }
-  update.pose = EstimatePose(window_, *winner.object);
+  update.pose = EstimatePose(window_, winner_rows);
 
   // Active vision among the objects scoring within the margin of the winner.
   std::vector<MoveCandidate> candidates{{winner.object, winner.latest_azimuth}};

@@ -55,6 +55,7 @@
 namespace orbit {
 
 class RejectionCalibration;
+class SimilarityRows;
 
 inline constexpr int kMaxWindow = 64;
 // Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
@@ -246,6 +247,9 @@ class RecognitionEngine {
   std::shared_ptr<const ViewIndexSnapshot> index_;
   std::shared_ptr<const RejectionCalibration> calibration_;
   std::vector<QueryFrame> window_;  // oldest first
+  // The window frames' similarities with the objects Answer() looks at closely; cleared when
+  // the snapshot changes.
+  std::unique_ptr<SimilarityRows> rows_;
   std::int64_t frames_seen_ = 0;
 };
 

@@ -1,26 +1,9 @@
 #include "core/unknown_statistic.h"
 
+#include <algorithm>
 #include <stdexcept>
 
-#include "core/similarity.h"
-
 namespace orbit {
-namespace {
-
-// The frame's best view of `object`: {TC, that view's Ttyp}.
-std::pair<double, double> BestView(const DescriptorValues& frame, const IndexedObject& object) {
-  double best = -1, typical = 0;
-  for (const ModelView& view : object.model().views) {
-    const double similarity = Tanimoto(frame, view.descriptor);
-    if (similarity > best) {
-      best = similarity;
-      typical = view.typical_distance;
-    }
-  }
-  return {best, typical};
-}
-
-}  // namespace
 
 double UnknownStatisticOf(double d1_sum, double d2_sum, double typical_sum) {
   // A runner-up as close as the winner (d2 = d1) gives 1; d2 = 0 with d1 = 0 is a frame equal
@@ -30,20 +13,33 @@ double UnknownStatisticOf(double d1_sum, double d2_sum, double typical_sum) {
   return ratio + kTypicalTermWeight * typical;
 }
 
+double UnknownStatistic(const ObjectRows& winner, const ObjectRows* runner_up) {
+  const std::vector<ModelView>& views = winner.object->model().views;
+  double d1_sum = 0, d2_sum = 0, typical_sum = 0;
+  for (std::size_t k = 0; k < winner.rows.size(); ++k) {
+    const std::span<const float> row = winner.rows[k];
+    const std::size_t best = static_cast<std::size_t>(std::max_element(row.begin(), row.end()) - row.begin());
+    d1_sum += 1 - row[best];
+    typical_sum += views[best].typical_distance;
+    if (runner_up != nullptr && !runner_up->rows[k].empty()) {
+      d2_sum += 1 - *std::max_element(runner_up->rows[k].begin(), runner_up->rows[k].end());
+    } else {
+      d2_sum += 1.0;
+    }
+  }
+  return UnknownStatisticOf(d1_sum, d2_sum, typical_sum);
+}
+
 double UnknownStatistic(std::span<const QueryFrame> window, const IndexedObject& winner,
                         const IndexedObject* runner_up) {
   if (window.empty()) throw std::invalid_argument("UnknownStatistic needs at least one frame");
   if (winner.model().views.empty()) throw std::invalid_argument("the winner has no views");
-  double d1_sum = 0, d2_sum = 0, typical_sum = 0;
-  for (const QueryFrame& frame : window) {
-    const auto [winner_similarity, typical] = BestView(frame.descriptor.values, winner);
-    d1_sum += 1 - winner_similarity;
-    typical_sum += typical;
-    d2_sum += runner_up != nullptr && !runner_up->model().views.empty()
-                  ? 1 - BestView(frame.descriptor.values, *runner_up).first
-                  : 1.0;
-  }
-  return UnknownStatisticOf(d1_sum, d2_sum, typical_sum);
+  SimilarityRows rows;
+  for (std::size_t k = 0; k < window.size(); ++k) rows.PushFrame();
+  const ObjectRows winner_rows = rows.For(window, winner);
+  if (runner_up == nullptr) return UnknownStatistic(winner_rows, nullptr);
+  const ObjectRows runner_up_rows = rows.For(window, *runner_up);
+  return UnknownStatistic(winner_rows, &runner_up_rows);
 }
 
 }  // namespace orbit

@@ -25,6 +25,7 @@
 
 #include "core/indexed_object.h"
 #include "core/recognition_engine.h"
+#include "core/similarity_rows.h"
 
 namespace orbit {
 
@@ -34,6 +35,11 @@ inline constexpr double kTypicalTermWeight = 0.2;
 // views.
 double UnknownStatistic(std::span<const QueryFrame> window, const IndexedObject& winner,
                         const IndexedObject* runner_up);
+
+// The same from the window's similarity rows (core/similarity_rows.h) of the winner and the
+// runner-up (null: none), as sessions compute it. REQUIRES: both have the same frames, at least
+// one.
+double UnknownStatistic(const ObjectRows& winner, const ObjectRows* runner_up);
 
 // U from the per-frame sums, the one formula both the sessions and the calibration use:
 // sums over the window of d1, d2 and t as defined above.

@@ -1,0 +1,49 @@
+// SimilarityRows: the Tanimoto coefficients of a session's window frames with the views of the
+// few objects its answer looks at closely (the winner, the runner-up), computed once per frame
+// and object and kept while the frame stays in the window. The accept / unknown statistic
+// (core/unknown_statistic.h) and the pose estimate (core/pose_estimate.h) read them; without
+// the cache each update would redo window x views comparisons for both.
+//
+// Keyed by the IndexedObject's address: clear it whenever the session moves to another index
+// snapshot (an object's new version is a new IndexedObject, and a freed one's address may be
+// reused).
+//
+// Not thread-safe: one per session.
+#pragma once
+
+#include <deque>
+#include <span>
+#include <unordered_map>
+#include <vector>
+
+#include "core/indexed_object.h"
+#include "core/recognition_engine.h"
+
+namespace orbit {
+
+// TC of `frame` with each view of `object`, in the object's view order.
+std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object);
+
+// One object's rows for a window: rows[k][v] = TC(window frame k, view v).
+struct ObjectRows {
+  const IndexedObject* object = nullptr;
+  std::vector<std::span<const float>> rows;  // one per window frame, oldest first
+};
+
+class SimilarityRows {
+ public:
+  // Mirror the window: a frame entered at its end / left at its front / all left.
+  void PushFrame() { frames_.emplace_back(); }
+  void DropOldest() { frames_.pop_front(); }
+  void Clear() { frames_.clear(); }
+
+  // The rows of `object` for `window` (the frames pushed so far, oldest first), computing the
+  // missing ones. The spans stay valid until the next call that changes the cache.
+  // REQUIRES: window.size() equals the frames pushed and not dropped.
+  ObjectRows For(std::span<const QueryFrame> window, const IndexedObject& object);
+
+ private:
+  std::deque<std::unordered_map<const IndexedObject*, std::vector<float>>> frames_;
+};
+
+}  // namespace orbit
