@@ -2,6 +2,7 @@
 
 #include <string>
 
+#include "api/conversion.h"
 #include "api/engine_names.h"
 #include "core/recognition_engine.h"
 
@@ -20,7 +21,14 @@ void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
                          std::to_string(static_cast<int>(kMaxOrientationWeight)));
   command.add_option("--list-length", flags.list_length, "N_L: views per retrieval list");
   command.add_option("--hmm-states", flags.hmm_states, "HMM sectors per object");
-  command.add_option("--threshold", flags.threshold, "Th: accept when T_M / Ttyp <= Th");
+  command.add_option("--rejection", flags.rejection,
+                     "accept / unknown rule: calibrated (a threshold from --false-accept-rate, "
+                     "computed by the server from its model set) or th (SPEC.md's, --threshold)")
+      ->check(CLI::IsMember({"calibrated", "th"}));
+  command.add_option("--false-accept-rate", flags.false_accept_rate,
+                     "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
+      ->check(CLI::Range(1e-6, 1 - 1e-6));
+  command.add_option("--threshold", flags.threshold, "Th of the th rule: accept when T_M / Ttyp <= Th");
 }
 
 SessionOptions ToSessionOptions(const SessionFlags& flags) {
@@ -32,6 +40,10 @@ SessionOptions ToSessionOptions(const SessionFlags& flags) {
   options.list_length = flags.list_length;
   options.hmm_states = flags.hmm_states;
   options.threshold = flags.threshold;
+  if (!flags.rejection.empty()) {
+    options.rejection = ToProtoRejection(ParseRejectionRule(flags.rejection));
+  }
+  options.false_accept_rate = flags.false_accept_rate;
   return options;
 }
 

@@ -1,5 +1,5 @@
 // The session options of `orbit recognize` and `orbit demo` as command-line flags
-// (--engine, --top-k, --window, --w, --list-length, --hmm-states, --threshold); a flag left out
+// (--engine, --top-k, --window, --w, --list-length, --hmm-states, --rejection, --false-accept-rate, --threshold); a flag left out
 // takes the server's default. Engine names are api/engine_names.h's.
 #pragma once
 
@@ -21,6 +21,8 @@ struct SessionFlags {
   int list_length = 0;
   int hmm_states = 0;
   std::optional<double> threshold;
+  std::string rejection;  // "calibrated", "th" or "" (the server's)
+  std::optional<double> false_accept_rate;
 };
 
 void AddSessionFlags(CLI::App& command, SessionFlags& flags);

@@ -47,6 +47,8 @@ v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, Descript
   open.set_list_length(options.list_length);
   open.set_hmm_states(options.hmm_states);
   if (options.threshold) open.set_threshold(*options.threshold);
+  open.set_rejection(options.rejection);
+  if (options.false_accept_rate) open.set_false_accept_rate(*options.false_accept_rate);
   open.set_variant(ToProtoVariant(variant));
   return open;
 }

@@ -58,7 +58,9 @@ struct SessionOptions {
   std::optional<double> orientation_weight;    // w of the Hough score, per radian
   int list_length = 0;                         // N_L: views per retrieval list
   int hmm_states = 0;                          // HMM sectors per object
-  std::optional<double> threshold;             // Th of the accept rule
+  std::optional<double> threshold;             // Th of the accept rule REJECTION_TH
+  v1::Rejection rejection = v1::REJECTION_UNSPECIFIED;  // the accept / unknown rule
+  std::optional<double> false_accept_rate;     // REJECTION_CALIBRATED's target, in (0, 1)
   // The descriptor variant of the frames; unset: the server's. Setting another variant than
   // the server's ends the session with INVALID_ARGUMENT.
   std::optional<DescriptorVariant> variant;
