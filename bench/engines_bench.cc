@@ -14,6 +14,7 @@
 //   frame-after-model-change/<engine>/<objects>[/first-session]
 //                                    the same, on a snapshot that gained or lost a 72-view object
 //                                    since the session's previous frame (BM_FrameAfterModelChange)
+//   rejection-calibration/<objects>  RejectionCalibration::FromIndex of the whole model set
 //   kd-search/coil100, exact-search/coil100
 //                                    one retrieval list (N_L = 4) over COIL-100's views at
 //                                    multiples of 10 degrees, queried with the views in between;
@@ -43,6 +44,7 @@
 #include "core/cedd.h"
 #include "core/product_pipeline.h"
 #include "core/recognition_engine.h"
+#include "core/rejection_calibration.h"
 #include "core/sector_similarity_table.h"
 #include "core/view_index.h"
 
@@ -148,6 +150,18 @@ void BM_ExactScan(benchmark::State& state, int objects) {
     benchmark::DoNotOptimize(similarities.data());
   }
   state.counters["views"] = static_cast<double>(snapshot->view_count());
+}
+
+// The calibrated rejection rule's calibration of the whole model set (what the server redoes in
+// the background after each enrollment).
+void BM_RejectionCalibration(benchmark::State& state, int objects) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kExact);
+  const auto snapshot = set.index->Snapshot();
+  for (auto _ : state) {
+    const RejectionCalibration calibration = RejectionCalibration::FromIndex(*snapshot);
+    benchmark::DoNotOptimize(calibration.Threshold(8, 0.15));
+    state.counters["sampled_views"] = calibration.sampled_views();
+  }
 }
 
 // The engine called `name` with its default options, or for "product" the product pipeline's
@@ -326,6 +340,11 @@ int RegisterEngineBenchmarks() {
     benchmark::RegisterBenchmark(("exact-scan/" + std::to_string(objects)).c_str(), BM_ExactScan,
                                  objects)
         ->Unit(benchmark::kMicrosecond);
+  }
+  for (const int objects : {100, 1000}) {
+    benchmark::RegisterBenchmark(("rejection-calibration/" + std::to_string(objects)).c_str(),
+                                 BM_RejectionCalibration, objects)
+        ->Unit(benchmark::kMillisecond);
   }
   for (const char* engine : {"vci", "hmm", "product"}) {
     for (const int objects : {100, 1000}) {

@@ -1,14 +1,15 @@
 // RejectionCalibrator: the server's calibration of the calibrated accept / unknown rule
-// (core/rejection_calibration.h), kept in step with the model set without ever making a
-// session wait for it.
+// (core/rejection_calibration.h), kept in step with the model set without making sessions wait
+// for it.
 //
 // Computed once for the index the server starts with (before it serves), then again in the
 // background whenever a session shows it a snapshot newer than the one it was computed from:
 // an enrollment or deletion, from any source. Sessions keep the previous calibration until the
-// new one is ready (a session waits only for the very first one, when the server started with
-// fewer than two objects) (about 0.15 s at 100 objects, 1.5 s at 1000 on one core); one object more
-// or less barely moves a threshold set by the whole model set. A burst of changes costs one
-// recalibration per change it cannot coalesce, on one thread.
+// new one is ready (137 ms at 100 objects, 1.73 s at 1000 on one core: rejection-calibration in
+// docs/results/recognition.md); one object more or less barely moves a threshold set by the
+// whole model set. A session waits only for the very first calibration, when the server started
+// with fewer than two objects. A burst of changes costs one recalibration per change it cannot
+// coalesce, on one thread.
 //
 // Thread-safe.
 #pragma once
