@@ -3,9 +3,12 @@
 #include <cctype>
 #include <iostream>
 #include <memory>
+#include <optional>
+#include <string>
 
 #include <nlohmann/json.hpp>
 
+#include "api/conversion.h"
 #include "cli/commands.h"
 #include "cli/network_options.h"
 #include "cli/session_flags.h"
@@ -26,6 +29,12 @@ std::string EngineText(v1::Engine engine) {
   return name;  // vci-hmm, as --engine spells it
 }
 
+// "calibrated" / "th", as --rejection spells it; "" for a server that does not say.
+std::string RejectionText(v1::Rejection rejection) {
+  const std::optional<RejectionRule> rule = FromProtoRejection(rejection);
+  return rule ? std::string(RejectionRuleName(*rule)) : "";
+}
+
 nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
   const v1::SessionOptions& d = info.session_defaults();
   const v1::Limits& l = info.limits();
@@ -41,6 +50,8 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
         {"w", d.orientation_weight()},
         {"list_length", d.list_length()},
         {"hmm_states", d.hmm_states()},
+        {"rejection", RejectionText(d.rejection())},
+        {"false_accept_rate", d.false_accept_rate()},
         {"threshold", d.threshold()}}},
       {"limits",
        {{"max_sessions", l.max_sessions()},
@@ -69,7 +80,9 @@ int RunInfo(const InfoOptions& options) {
             << "objects   " << info["objects"] << " (" << info["views"] << " views)\n"
             << "defaults  engine " << d["engine"].get<std::string>() << ", top-k " << d["top_k"]
             << ", window " << d["window"] << ", w " << d["w"] << ", N_L " << d["list_length"]
-            << ", HMM states " << d["hmm_states"] << ", threshold " << d["threshold"] << "\n"
+            << ", HMM states " << d["hmm_states"] << ", rejection "
+            << d["rejection"].get<std::string>() << " (false-accept rate "
+            << d["false_accept_rate"] << ", threshold " << d["threshold"] << ")\n"
             << "limits    " << l["max_sessions"] << " sessions, " << l["max_frames_per_second"]
             << " frames/s per session, window <= " << l["max_window"] << ", messages <= "
             << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
