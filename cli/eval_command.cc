@@ -57,6 +57,8 @@ struct EvalOptions {
   std::string rejection = std::string(RejectionRuleName(EngineOptions{}.rejection));
   double false_accept_rate = EngineOptions{}.false_accept_rate;
   std::string verdicts;
+  bool active = false;
+  double active_step = 20;
   std::string recognition_plot;
   double orientation_weight = EngineOptions{}.orientation_weight;
   int list_length = EngineOptions{}.list_length;
@@ -95,6 +97,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.index.kd_candidates = o.kd_candidates;
   options.engine.threshold = o.threshold;
   options.engine.rejection = ParseRejectionRule(o.rejection);
+  options.active_step = o.active ? o.active_step : 0;
   options.engine.false_accept_rate = o.false_accept_rate;
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
@@ -119,6 +122,10 @@ int RunEval(const EvalOptions& o) {
     std::cerr << "orbit eval: seed " << options.seed << ", " << known.size() << " known images"
               << (unknown.empty() ? "" : ", " + std::to_string(unknown.size()) + " unknown images")
               << ", " << (options.threads > 0 ? options.threads : AvailableCpus()) << " threads\n";
+    if (!o.queries.empty() && o.active) {
+      throw std::invalid_argument("--active does not apply to --queries: captured sequences "
+                                  "have their views already");
+    }
     if (!o.queries.empty() && !unknown.empty()) {
       throw std::invalid_argument(
           "--unknown-objects does not apply to --queries: a captured sequence of an object "
@@ -275,6 +282,13 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--verdicts", o->verdicts,
                       "also write every query's answer as CSV (decision, unknown statistic, "
                       "p-value, confidence, pose error)");
+  command->add_flag("--active", o->active,
+                    "active vision: after its first two views, each query takes its next view "
+                    "--active-step degrees on in the direction its method's latest update "
+                    "suggested, instead of at random");
+  command->add_option("--active-step", o->active_step, "degrees per step of --active")
+      ->check(CLI::Range(1.0, 180.0))
+      ->capture_default_str();
   command->add_option("--recognition-plot", o->recognition_plot,
                       "with --unknown-objects: also draw known queries right and accepted "
                       "against unknown queries accepted as the target false-accept rate sweeps "

@@ -24,6 +24,34 @@ std::uint64_t TrialSeed(std::uint64_t seed, int object, int n, int trial) {
   return MixSeed(s, static_cast<std::uint64_t>(trial));
 }
 
+std::vector<int> ExcludedViews(std::span<const double> view_azimuths,
+                               std::span<const int> query_views) {
+  std::vector<int> removed;
+  for (int v = 0; v < static_cast<int>(view_azimuths.size()); ++v) {
+    const bool near_query = std::any_of(query_views.begin(), query_views.end(), [&](int q) {
+      return std::abs(AzimuthChange(view_azimuths[q], view_azimuths[v])) <=
+             kQueryExclusionDegrees + kAngleTolerance;
+    });
+    if (near_query) removed.push_back(v);
+  }
+  return removed;
+}
+
+int NextActiveView(std::span<const double> view_azimuths, int latest, SuggestedMove move,
+                   double step, int& direction) {
+  if (move == SuggestedMove::kRight) direction = 1;
+  if (move == SuggestedMove::kLeft) direction = -1;
+  const double target = view_azimuths[latest] + direction * step;
+  int nearest = 0;
+  for (int v = 1; v < static_cast<int>(view_azimuths.size()); ++v) {
+    if (std::abs(AzimuthChange(target, view_azimuths[v])) <
+        std::abs(AzimuthChange(target, view_azimuths[nearest]))) {
+      nearest = v;
+    }
+  }
+  return nearest;
+}
+
 TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64_t trial_seed) {
   const int count = static_cast<int>(view_azimuths.size());
   if (n < 1 || n > count) {
@@ -57,13 +85,7 @@ TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64
     query.azimuths.push_back(NormaliseAzimuth(view_azimuths[v] + noise + offset));
   }
 
-  for (int v = 0; v < count; ++v) {
-    const bool near_query = std::any_of(query.views.begin(), query.views.end(), [&](int q) {
-      return std::abs(AzimuthChange(view_azimuths[q], view_azimuths[v])) <=
-             kQueryExclusionDegrees + kAngleTolerance;
-    });
-    if (near_query) query.removed_views.push_back(v);
-  }
+  query.removed_views = ExcludedViews(view_azimuths, query.views);
   return query;
 }
 

@@ -51,6 +51,20 @@ struct TrialQuery {
 // azimuth is not finite.
 TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64_t trial_seed);
 
+// Every view whose azimuth is within kQueryExclusionDegrees (circularly) of one of
+// `query_views`' (indices into `view_azimuths`; repeats allowed), ascending: step 2 above.
+std::vector<int> ExcludedViews(std::span<const double> view_azimuths,
+                               std::span<const int> query_views);
+
+// Active vision (`orbit eval --active`, issue 12): after its first views, the device takes each
+// next view `step` degrees from its latest one in the direction the latest update suggested
+// (kRight: increasing azimuth, kLeft: decreasing), and on in the direction it last went when
+// the update said kNone. `direction` (+1 or -1) is that last direction; a move updates it.
+// Returns the index of the view nearest that azimuth. REQUIRES: `latest` indexes
+// `view_azimuths`.
+int NextActiveView(std::span<const double> view_azimuths, int latest, SuggestedMove move,
+                   double step, int& direction);
+
 // `model` without the views listed in `removed_views` (ascending indices, as SampleTrial gives).
 // Throws std::invalid_argument when an index is out of range or the list is not ascending.
 ObjectModel WithoutViews(const ObjectModel& model, std::span<const int> removed_views);

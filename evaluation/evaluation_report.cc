@@ -81,6 +81,11 @@ std::string MarkdownReport(const EvaluationReport& report) {
   if (!report.use_orientation) {
     out << " Orientation ignored: the query frames carry no azimuth (`--orientation ignore`).";
   }
+  if (report.active_step > 0) {
+    out << " Active vision (`--active`): after the first two views, each next view "
+        << Format("%g", report.active_step)
+        << " degrees from the latest in the direction the method suggested.";
+  }
   if (report.search == SearchMode::kKdTree) {
     out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
         << " checks, " << report.index.kd_candidates << " candidates re-ranked.";

@@ -97,6 +97,7 @@ EvaluationReport ReportOf(const EvaluationOptions& options) {
   report.seed = options.seed;
   report.search = options.index.search;
   report.use_orientation = options.use_orientation;
+  report.active_step = options.active_step;
   report.index = options.index;
   report.threads = options.threads > 0 ? options.threads : AvailableCpus();
   report.engine = options.engine;
@@ -348,6 +349,55 @@ std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectMode
   return ViewIndex(std::move(trial_models), options).Snapshot();
 }
 
+// One active query (EvaluationOptions::active_step) of one method: the protocol's first views
+// (two, or one when n = 1), then NextActiveView after each update, each frame's device azimuth
+// its true azimuth + the first frame's offset + N(0, 3 degrees). Returns the last update and
+// sets `latest_view` to the view of the last frame.
+struct ActiveQueryInput {
+  const std::vector<ObjectModel>* models = nullptr;  // the variant's known objects
+  std::size_t object = 0;                            // the target's position
+  bool known = true;
+  std::shared_ptr<const ViewIndexSnapshot> full_index;  // for unknown targets
+  std::vector<double> azimuths;                         // the target's views' true azimuths
+  std::function<Descriptor(int view)> descriptor;       // a view's query under the distortion
+  std::uint64_t trial_seed = 0;
+  int n = 1;
+  double step = 20;
+  bool use_orientation = true;
+  ViewIndexOptions index;
+};
+
+FrameUpdate ActiveQuery(RecognitionEngine& engine, const ActiveQueryInput& in, int& latest_view) {
+  const TrialQuery first = SampleTrial(in.azimuths, std::min(in.n, 2), in.trial_seed);
+  const double offset = first.azimuths[0] - in.azimuths[first.views[0]];
+  SeededRandom noise(MixSeed(in.trial_seed, 0x616374697665ULL /* "active" */));
+  std::vector<int> views = first.views;
+  std::vector<QueryFrame> frames;
+  for (std::size_t k = 0; k < views.size(); ++k) {
+    frames.push_back({in.descriptor(views[k]), in.use_orientation
+                                                   ? std::optional<double>(first.azimuths[k])
+                                                   : std::nullopt});
+  }
+  int direction = 1;
+  while (true) {
+    const std::shared_ptr<const ViewIndexSnapshot> index =
+        in.known ? TrialIndex(*in.models, in.object,
+                              {views, {}, ExcludedViews(in.azimuths, views)}, in.index)
+                 : in.full_index;
+    const FrameUpdate update = engine.ObserveSequence(index, frames);
+    if (static_cast<int>(frames.size()) == in.n) {
+      latest_view = views.back();
+      return update;
+    }
+    const int next = NextActiveView(in.azimuths, views.back(), update.move, in.step, direction);
+    views.push_back(next);
+    const double azimuth =
+        NormaliseAzimuth(in.azimuths[next] + offset + kQueryAzimuthNoiseDegrees * noise.Normal());
+    frames.push_back({in.descriptor(next), in.use_orientation ? std::optional<double>(azimuth)
+                                                              : std::nullopt});
+  }
+}
+
 // Step 3: every task of `grid` on `threads` threads; returns the outcome table. Each task
 // draws its query (SampleTrial, from its own TrialSeed) and asks every method, for every
 // distortion, for its answer to the whole query.
@@ -381,16 +431,28 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         frames[k].azimuth =
             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
       }
-      const double latest_azimuth =
-          dataset.images[target.images[query.views.back()]]->azimuth;
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
         engines[m]->SetCalibration(models[t.variant].calibration);
+        int latest_view = query.views.back();
         const Clock::time_point start = Clock::now();
-        const FrameUpdate update = engines[m]->ObserveSequence(snapshot, frames);
+        FrameUpdate update;
+        if (options.active_step > 0) {
+          ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
+                                  models[t.variant].full_index, azimuths, nullptr, trial_seed,
+                                  n, options.active_step, options.use_orientation, options.index};
+          active.descriptor = [&](int view) -> Descriptor {
+            return {options.variants[t.variant],
+                    described[target.images[view]][t.variant].queries[d]};
+          };
+          update = ActiveQuery(*engines[m], active, latest_view);
+        } else {
+          update = engines[m]->ObserveSequence(snapshot, frames);
+        }
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
         outcome.seconds = SecondsSince(start);
-        Judge(update, is_known ? expected : 0, latest_azimuth, outcome);
+        Judge(update, is_known ? expected : 0, dataset.images[target.images[latest_view]]->azimuth,
+              outcome);
       }
     }
     pool.Give(std::move(engines));

@@ -61,6 +61,12 @@ struct EvaluationOptions {
   // (QueryFrame); every method then runs on the descriptors alone (`--orientation ignore`).
   bool use_orientation = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
+  // Active vision (`orbit eval --active`, issue 12): 0 for the protocol's random views; else
+  // each query takes the protocol's first two views, then each next view this many degrees
+  // from its latest in the direction the method's latest update suggested (NextActiveView,
+  // core/evaluation_protocol.h), in capture order. Known objects' models lack the views near
+  // every view taken so far, at each step.
+  double active_step = 0;
   ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
   EngineOptions engine;     // the engines' options; the window is raised to the largest n
   int threads = 0;          // worker threads; 0: every CPU this process may run on
@@ -135,6 +141,7 @@ struct EvaluationReport {
   int threads = 0;                  // worker threads used
   SearchMode search = SearchMode::kExact;
   bool use_orientation = true;      // as the options said
+  double active_step = 0;           // as the options said
   ViewIndexOptions index;           // as used
   EngineOptions engine;             // as used (window raised to the largest n)
   double descriptor_seconds = 0;    // wall-clock time of step 1

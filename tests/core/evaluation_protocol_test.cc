@@ -112,6 +112,29 @@ TEST(SampleTrialTest, RejectsImpossibleQueries) {
   EXPECT_THROW(SampleTrial(bad, 1, 1), std::invalid_argument);
 }
 
+TEST(ExcludedViewsTest, RemovesTheNeighboursOfEveryQueryViewOnce) {
+  // Views 0 (0 degrees) and 71 (355) are queries, 71 twice: 345..10 degrees go, once each;
+  // 15 and 340 stay.
+  EXPECT_THAT(ExcludedViews(Coil100Azimuths(), std::vector<int>{71, 0, 71}),
+              ElementsAre(0, 1, 2, 69, 70, 71));
+}
+
+TEST(NextActiveViewTest, StepsTheWaySuggestedAndOnWhenNone) {
+  const std::vector<double> azimuths = Coil100Azimuths();
+  int direction = 1;
+  // From 350 degrees (view 70), RIGHT 20: 10 degrees, view 2, across 360.
+  EXPECT_EQ(NextActiveView(azimuths, 70, SuggestedMove::kRight, 20, direction), 2);
+  EXPECT_EQ(direction, 1);
+  // LEFT from 10 degrees: 350 again, and the direction becomes -1...
+  EXPECT_EQ(NextActiveView(azimuths, 2, SuggestedMove::kLeft, 20, direction), 70);
+  EXPECT_EQ(direction, -1);
+  // ...which NONE keeps: 350 - 20 = 330, view 66.
+  EXPECT_EQ(NextActiveView(azimuths, 70, SuggestedMove::kNone, 20, direction), 66);
+  EXPECT_EQ(direction, -1);
+  // A step between views lands on the nearest: 30 + 12 = 42 -> 40 (view 8).
+  EXPECT_EQ(NextActiveView(azimuths, 6, SuggestedMove::kRight, 12, direction), 8);
+}
+
 TEST(WithoutViewsTest, KeepsTheOtherViewsInOrder) {
   ObjectModel model;
   model.id = 7;

@@ -1,5 +1,6 @@
 #include "evaluation/evaluation_runner.h"
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <stdexcept>
@@ -142,6 +143,39 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   }
   ASSERT_EQ(report.memory.size(), 2u);
   EXPECT_EQ(report.memory[1].variant, Product().variant);
+}
+
+// --active: the same queries count (objects x trials per cell), frames come in capture order
+// from the protocol's first two views, and the pose is judged at the last view taken.
+TEST(RunEvaluationTest, ActiveQueriesTakeTheirViewsFromTheMethodsMoves) {
+  EvaluationOptions options;
+  options.methods = {"hmm"};
+  options.distortions = {ParseDistortionSpec("df")};
+  options.query_lengths = {2, 4};
+  options.trials = 3;
+  const std::vector<DatasetImage> known = ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3});
+  const std::vector<DatasetImage> unknown = ListCoil100(testing::CoilDir(), std::vector<int>{4});
+  const EvaluationReport passive = RunEvaluation(known, unknown, options);
+  options.active_step = 20;
+  const EvaluationReport active = RunEvaluation(known, unknown, options);
+  EXPECT_EQ(active.active_step, 20);
+  ASSERT_EQ(active.cells.size(), passive.cells.size());
+  for (std::size_t c = 0; c < active.cells.size(); ++c) {
+    EXPECT_EQ(active.cells[c].trials, 9);
+    EXPECT_EQ(active.cells[c].unknown_trials, 3);
+    for (const QueryVerdict& v : active.cells[c].verdicts) {
+      if (v.hit) {
+        EXPECT_FALSE(std::isnan(v.pose_error));
+      }
+    }
+  }
+  // n = 2 is the protocol's own two views either way: the same answers.
+  EXPECT_EQ(active.cells[0].n, 2);
+  EXPECT_EQ(active.cells[0].hits, passive.cells[0].hits);
+  EXPECT_EQ(active.cells[0].rejected, passive.cells[0].rejected);
+  // Three distinct known objects of COIL-100 are told apart after four active views.
+  EXPECT_EQ(active.cells[1].n, 4);
+  EXPECT_EQ(active.cells[1].hits, 9);
 }
 
 // Captured sequences against a model set: objects 1-3 of COIL-100 every 10 degrees are the
