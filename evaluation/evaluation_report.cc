@@ -84,7 +84,9 @@ std::string MarkdownReport(const EvaluationReport& report) {
   if (report.active_step > 0) {
     out << " Active vision (`--active`): after the first two views, each next view "
         << Format("%g", report.active_step)
-        << " degrees from the latest in the direction the method suggested.";
+        << (report.active_follows_moves
+                ? " degrees from the latest in the direction the method suggested."
+                : " degrees on from the latest, always the same way (the suggestion ignored).");
   }
   if (report.search == SearchMode::kKdTree) {
     out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks

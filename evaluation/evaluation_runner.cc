@@ -98,6 +98,7 @@ EvaluationReport ReportOf(const EvaluationOptions& options) {
   report.search = options.index.search;
   report.use_orientation = options.use_orientation;
   report.active_step = options.active_step;
+  report.active_follows_moves = options.active_follows_moves;
   report.index = options.index;
   report.threads = options.threads > 0 ? options.threads : AvailableCpus();
   report.engine = options.engine;
@@ -363,6 +364,7 @@ struct ActiveQueryInput {
   std::uint64_t trial_seed = 0;
   int n = 1;
   double step = 20;
+  bool follow_moves = true;  // false: on in one direction whatever the updates say
   bool use_orientation = true;
   ViewIndexOptions index;
 };
@@ -389,7 +391,9 @@ FrameUpdate ActiveQuery(RecognitionEngine& engine, const ActiveQueryInput& in, i
       latest_view = views.back();
       return update;
     }
-    const int next = NextActiveView(in.azimuths, views.back(), update.move, in.step, direction);
+    const int next = NextActiveView(in.azimuths, views.back(),
+                                    in.follow_moves ? update.move : SuggestedMove::kNone, in.step,
+                                    direction);
     views.push_back(next);
     const double azimuth =
         NormaliseAzimuth(in.azimuths[next] + offset + kQueryAzimuthNoiseDegrees * noise.Normal());
@@ -440,7 +444,8 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         if (options.active_step > 0) {
           ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
                                   models[t.variant].full_index, azimuths, nullptr, trial_seed,
-                                  n, options.active_step, options.use_orientation, options.index};
+                                  n, options.active_step, options.active_follows_moves,
+                                  options.use_orientation, options.index};
           active.descriptor = [&](int view) -> Descriptor {
             return {options.variants[t.variant],
                     described[target.images[view]][t.variant].queries[d]};

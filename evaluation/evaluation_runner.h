@@ -67,6 +67,9 @@ struct EvaluationOptions {
   // core/evaluation_protocol.h), in capture order. Known objects' models lack the views near
   // every view taken so far, at each step.
   double active_step = 0;
+  // With active_step: false steps on in one direction whatever the updates say (the control
+  // that measures the suggestion alone).
+  bool active_follows_moves = true;
   ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
   EngineOptions engine;     // the engines' options; the window is raised to the largest n
   int threads = 0;          // worker threads; 0: every CPU this process may run on
@@ -142,6 +145,7 @@ struct EvaluationReport {
   SearchMode search = SearchMode::kExact;
   bool use_orientation = true;      // as the options said
   double active_step = 0;           // as the options said
+  bool active_follows_moves = true;  // as the options said
   ViewIndexOptions index;           // as used
   EngineOptions engine;             // as used (window raised to the largest n)
   double descriptor_seconds = 0;    // wall-clock time of step 1

@@ -176,6 +176,12 @@ TEST(RunEvaluationTest, ActiveQueriesTakeTheirViewsFromTheMethodsMoves) {
   // Three distinct known objects of COIL-100 are told apart after four active views.
   EXPECT_EQ(active.cells[1].n, 4);
   EXPECT_EQ(active.cells[1].hits, 9);
+  // The control steps on one way whatever the moves say: the same first two views again.
+  options.active_follows_moves = false;
+  const EvaluationReport control = RunEvaluation(known, unknown, options);
+  EXPECT_FALSE(control.active_follows_moves);
+  EXPECT_EQ(control.cells[0].hits, passive.cells[0].hits);
+  EXPECT_EQ(control.cells[1].trials, 9);
 }
 
 // Captured sequences against a model set: objects 1-3 of COIL-100 every 10 degrees are the
