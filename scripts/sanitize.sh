@@ -60,8 +60,9 @@ run() {
     -DCMAKE_CXX_FLAGS="${flags[$name]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[$name]}" \
     -DCMAKE_SHARED_LINKER_FLAGS="${flags[$name]}" >/dev/null
   local targets=()
-  # tsan runs only the GoogleTest suite and the Python client: no benchmarks, no fuzz replays.
-  [[ $name == tsan ]] && targets=(--target orbit_tests orbit_python_stubs)
+  # tsan runs only the GoogleTest suite (with the PostgreSQL fixture its *Postgres* tests need)
+  # and the Python client: no benchmarks, no fuzz replays.
+  [[ $name == tsan ]] && targets=(--target orbit_tests orbit_test_postgres orbit_python_stubs)
   nice -n 10 cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
   took[$name build]=$(($(date +%s) - start))
 
