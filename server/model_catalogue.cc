@@ -49,7 +49,7 @@ ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>
 ObjectSummary ModelCatalogue::Delete(ObjectId id) {
   std::lock_guard lock(write_mutex_);
   std::optional<StoredObject> object = store_.Get(id);
-  if (!object) throw StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
+  if (!object) throw ObjectNotFound(id);
   const Clock::time_point start = Clock::now();
   store_.Delete(id);
   ObserveWrite(write_seconds_.remove, start);

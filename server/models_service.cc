@@ -48,7 +48,7 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
   switch (ref.ref_case()) {
     case v1::ObjectRef::kId:
       if (!store.Get(ref.id())) {
-        throw StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(ref.id()));
+        throw ObjectNotFound(ref.id());
       }
       return ref.id();
     case v1::ObjectRef::kName:

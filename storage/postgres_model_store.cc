@@ -65,16 +65,6 @@ ModelView ViewFromRow(const PostgresResult& rows, int row, int first_column, Obj
   return view;
 }
 
-StoreError NotFound(ObjectId id) {
-  return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
-}
-
-StoreError NameTaken(std::string_view name, ObjectId owner) {
-  return StoreError(StoreError::Code::kAlreadyExists,
-                    "an object named \"" + std::string(name) + "\" already exists (id " +
-                        std::to_string(owner) + ")");
-}
-
 // The id of the object named `name`, if any.
 std::optional<ObjectId> FindId(PostgresConnection& connection, std::string_view name) {
   const PostgresResult found =
@@ -190,7 +180,7 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
   const PostgresResult count = connection.Query(
       "SELECT (SELECT count(*) FROM views WHERE object_id = $1) FROM objects WHERE id = $1",
       PostgresParams().Add(id));
-  if (count.rows() == 0) throw NotFound(id);
+  if (count.rows() == 0) throw ObjectNotFound(id);
   const auto existing = static_cast<std::size_t>(count.Int64(0, 0));
   if (existing + views.size() > kMaxViewsPerObject) {
     throw std::invalid_argument("object " + std::to_string(id) + " has " +
@@ -246,7 +236,7 @@ void PostgresModelStore::Delete(ObjectId id) {
   // The views go with it: ON DELETE CASCADE.
   if (connection.Query("DELETE FROM objects WHERE id = $1 RETURNING id", PostgresParams().Add(id))
           .rows() == 0) {
-    throw NotFound(id);
+    throw ObjectNotFound(id);
   }
   RecordChange(connection, id, ModelChangeKind::kDelete);
   transaction.Commit();
@@ -267,7 +257,7 @@ void PostgresModelStore::Rename(ObjectId id, std::string_view new_name) {
           .Query("UPDATE objects SET name = $2, updated_at = now() WHERE id = $1 RETURNING id",
                  PostgresParams().Add(id).Add(new_name))
           .rows() == 0) {
-    throw NotFound(id);
+    throw ObjectNotFound(id);
   }
   RecordChange(connection, id, ModelChangeKind::kRename);
   transaction.Commit();

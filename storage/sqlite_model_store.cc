@@ -82,16 +82,6 @@ int OnWalCommit(void* wal_pages, sqlite3*, const char*, int pages) {
   return SQLITE_OK;
 }
 
-StoreError NotFound(ObjectId id) {
-  return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
-}
-
-StoreError NameTaken(std::string_view name, ObjectId owner) {
-  return StoreError(StoreError::Code::kAlreadyExists,
-                    "an object named \"" + std::string(name) + "\" already exists (id " +
-                        std::to_string(owner) + ")");
-}
-
 // The id of the object named `name` on `connection`, if any.
 std::optional<ObjectId> FindId(SqliteConnection& connection, std::string_view name) {
   StatementLease find = connection.Prepare("SELECT id FROM objects WHERE name = ?1");
@@ -235,7 +225,7 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
     StatementLease count = writer_->Prepare(
         "SELECT (SELECT count(*) FROM views WHERE object_id = ?1) FROM objects WHERE id = ?1");
     count->Bind(1, id);
-    if (!count->Step()) throw NotFound(id);
+    if (!count->Step()) throw ObjectNotFound(id);
     const auto existing = static_cast<std::size_t>(count->ColumnInt64(0));
     if (existing + views.size() > kMaxViewsPerObject) {
       throw std::invalid_argument("object " + std::to_string(id) + " has " +
@@ -289,7 +279,7 @@ void SqliteModelStore::Delete(ObjectId id) {
     // The views go with it: ON DELETE CASCADE (foreign_keys is on).
     StatementLease remove = writer_->Prepare("DELETE FROM objects WHERE id = ?1 RETURNING id");
     remove->Bind(1, id);
-    if (!remove->Step()) throw NotFound(id);
+    if (!remove->Step()) throw ObjectNotFound(id);
     remove->Run();
   }
   CommitWrite(transaction);
@@ -310,7 +300,7 @@ void SqliteModelStore::Rename(ObjectId id, std::string_view new_name) {
                                              kNow + " WHERE id = ?1 RETURNING id");
     rename->Bind(1, id);
     rename->Bind(2, new_name);
-    if (!rename->Step()) throw NotFound(id);
+    if (!rename->Step()) throw ObjectNotFound(id);
     rename->Run();
   }
   CommitWrite(transaction);

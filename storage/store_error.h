@@ -9,6 +9,9 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
+
+#include "core/object_model.h"
 
 namespace orbit {
 
@@ -33,5 +36,17 @@ class StoreError : public std::runtime_error {
  private:
   Code code_;
 };
+
+// The two refusals every store and its callers word alike.
+// kNotFound: "no object with id ID".
+inline StoreError ObjectNotFound(ObjectId id) {
+  return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
+}
+// kAlreadyExists: "an object named "NAME" already exists (id OWNER)".
+inline StoreError NameTaken(std::string_view name, ObjectId owner) {
+  return StoreError(StoreError::Code::kAlreadyExists,
+                    "an object named \"" + std::string(name) + "\" already exists (id " +
+                        std::to_string(owner) + ")");
+}
 
 }  // namespace orbit
