@@ -152,14 +152,15 @@ class SlowLink {
     back.join();
   }
 
-  // Copies `from` to `to` until `from` ends, then ends `to`'s direction.
+  // Copies `from` to `to` until `from` ends, then ends `to`'s direction. A peer that closed
+  // first ends the copy (send's MSG_NOSIGNAL: no SIGPIPE, which would kill the test binary).
   static void Pump(int from, int to) {
     char buffer[16384];
     for (;;) {
       const ssize_t n = ::read(from, buffer, sizeof buffer);
       if (n <= 0) break;
       for (ssize_t done = 0; done < n;) {
-        const ssize_t w = ::write(to, buffer + done, static_cast<std::size_t>(n - done));
+        const ssize_t w = ::send(to, buffer + done, static_cast<std::size_t>(n - done), MSG_NOSIGNAL);
         if (w <= 0) return;
         done += w;
       }
