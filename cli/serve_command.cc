@@ -91,6 +91,12 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "a libpq connection string, postgresql://USER:PASSWORD@HOST:PORT/DBNAME or\n"
                   "\"host=... dbname=...\" (tables created in an empty schema; docs/storage.md)")
       ->envname("ORBIT_STORE");
+  cmd->add_option("--store-grace", c.store_grace_seconds,
+                  "with --store: seconds the server may lose the PostgreSQL store before its\n"
+                  "health reports NOT_SERVING (a balancer then sends new sessions elsewhere)")
+      ->check(CLI::Range(0, 86400))
+      ->capture_default_str()
+      ->envname("ORBIT_STORE_GRACE");
   cmd->add_option("--listen", c.listen, "HOST:PORT to serve on (port 0: any free port)")
       ->capture_default_str()
       ->envname("ORBIT_LISTEN");

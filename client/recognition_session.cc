@@ -15,11 +15,14 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 // A stream end that a new stream may cure: the connection dropped or the server went away
-// (UNAVAILABLE), or the server cancelled the call as it shut down (CANCELLED; the device's own
-// cancellation is told apart by the caller).
+// (UNAVAILABLE), the server cancelled the call as it shut down (CANCELLED; the device's own
+// cancellation is told apart by the caller), or the stream ended with no status at all
+// (UNKNOWN "No status received": a balancer between device and server lost the server under
+// it; an Orbit server itself always ends a session with a status of its own, never UNKNOWN).
 bool IsTransient(const grpc::Status& status) {
   return status.error_code() == grpc::StatusCode::UNAVAILABLE ||
-         status.error_code() == grpc::StatusCode::CANCELLED;
+         status.error_code() == grpc::StatusCode::CANCELLED ||
+         status.error_code() == grpc::StatusCode::UNKNOWN;
 }
 
 // The window the server will keep: the session's own, else the server's default, else the

@@ -8,8 +8,9 @@
 // azimuth travel per frame.
 //
 // Reconnection: when the stream ends with UNAVAILABLE (the server restarted, the network
-// dropped) or with a CANCELLED the device did not cause (a server cancelling its calls as it
-// shuts down), and the session was not closed by the device, a new stream is opened with the same
+// dropped), with a CANCELLED the device did not cause (a server cancelling its calls as it
+// shuts down) or with no status at all (UNKNOWN: a load balancer in front of server replicas
+// lost the one serving the session; docs/scaling.md), and the session was not closed by the device, a new stream is opened with the same
 // options and the session replays the frames still in the window - the last W answered frames,
 // whose updates are not delivered again - then every frame not yet answered. The server thus
 // rebuilds the same window and the updates continue in order, none lost and none repeated,

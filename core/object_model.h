@@ -24,6 +24,8 @@ struct ModelView {
   // Ttyp(c_{i,f}): mean Tanimoto distance between this view and its distorted copies
   // (SPEC.md, "Recognition"); 0 when unknown.
   double typical_distance = 0;
+
+  bool operator==(const ModelView&) const = default;
 };
 
 struct ObjectModel {
@@ -31,6 +33,8 @@ struct ObjectModel {
   std::string name;
   DescriptorVariant variant = DescriptorVariant::kCeddLire;  // every view has this variant
   std::vector<ModelView> views;
+
+  bool operator==(const ObjectModel&) const = default;
 };
 
 }  // namespace orbit

@@ -13,6 +13,7 @@ packages=(
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   python3-grpcio python3-protobuf
   postgresql-15  # the tests' PostgreSQL server (tests/support/postgres_test_cluster.h)
+  haproxy  # the gRPC balancer of docker/haproxy.cfg, run by tests/docker/replicas_test.cc
 )
 
 missing=()

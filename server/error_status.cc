@@ -23,6 +23,7 @@ grpc::Status StatusFromException(const std::exception& error) {
       case StoreError::Code::kFull:
         return {grpc::StatusCode::RESOURCE_EXHAUSTED, error.what()};
       case StoreError::Code::kBusy:
+      case StoreError::Code::kIo:
         return {grpc::StatusCode::UNAVAILABLE, error.what()};
       default:
         return {grpc::StatusCode::INTERNAL, error.what()};

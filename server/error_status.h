@@ -16,7 +16,8 @@ grpc::Status InvalidArgument(std::string message);
 
 // The status for an exception thrown by core/, api/ or storage/: std::invalid_argument ->
 // INVALID_ARGUMENT; StoreError by code (not found -> NOT_FOUND, already exists ->
-// ALREADY_EXISTS, full -> RESOURCE_EXHAUSTED, busy -> UNAVAILABLE, else INTERNAL); anything else
+// ALREADY_EXISTS, full -> RESOURCE_EXHAUSTED, busy and I/O -> UNAVAILABLE: worth retrying,
+// later or on another replica, as a store that cannot be reached; else INTERNAL); anything else
 // INTERNAL. The message is the exception's.
 grpc::Status StatusFromException(const std::exception& error);
 

@@ -57,6 +57,22 @@ ObjectSummary ModelCatalogue::Delete(ObjectId id) {
   return object->summary;
 }
 
+bool ModelCatalogue::Reload(ObjectId id) {
+  std::lock_guard lock(write_mutex_);
+  std::optional<StoredObject> stored = store_.Get(id);
+  if (!stored) return index_->Remove(id);
+  ObjectModel model{.id = id,
+                    .name = stored->summary.name,
+                    .variant = stored->summary.variant,
+                    .views = std::move(stored->views)};
+  const std::shared_ptr<const ViewIndexSnapshot> current = index_->Snapshot();
+  if (const IndexedObject* indexed = current->Find(id); indexed && indexed->model() == model) {
+    return false;
+  }
+  index_->Replace(std::move(model));
+  return true;
+}
+
 ObjectSummary ModelCatalogue::Reindex(ObjectId id) {
   std::optional<StoredObject> stored = store_.Get(id);
   if (!stored) {

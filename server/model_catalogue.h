@@ -38,6 +38,14 @@ class ModelCatalogue {
                          const std::vector<std::string>& thumbnails);
   ObjectSummary Delete(ObjectId id);
 
+  // Makes the index agree with the store about object `id` after another writer changed it
+  // (a replica following the change log: server/model_change_follower.h): publishes the stored
+  // object, or drops it when the store no longer has it. Publishes nothing when the index
+  // already holds exactly what is stored (this server's own writes, replayed), so sessions and
+  // the rejection calibration redo nothing for them. Returns true when the index changed.
+  // Throws StoreError as ModelStore::Get (the index is then unchanged).
+  bool Reload(ObjectId id);
+
   std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_->Snapshot(); }
   ModelStore& store() { return store_; }
   DescriptorVariant variant() const { return index_->variant(); }

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <iostream>
 #include <sstream>
 #include <stdexcept>
 
@@ -13,6 +14,7 @@
 #include "core/product_pipeline.h"
 #include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
+#include "server/model_change_follower.h"
 #include "server/models_service.h"
 #include "server/recognition_service.h"
 #include "server/server_metrics.h"
@@ -48,10 +50,8 @@ std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerConfig& config)
   return grpc::SslServerCredentials(options);
 }
 
-// The PostgreSQL store when a connection string is given, else the SQLite file (created when
-// missing).
-std::unique_ptr<ModelStore> OpenModelStore(const ServerConfig& config) {
-  if (!config.store.empty()) return std::make_unique<PostgresModelStore>(config.store);
+// The SQLite file (created when missing).
+std::unique_ptr<ModelStore> OpenSqliteStore(const ServerConfig& config) {
   SqliteModelStoreOptions options;
   options.create_if_missing = true;
   return std::make_unique<SqliteModelStore>(config.database, options);
@@ -70,7 +70,18 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
         " listen on 127.0.0.1, or pass --allow-remote-without-tokens if you really mean it");
   }
   metrics_ = std::make_unique<ServerMetrics>();
-  store_ = OpenModelStore(config_);
+  // On a shared PostgreSQL store, the change log's position is read before the index is
+  // loaded, and followed from there once serving: nothing committed in between is missed.
+  PostgresModelStore* shared_store = nullptr;
+  std::int64_t loaded_after_seq = 0;
+  if (!config_.store.empty()) {
+    auto postgres = std::make_unique<PostgresModelStore>(config_.store);
+    shared_store = postgres.get();
+    loaded_after_seq = postgres->LatestChangeSeq();
+    store_ = std::move(postgres);
+  } else {
+    store_ = OpenSqliteStore(config_);
+  }
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
   catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
                                                 metrics_->store_writes());
@@ -112,11 +123,25 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
     throw std::runtime_error("cannot listen on " + config_.listen +
                              " (address in use, or not an address of this machine?)");
   }
-  grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
-  health->SetServingStatus("", true);
-  health->SetServingStatus(v1::Recognition::service_full_name(), true);
-  health->SetServingStatus(v1::Models::service_full_name(), true);
+  SetServing(true);
   sweeper_ = std::thread([this] { SweepIdleSessions(); });
+  if (shared_store != nullptr) {
+    ModelChangeFollowerOptions follow;
+    follow.store_grace = std::chrono::seconds(config_.store_grace_seconds);
+    follow.on_fitness = [this](bool fit) { SetServing(fit); };
+    follow.on_event = [](const std::string& message) {
+      std::cerr << "orbit serve: " << message << std::endl;
+    };
+    follower_ = std::make_unique<ModelChangeFollower>(*shared_store, config_.store, *catalogue_,
+                                                      loaded_after_seq, std::move(follow));
+  }
+}
+
+void OrbitServer::SetServing(bool fit) {
+  grpc::HealthCheckServiceInterface* health = server_->GetHealthCheckService();
+  health->SetServingStatus("", fit);
+  health->SetServingStatus(v1::Recognition::service_full_name(), fit);
+  health->SetServingStatus(v1::Models::service_full_name(), fit);
 }
 
 OrbitServer::~OrbitServer() { Shutdown(); }
@@ -141,6 +166,7 @@ void OrbitServer::SweepIdleSessions() {
 
 void OrbitServer::Shutdown() {
   std::call_once(shutdown_once_, [this] {
+    follower_.reset();  // before health is shut down: it could set SERVING again
     server_->GetHealthCheckService()->Shutdown();  // every service NOT_SERVING, for good
     registry_->CloseAll({grpc::StatusCode::UNAVAILABLE, "the server is shutting down"});
     {

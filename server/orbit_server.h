@@ -7,6 +7,10 @@
 //   ... wait for SIGTERM ...
 //   server.Shutdown();               // health NOT_SERVING, sessions ended, calls drained
 //
+// On a PostgreSQL store shared by replicas, the server also follows the changes the others
+// commit (server/model_change_follower.h) and reports NOT_SERVING while it has lost the store
+// for longer than config.store_grace_seconds.
+//
 // Thread-safe: Shutdown() may be called from any thread, more than once.
 #pragma once
 
@@ -27,6 +31,7 @@ namespace orbit::server {
 
 class MetricsEndpoint;
 class ModelCatalogue;
+class ModelChangeFollower;
 class ModelsService;
 class RecognitionService;
 class RejectionCalibrator;
@@ -65,6 +70,8 @@ class OrbitServer {
 
  private:
   void SweepIdleSessions();
+  // Health of every service: SERVING when `fit`, NOT_SERVING otherwise.
+  void SetServing(bool fit);
 
   ServerConfig config_;
   AccessControl access_;
@@ -87,6 +94,9 @@ class OrbitServer {
   bool stopping_ = false;
   std::thread sweeper_;
   std::once_flag shutdown_once_;
+  // With a PostgreSQL store: follows what other replicas write. Uses the catalogue and the
+  // health service: declared last, destroyed (stopped) first.
+  std::unique_ptr<ModelChangeFollower> follower_;
 };
 
 }  // namespace orbit::server

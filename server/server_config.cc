@@ -29,6 +29,10 @@ void ValidateServerConfig(const ServerConfig& config) {
                                 std::to_string(config.limits.max_hmm_cells));
   }
   ValidateEngineOptions(config.session_defaults.options);
+  if (config.store_grace_seconds < 0) {
+    throw std::invalid_argument("--store-grace " + std::to_string(config.store_grace_seconds) +
+                                " is negative: give seconds, 0 or more");
+  }
   if (!config.store.empty()) {
     try {
       RedactedTarget(config.store);
@@ -57,7 +61,12 @@ std::string ServerConfig::Describe() const {
   const SessionSettings& d = session_defaults;
   std::ostringstream out;
   out << "orbit serve " << "configuration:\n"
-      << "  model store         " << DescribeStore(*this) << "\n"
+      << "  model store         " << DescribeStore(*this) << "\n";
+  if (!store.empty()) {
+    out << "  store grace         " << store_grace_seconds
+        << " s (then NOT_SERVING until the store answers)\n";
+  }
+  out
       << "  listen              " << listen << "\n"
       << "  access control      "
       << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"

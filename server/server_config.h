@@ -17,6 +17,9 @@ struct ServerConfig {
   // string, postgresql://USER:PASSWORD@HOST:PORT/DBNAME or "host=... dbname=...". Several
   // servers may share it. Empty: the SQLite store in `database`.
   std::string store;
+  // With `store`: how long the replica may lose the store before its health reports
+  // NOT_SERVING (its models may be stale; server/model_change_follower.h).
+  int store_grace_seconds = 10;
   std::string listen = "127.0.0.1:50051";   // HOST:PORT; port 0 picks a free port
   std::optional<std::filesystem::path> tokens_file;  // server/access_control.h
   std::optional<std::filesystem::path> tls_cert;     // PEM certificate chain (with tls_key)

@@ -219,4 +219,17 @@ bool PostgresConnection::StillOpen() {
   return ::poll(&socket, 1, 0) == 0;
 }
 
+std::vector<std::string> PostgresConnection::TakeNotifications() {
+  if (PQconsumeInput(connection_) == 0 || PQstatus(connection_) != CONNECTION_OK) {
+    throw StoreError(StoreError::Code::kIo, "lost the connection to PostgreSQL " + target_ + ": " +
+                                                Trimmed(PQerrorMessage(connection_)));
+  }
+  std::vector<std::string> payloads;
+  while (PGnotify* notify = PQnotifies(connection_)) {
+    payloads.emplace_back(notify->extra);
+    PQfreemem(notify);
+  }
+  return payloads;
+}
+
 }  // namespace orbit

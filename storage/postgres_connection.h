@@ -91,6 +91,13 @@ class PostgresConnection {
   // connection is checked before it is lent. Does not wait.
   bool StillOpen();
 
+  // The connection's socket, to wait on with poll() for notifications (LISTEN).
+  int Socket() const { return PQsocket(connection_); }
+  // Reads what the server sent without waiting and returns the payloads of the notifications
+  // received on any channel LISTENed to, oldest first (empty when none). Throws StoreError kIo
+  // "lost the connection to PostgreSQL <target>" when the server closed the connection.
+  std::vector<std::string> TakeNotifications();
+
   // The redacted connection target, for messages.
   const std::string& target() const { return target_; }
 

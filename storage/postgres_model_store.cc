@@ -377,4 +377,9 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
   return changes;
 }
 
+std::int64_t PostgresModelStore::LatestChangeSeq() {
+  Lease lease(*this);
+  return (*lease).Query("SELECT COALESCE(max(seq), 0) FROM model_changes").Int64(0, 0);
+}
+
 }  // namespace orbit

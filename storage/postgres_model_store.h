@@ -84,6 +84,11 @@ class PostgresModelStore final : public ModelStore {
   // seq it got until the answer is empty. Throws std::invalid_argument for a limit out of range.
   std::vector<ModelChange> ChangesAfter(std::int64_t after_seq, int limit = 1000);
 
+  // The seq of the last change committed so far (0 when none). A follower reads it before
+  // LoadAll and then follows from it: a change committed in between is applied again, which is
+  // harmless because applying a change re-reads the object (server/model_change_follower.h).
+  std::int64_t LatestChangeSeq();
+
   // The connection target without its password (for messages and the start-up account).
   const std::string& target() const { return target_; }
 

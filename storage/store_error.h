@@ -25,7 +25,8 @@ class StoreError : public std::runtime_error {
     kCorrupt,        // the file failed an integrity check or holds impossible values
     kIncompatible,   // not an Orbit model store, or written by a newer Orbit
     kConstraint,     // the database refused a write that validation let through
-    kIo,             // the file cannot be opened, read, written or synced
+    kIo,             // the file cannot be opened, read, written or synced; the database
+                     // server cannot be reached or the connection to it was lost
     kInternal,       // anything else SQLite reports
   };
 

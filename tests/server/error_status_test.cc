@@ -21,7 +21,7 @@ TEST(ErrorStatusTest, EachErrorGetsItsCodeAndKeepsItsMessage) {
       {Code::kFull, grpc::StatusCode::RESOURCE_EXHAUSTED},
       {Code::kBusy, grpc::StatusCode::UNAVAILABLE},
       {Code::kCorrupt, grpc::StatusCode::INTERNAL},
-      {Code::kIo, grpc::StatusCode::INTERNAL},
+      {Code::kIo, grpc::StatusCode::UNAVAILABLE},
   };
   for (const auto& c : store_cases) {
     const grpc::Status status = StatusFromException(StoreError(c.code, "store says so"));

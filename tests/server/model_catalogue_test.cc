@@ -138,5 +138,37 @@ TEST(ModelCatalogueTest, AnObjectDeletedByAnotherStoreUserIsNotFoundAndLeavesThe
   EXPECT_EQ(catalogue.Snapshot()->object_count(), 0u);
 }
 
+// Reload: what another writer of the store did reaches the index; what the index already holds
+// publishes nothing (a replica replaying its own writes makes no session redo work).
+TEST(ModelCatalogueTest, ReloadPublishesOnlyWhatAnotherWriterChanged) {
+  ScratchDir dir;
+  SqliteModelStore store(dir / "models.db", Create());
+  SqliteModelStore other_writer(dir / "models.db");
+  ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {});
+  const ObjectSummary mug = catalogue.Enroll(SyntheticObject("mug", 4));
+  const std::uint64_t after_enroll = catalogue.Snapshot()->serial();
+
+  EXPECT_FALSE(catalogue.Reload(mug.id));  // our own write, replayed
+  EXPECT_EQ(catalogue.Snapshot()->serial(), after_enroll);
+
+  other_writer.AddViews(mug.id, {SyntheticView(50, 200)});
+  const ObjectId jar = other_writer.Enroll(SyntheticObject("jar", 3, 20));
+  EXPECT_EQ(catalogue.Snapshot()->Find(jar), nullptr);  // not followed yet
+  EXPECT_TRUE(catalogue.Reload(mug.id));
+  EXPECT_TRUE(catalogue.Reload(jar));
+  EXPECT_EQ(catalogue.Snapshot()->Find(mug.id)->model().views.size(), 5u);
+  EXPECT_EQ(catalogue.Snapshot()->Find(jar)->model().name, "jar");
+
+  other_writer.Rename(jar, "pot");
+  EXPECT_TRUE(catalogue.Reload(jar));
+  EXPECT_EQ(catalogue.Snapshot()->Find(jar)->model().name, "pot");
+
+  other_writer.Delete(mug.id);
+  EXPECT_TRUE(catalogue.Reload(mug.id));
+  EXPECT_EQ(catalogue.Snapshot()->Find(mug.id), nullptr);
+  EXPECT_FALSE(catalogue.Reload(mug.id));  // gone from both: nothing to do
+  EXPECT_EQ(catalogue.Snapshot()->object_count(), 1u);
+}
+
 }  // namespace
 }  // namespace orbit::server

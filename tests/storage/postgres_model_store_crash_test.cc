@@ -79,19 +79,13 @@ TEST(PostgresStoreCrashTest, KillingAWriterMidEnrollmentLeavesOnlyWholeLoggedObj
 // are there after the restart, and the same store carries on with fresh connections. On a
 // private server: the shared one serves other tests meanwhile.
 TEST(PostgresStoreCrashTest, AcknowledgedWritesSurviveACrashOfTheDatabaseServer) {
-  const testing::ScratchDir scratch;
-  const std::filesystem::path folder = scratch / "cluster";
-  struct StopAtEnd {
-    std::filesystem::path folder;
-    ~StopAtEnd() { testing::PostgresTestCluster::Stop(folder); }
-  } stop_at_end{folder};
-  testing::PostgresTestCluster::Start(folder);
-  PostgresModelStore store("host=" + folder.string() + " user=orbit dbname=postgres");
+  const testing::PrivatePostgresServer server;
+  PostgresModelStore store(server.conninfo());
   const ObjectId id = store.Enroll(SyntheticObject("mug", 72));
   store.Rename(id, "cup");
 
-  testing::PostgresTestCluster::Crash(folder);
-  testing::PostgresTestCluster::Restart(folder);
+  server.Crash();
+  server.Restart();
 
   const std::optional<ObjectSummary> cup = store.Find("cup");
   ASSERT_TRUE(cup.has_value());

@@ -41,9 +41,10 @@ std::vector<std::pair<ObjectId, ModelChangeKind>> Kinds(const std::vector<ModelC
   return kinds;
 }
 
-TEST(PostgresModelStoreTest, ChangesAfterListsEachCommittedWriteInOrder) {
+TEST(PostgresModelStoreTest, ChangesAfterListsEachCommittedWriteInOrderUpToTheLatest) {
   TestDatabase database;
   PostgresModelStore store(database.conninfo());
+  EXPECT_EQ(store.LatestChangeSeq(), 0);
   const ObjectId mug = store.Enroll(SyntheticObject("mug", 2));
   const ObjectId jar = store.Enroll(SyntheticObject("jar", 2));
   store.AddViews(mug, {SyntheticView(9, 90)});
@@ -68,6 +69,7 @@ TEST(PostgresModelStoreTest, ChangesAfterListsEachCommittedWriteInOrder) {
   EXPECT_THAT(Kinds(store.ChangesAfter(changes[1].seq, 2)),
               ElementsAre(std::pair(mug, K::kAddViews), std::pair(jar, K::kRename)));
   EXPECT_TRUE(store.ChangesAfter(changes.back().seq).empty());
+  EXPECT_EQ(store.LatestChangeSeq(), changes.back().seq);
   EXPECT_THROW(store.ChangesAfter(0, 0), std::invalid_argument);
 }
 

@@ -168,6 +168,33 @@ PostgresTestCluster::~PostgresTestCluster() {
   if (owner_pid_ != 0 && owner_pid_ == ::getpid()) Stop(folder_);
 }
 
+PrivatePostgresServer::PrivatePostgresServer() {
+  std::string pattern =
+      (std::filesystem::temp_directory_path() / "orbit_private_postgres_XXXXXX").string();
+  if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+  parent_ = pattern;
+  ::chmod(parent_.c_str(), 0755);  // the server's unprivileged user must reach its folder
+  folder_ = parent_ / "cluster";
+  try {
+    PostgresTestCluster::Start(folder_);
+  } catch (...) {
+    PostgresTestCluster::Stop(folder_);
+    std::error_code ignored;
+    std::filesystem::remove_all(parent_, ignored);
+    throw;
+  }
+}
+
+PrivatePostgresServer::~PrivatePostgresServer() {
+  PostgresTestCluster::Stop(folder_);
+  std::error_code ignored;
+  std::filesystem::remove_all(parent_, ignored);
+}
+
+std::string PrivatePostgresServer::conninfo() const {
+  return "host=" + folder_.string() + " user=orbit dbname=postgres";
+}
+
 std::string PostgresTestCluster::ConnectionString(const std::string& database) const {
   return "host=" + folder_.string() + " user=orbit dbname=" + database;
 }

@@ -59,6 +59,26 @@ class PostgresTestCluster {
   int owner_pid_ = 0;  // the process that started it and stops it; 0: started by someone else
 };
 
+// A PostgreSQL server of the test's own, for tests that crash or restart it while the shared one
+// serves other tests: started in a fresh temporary folder, stopped and removed at the end.
+class PrivatePostgresServer {
+ public:
+  PrivatePostgresServer();  // throws as PostgresTestCluster::Start
+  ~PrivatePostgresServer();
+  PrivatePostgresServer(const PrivatePostgresServer&) = delete;
+  PrivatePostgresServer& operator=(const PrivatePostgresServer&) = delete;
+
+  // The connection string of its database "postgres".
+  std::string conninfo() const;
+  const std::filesystem::path& folder() const { return folder_; }
+  void Crash() const { PostgresTestCluster::Crash(folder_); }
+  void Restart() const { PostgresTestCluster::Restart(folder_); }
+
+ private:
+  std::filesystem::path parent_;  // the temporary folder, holding folder_
+  std::filesystem::path folder_;
+};
+
 // A new empty database on the shared cluster, dropped (with any connection left to it) at the
 // end of the test.
 class TestDatabase {

@@ -1,0 +1,85 @@
+// ModelChangeFollower: keeps a replica's index in step with a PostgreSQL model store that other
+// replicas write to (docs/scaling.md). It follows the store's change log in commit order: woken
+// by LISTEN/NOTIFY (storage/postgres_change_listener.h) as soon as a change is committed, and
+// reading the log at least every `poll_interval` anyway. Each change is applied by re-reading
+// its object (ModelCatalogue::Reload), so applying one twice, or a change this replica made
+// itself, is harmless and publishes nothing.
+//
+// Nothing is missed across a dropped connection or a restart of the database: the follower
+// remembers the last seq it applied and, once the store answers again, replays the log from
+// there. While the store cannot be reached it retries every `retry_interval`; when that lasts
+// longer than `store_grace`, it reports the replica unfit to serve (health NOT_SERVING, so the
+// balancer sends new sessions elsewhere: this replica's models may be stale), and fit again
+// once it has caught up.
+//
+// Thread-safe. The follower runs on a thread of its own from construction to destruction.
+#pragma once
+
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <string>
+#include <thread>
+
+namespace orbit {
+class PostgresModelStore;
+}
+
+namespace orbit::server {
+
+class ModelCatalogue;
+
+struct ModelChangeFollowerOptions {
+  std::chrono::milliseconds poll_interval{1000};  // read the log at least this often
+  std::chrono::milliseconds retry_interval{500};  // between attempts while the store is away
+  std::chrono::milliseconds store_grace{10000};   // away longer than this: unfit to serve
+  // Called on the follower's thread with true when the replica becomes fit to serve again and
+  // false when it stops being fit (never twice in a row with the same value).
+  std::function<void(bool fit)> on_fitness = [](bool) {};
+  // Called on the follower's thread with a line for the operator (lost and regained store).
+  std::function<void(const std::string& message)> on_event = [](const std::string&) {};
+};
+
+class ModelChangeFollower {
+ public:
+  // Follows the changes of `store` (reached through `conninfo` for LISTEN) committed after
+  // `after_seq`, the seq read before `catalogue` was loaded (PostgresModelStore::
+  // LatestChangeSeq). `store` and `catalogue` must outlive the follower.
+  ModelChangeFollower(PostgresModelStore& store, std::string conninfo, ModelCatalogue& catalogue,
+                      std::int64_t after_seq, ModelChangeFollowerOptions options = {});
+  // Stops the thread (within about 100 ms; a change being applied is finished first).
+  ~ModelChangeFollower();
+
+  ModelChangeFollower(const ModelChangeFollower&) = delete;
+  ModelChangeFollower& operator=(const ModelChangeFollower&) = delete;
+
+  // The seq of the last change applied to the index.
+  std::int64_t applied_seq() const { return applied_seq_.load(); }
+  // Changes that made the index change (this replica's own writes, replayed, do not count).
+  std::int64_t changes_applied() const { return changes_applied_.load(); }
+
+ private:
+  void Run();
+  // Applies every change after applied_seq_; returns when the log has no more.
+  void CatchUp();
+  // Sleeps up to `duration`; false when asked to stop meanwhile.
+  bool SleepFor(std::chrono::milliseconds duration);
+  bool Stopping();
+
+  PostgresModelStore& store_;
+  const std::string conninfo_;
+  ModelCatalogue& catalogue_;
+  const ModelChangeFollowerOptions options_;
+  std::atomic<std::int64_t> applied_seq_;
+  std::atomic<std::int64_t> changes_applied_{0};
+
+  std::mutex mutex_;
+  std::condition_variable wake_;
+  bool stop_ = false;  // guarded by mutex_
+  std::thread thread_;
+};
+
+}  // namespace orbit::server
