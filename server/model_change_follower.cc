@@ -60,7 +60,10 @@ void ModelChangeFollower::CatchUp() {
     const std::vector<ModelChange> changes = store_.ChangesAfter(applied_seq_, kChangesPerRead);
     for (const ModelChange& change : changes) {
       try {
-        if (catalogue_.Reload(change.object_id)) ++changes_applied_;
+        if (catalogue_.Reload(change.object_id)) {
+          ++changes_applied_;
+          options_.on_applied(change);
+        }
       } catch (const std::invalid_argument& e) {
         // The stored object cannot be indexed here (another variant, say): no retry will change
         // that, so it is reported and passed over rather than blocking every later change.

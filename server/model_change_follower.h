@@ -24,6 +24,8 @@
 #include <string>
 #include <thread>
 
+#include "storage/model_change.h"
+
 namespace orbit {
 class PostgresModelStore;
 }
@@ -41,6 +43,9 @@ struct ModelChangeFollowerOptions {
   std::function<void(bool fit)> on_fitness = [](bool) {};
   // Called on the follower's thread with a line for the operator (lost and regained store).
   std::function<void(const std::string& message)> on_event = [](const std::string&) {};
+  // Called on the follower's thread after a change changed the index (not for replays of what
+  // the index already held).
+  std::function<void(const ModelChange& change)> on_applied = [](const ModelChange&) {};
 };
 
 class ModelChangeFollower {

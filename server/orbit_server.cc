@@ -132,6 +132,13 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
     follow.on_event = [](const std::string& message) {
       std::cerr << "orbit serve: " << message << std::endl;
     };
+    follow.on_applied = [lag = &metrics_->change_lag_seconds()](const ModelChange& change) {
+      if (const auto committed = CommittedTime(change)) {
+        lag->Observe(std::max(0.0, std::chrono::duration<double>(
+                                       std::chrono::system_clock::now() - *committed)
+                                       .count()));
+      }
+    };
     follower_ = std::make_unique<ModelChangeFollower>(*shared_store, config_.store, *catalogue_,
                                                       loaded_after_seq, std::move(follow));
   }

@@ -29,6 +29,10 @@ const prometheus::Histogram::BucketBoundaries kEnrollmentBounds = {0.001, 0.0025
 // an SSD, tens of milliseconds on a disk or a busy store.
 const prometheus::Histogram::BucketBoundaries kStoreWriteBounds = {1e-4,  2.5e-4, 5e-4, 0.001, 0.0025, 0.005, 0.01,
                                                0.025, 0.05,   0.1,  0.25,  0.5,    1,     5};
+// A change another replica committed reaches this one in milliseconds when it is woken by the
+// notification, up to the poll interval (1 s) when it is not, and later while the store is away.
+const prometheus::Histogram::BucketBoundaries kChangeLagBounds = {
+    0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30};
 
 prometheus::Family<prometheus::Counter>& AddCounter(prometheus::Registry& registry,
                                                    std::string name, std::string help) {
@@ -103,7 +107,11 @@ ServerMetrics::ServerMetrics()
       store_write_seconds_family_(AddHistogram(
           *registry_, "orbit_store_write_seconds",
           "Duration of each committed write to the model store (one transaction, synced to "
-          "disk), by operation: enroll, add_views, delete.")) {
+          "disk), by operation: enroll, add_views, delete.")),
+      change_lag_seconds_family_(AddHistogram(
+          *registry_, "orbit_model_change_lag_seconds",
+          "With a PostgreSQL store shared by replicas: seconds from the commit of another "
+          "replica's change to the change being in this replica's index.")) {
   for (const std::string& name : SessionEngineNames()) {
     frames_[ParseSessionEngine(name)] = &frames_family_.Add({{"engine", name}});
   }
@@ -129,6 +137,7 @@ ServerMetrics::ServerMetrics()
   store_writes_.add_views =
       &store_write_seconds_family_.Add({{"operation", "add_views"}}, kStoreWriteBounds);
   store_writes_.remove = &store_write_seconds_family_.Add({{"operation", "delete"}}, kStoreWriteBounds);
+  change_lag_seconds_ = &change_lag_seconds_family_.Add({}, kChangeLagBounds);
 }
 
 std::vector<std::weak_ptr<prometheus::Collectable>> ServerMetrics::collectables() const {

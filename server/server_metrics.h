@@ -101,6 +101,10 @@ class ServerMetrics {
 
   StoreWriteHistograms store_writes() const { return store_writes_; }
 
+  // Seconds from the commit of another replica's change (the change log's committed_at) to its
+  // object being in this replica's index (server/model_change_follower.h).
+  prometheus::Histogram& change_lag_seconds() { return *change_lag_seconds_; }
+
   // Gauges read at each scrape: the open sessions, the index's size, the tasks waiting for each
   // pool's workers. Each object must outlive every later scrape. Until watched, a gauge is not
   // exposed.
@@ -121,6 +125,7 @@ class ServerMetrics {
   prometheus::Family<prometheus::Counter>& enrollments_family_;
   prometheus::Family<prometheus::Histogram>& enrollment_seconds_family_;
   prometheus::Family<prometheus::Histogram>& store_write_seconds_family_;
+  prometheus::Family<prometheus::Histogram>& change_lag_seconds_family_;
   std::array<prometheus::Counter*, v1::Engine_ARRAYSIZE> frames_{};
   std::array<prometheus::Histogram*, 2> frame_seconds_{};
   // refusals_[code][reason], for the pairs of kRefusalKinds; others are found when counted.
@@ -128,6 +133,7 @@ class ServerMetrics {
   std::array<prometheus::Counter*, 4> enrollments_{};  // by EnrollmentOutcome
   prometheus::Histogram* enrollment_seconds_;
   StoreWriteHistograms store_writes_;
+  prometheus::Histogram* change_lag_seconds_;
 };
 
 }  // namespace orbit::server

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <array>
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -31,5 +32,8 @@ struct ModelChange {
 
   bool operator==(const ModelChange&) const = default;
 };
+
+// `committed_at` as a time point; nullopt when it is not "YYYY-MM-DDTHH:MM:SS.mmmZ".
+std::optional<std::chrono::system_clock::time_point> CommittedTime(const ModelChange& change);
 
 }  // namespace orbit

@@ -79,6 +79,13 @@ TEST(PostgresReplicasTest, AnObjectEnrolledThroughOneReplicaIsRecognisedOnTheOth
   std::cout << "replica B serves A's 3 enrollments "
             << std::chrono::duration<double>(Clock::now() - enrolled_at).count()
             << " s after A began them\n";
+  // B measured each one's delay from A's commit; A, whose own changes they are, none.
+  ASSERT_TRUE(WaitUntil([&] { return Gauge(b, "orbit_model_change_lag_seconds_count") == 3; }));
+  const double mean_lag = Gauge(b, "orbit_model_change_lag_seconds_sum") / 3;
+  EXPECT_GE(mean_lag, 0);
+  EXPECT_LT(mean_lag, 10);
+  std::cout << "mean delay from A's commit to B's index: " << mean_lag * 1000 << " ms\n";
+  EXPECT_EQ(Gauge(a, "orbit_model_change_lag_seconds_count"), 0);
 
   // Two sessions through the balancer: one on each replica (the fewest streams gets the next),
   // and each recognises the object.
@@ -106,6 +113,7 @@ TEST(PostgresReplicasTest, AnObjectEnrolledThroughOneReplicaIsRecognisedOnTheOth
   obj1.set_name("obj1");
   ModelsClient(at_b).DeleteObject(obj1);
   ASSERT_TRUE(WaitUntil([&] { return Gauge(a, "orbit_index_objects") == 2; })) << a.Log();
+  EXPECT_EQ(Gauge(a, "orbit_model_change_lag_seconds_count"), 1);
 }
 
 TEST(PostgresReplicasTest, ASessionSurvivesTheLossOfItsReplica) {

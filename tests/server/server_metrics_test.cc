@@ -50,7 +50,8 @@ TEST(ServerMetricsTest, EveryMetricIsExposedFromTheStartWithItsChildrenAtZero) {
   for (const char* family :
        {"orbit_frames_processed_total counter", "orbit_frame_processing_seconds histogram",
         "orbit_refusals_total counter", "orbit_enrollments_total counter",
-        "orbit_enrollment_seconds histogram", "orbit_store_write_seconds histogram"}) {
+        "orbit_enrollment_seconds histogram", "orbit_store_write_seconds histogram",
+        "orbit_model_change_lag_seconds histogram"}) {
     EXPECT_THAT(text, HasSubstr(std::string("# TYPE ") + family + "\n"));
   }
   for (const char* engine : {"vci", "hmm", "vci-hmm", "vci-bm", "vci-w0", "eis", "siis", "eiis"}) {
@@ -69,6 +70,7 @@ TEST(ServerMetricsTest, EveryMetricIsExposedFromTheStartWithItsChildrenAtZero) {
   EXPECT_EQ(Sample(text, R"(orbit_frame_processing_seconds_count{input="image"})"), 0);
   EXPECT_EQ(Sample(text, R"(orbit_store_write_seconds_count{operation="delete"})"), 0);
   EXPECT_EQ(Sample(text, "orbit_enrollment_seconds_count"), 0);
+  EXPECT_EQ(Sample(text, "orbit_model_change_lag_seconds_count"), 0);
   // Gauges appear once the server gives them something to watch.
   EXPECT_THAT(text, ::testing::Not(HasSubstr("orbit_open_sessions")));
 }
