@@ -360,17 +360,28 @@ DescriptorVariant VariantOf(const std::vector<ObjectModel>& models) {
 ViewIndex::ViewIndex(std::vector<ObjectModel> models, ViewIndexOptions options)
     : variant_(VariantOf(models)), options_(options) {
   ValidateOptions(options_);
-  std::vector<std::shared_ptr<const IndexedObject>> objects;
-  std::unordered_set<ObjectId> ids;
-  for (ObjectModel& model : models) {
-    if (!ids.insert(model.id).second) {
-      throw std::invalid_argument("two models share the id " + std::to_string(model.id));
-    }
-    objects.push_back(Prepare(std::move(model), variant_));
-  }
+  current_ = BuildAll(std::move(models));
+}
+
+std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(std::vector<ObjectModel> models) const {
   std::vector<SegmentState> segments;
-  segments.push_back(FreshState(BuildSegment(std::move(objects), options_)));
-  current_ = std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
+  if (!models.empty()) {
+    std::vector<std::shared_ptr<const IndexedObject>> objects;
+    std::unordered_set<ObjectId> ids;
+    for (ObjectModel& model : models) {
+      if (!ids.insert(model.id).second) {
+        throw std::invalid_argument("two models share the id " + std::to_string(model.id));
+      }
+      objects.push_back(Prepare(std::move(model), variant_));
+    }
+    segments.push_back(FreshState(BuildSegment(std::move(objects), options_)));
+  }
+  return std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
+}
+
+void ViewIndex::ReplaceAll(std::vector<ObjectModel> models) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  Publish(BuildAll(std::move(models)));
 }
 
 namespace {

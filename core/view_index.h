@@ -94,6 +94,11 @@ class ViewIndex {
   // before are unchanged. Throws as Add() for an invalid model, changing nothing.
   void Replace(ObjectModel model);
 
+  // Puts `models` in place of every object, built in one pass as the constructor builds them
+  // and published as one snapshot (a server loading its store while it already listens).
+  // Throws as that constructor, except that `models` may be empty, changing nothing.
+  void ReplaceAll(std::vector<ObjectModel> models);
+
   // Removes the object; returns false (and changes nothing) when no object has this id.
   bool Remove(ObjectId id);
 
@@ -105,6 +110,8 @@ class ViewIndex {
 
  private:
   void Publish(std::shared_ptr<const ViewIndexSnapshot> next);
+  // A snapshot holding exactly `models` (validated as the constructor does).
+  std::shared_ptr<const ViewIndexSnapshot> BuildAll(std::vector<ObjectModel> models) const;
 
   const DescriptorVariant variant_;
   const ViewIndexOptions options_;

@@ -5,7 +5,8 @@
 #
 #   asan  build-asan/: AddressSanitizer (with LeakSanitizer) and UndefinedBehaviorSanitizer;
 #         every ctest test (the GoogleTest suite, the Python client, the fuzz corpus replays).
-#   tsan  build-tsan/: ThreadSanitizer; the tests of tests/server, tests/client and tests/cli
+#   tsan  build-tsan/: ThreadSanitizer; the tests of tests/server, tests/client, tests/cli and
+#         tests/docker
 #         (their test suites are read from the sources) and the Python client.
 #
 # The flags go in through CMAKE_CXX_FLAGS and the linker flags: CMakeLists.txt is the normal
@@ -38,12 +39,12 @@ declare -A flags=(
   [tsan]="-fsanitize=thread"
 )
 
-# ctest -R for tsan: the test suites of tests/server, tests/client and tests/cli, and the Python
+# ctest -R for tsan: the test suites of tests/server, tests/client, tests/cli and tests/docker, and the Python
 # client (PythonClient.StreamsASession, which streams to a real server).
 tsan_tests() {
   local suites
   suites=$(grep -hoE '^(TEST|TEST_F|TEST_P)\( *[A-Za-z0-9_]+' \
-    tests/server/*_test.cc tests/client/*_test.cc tests/cli/*_test.cc |
+    tests/server/*_test.cc tests/client/*_test.cc tests/cli/*_test.cc tests/docker/*_test.cc |
     sed -E 's/^[A-Z_]+\( *//' | sort -u | paste -sd '|')
   echo "^(${suites}|PythonClient)\\."
 }

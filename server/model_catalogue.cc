@@ -22,8 +22,13 @@ void ObserveWrite(prometheus::Histogram* seconds, Clock::time_point start) {
 ModelCatalogue::ModelCatalogue(ModelStore& store, DescriptorVariant variant,
                                ViewIndexOptions index_options, StoreWriteHistograms write_seconds)
     : store_(store),
-      index_(LoadViewIndex(store, variant, index_options)),
+      index_(std::make_unique<ViewIndex>(variant, index_options)),
       write_seconds_(write_seconds) {}
+
+void ModelCatalogue::Load() {
+  std::lock_guard lock(write_mutex_);
+  index_->ReplaceAll(LoadModels(store_, variant()));
+}
 
 ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
   if (enrollment.variant != variant()) {

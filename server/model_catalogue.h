@@ -22,12 +22,17 @@ namespace orbit::server {
 
 class ModelCatalogue {
  public:
-  // Indexes every object of `store` in one pass (storage/view_index_loading.h). Throws StoreError
-  // kIncompatible when the store holds an object of another variant than `variant` (naming it),
-  // and as ModelStore::LoadAll. Each committed store write is observed, in seconds, in the
-  // histogram of `write_seconds` for its operation (none when null); a write that throws is not.
+  // A catalogue of `store` whose index is empty until Load(). Each committed store write is
+  // observed, in seconds, in the histogram of `write_seconds` for its operation (none when
+  // null); a write that throws is not.
   ModelCatalogue(ModelStore& store, DescriptorVariant variant, ViewIndexOptions index_options,
                  StoreWriteHistograms write_seconds = {});
+
+  // Indexes every object of the store in one pass (storage/view_index_loading.h: LoadModels),
+  // published as one snapshot in place of whatever the index held. Throws StoreError
+  // kIncompatible when the store holds an object of another variant (naming it), and as
+  // ModelStore::LoadAll; the index is then unchanged.
+  void Load();
 
   // Each throws as the ModelStore method of the same name (StoreError kNotFound for an unknown
   // id), std::invalid_argument when the enrollment's variant is not the catalogue's, and

@@ -69,6 +69,10 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
       Answer(allowed, RefusalReason::kAccess);
       return;
     }
+    if (grpc::Status admitted = env_.gate.Admit(); !admitted.ok()) {
+      Answer(admitted, RefusalReason::kStarting);
+      return;
+    }
     StartRead(&request_);
   }
 
@@ -152,7 +156,7 @@ grpc::ServerReadReactor<v1::EnrollRequest>* ModelsService::Enroll(
 grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* context,
                                                   const v1::AddViewsRequest* request,
                                                   v1::ObjectInfo* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.bulk_pool, env_.metrics,
+  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.gate, env_.bulk_pool, env_.metrics,
                       [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     if (request->views().empty()) {
@@ -176,7 +180,7 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
 grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext* context,
                                                      const v1::ListObjectsRequest* request,
                                                      v1::ListObjectsResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
                       [this, request, response] {
     ListRequest page;
     page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
@@ -208,7 +212,7 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* context,
                                                    const v1::GetObjectRequest* request,
                                                    v1::GetObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
                       [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
@@ -233,7 +237,7 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
 grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContext* context,
                                                       const v1::DeleteObjectRequest* request,
                                                       v1::DeleteObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.pool, env_.metrics,
+  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.gate, env_.pool, env_.metrics,
                       [this, request, response] {
     const ObjectId id = Resolve(env_.catalogue.store(), request->object());
     *response->mutable_deleted() = ToObjectInfo(env_.catalogue.Delete(id));
@@ -244,7 +248,7 @@ grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContex
 grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext* context,
                                                     const v1::ServerInfoRequest* /*request*/,
                                                     v1::ServerInfoResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.pool, env_.metrics,
+  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
                       [this, response] {
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     response->set_version(env_.version);

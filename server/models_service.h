@@ -12,6 +12,7 @@
 #include "server/access_control.h"
 #include "server/model_catalogue.h"
 #include "server/server_metrics.h"
+#include "server/serving_gate.h"
 #include "server/session_settings.h"
 #include "server/worker_pool.h"
 
@@ -26,6 +27,7 @@ struct ModelsEnvironment {
   const SessionSettings& defaults;
   std::string version;
   ServerMetrics& metrics;  // enrollments and refusals are counted here
+  const ServingGate& gate;  // closed until the index is loaded: every call refused UNAVAILABLE
 };
 
 class ModelsService final : public v1::Models::CallbackService {

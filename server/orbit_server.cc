@@ -94,11 +94,11 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
   recognition_ = std::make_unique<RecognitionService>(
       SessionEnvironment{*catalogue_, *calibrator_, *pool_, *bulk_pool_, *registry_, config_.limits,
-                         config_.session_defaults, *metrics_},
+                         config_.session_defaults, *metrics_, gate_},
       access_);
   models_ = std::make_unique<ModelsService>(ModelsEnvironment{
       *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
-      kOrbitVersion, *metrics_});
+      kOrbitVersion, *metrics_, gate_});
   metrics_->WatchSessions(*registry_);
   metrics_->WatchIndex(*catalogue_);
   metrics_->WatchWorkers(*pool_, *bulk_pool_);
@@ -123,6 +123,17 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
     throw std::runtime_error("cannot listen on " + config_.listen +
                              " (address in use, or not an address of this machine?)");
   }
+  // Listening, NOT_SERVING and refusing Orbit calls (UNAVAILABLE) while the index loads: a
+  // balancer's health check and a client get an answer instead of a refused connection.
+  SetServing(false);
+  try {
+    catalogue_->Load();
+    calibrator_->For(catalogue_->Snapshot());  // the first calibration, before any session
+  } catch (...) {
+    server_->Shutdown();
+    throw;
+  }
+  gate_.Open();
   SetServing(true);
   sweeper_ = std::thread([this] { SweepIdleSessions(); });
   if (shared_store != nullptr) {

@@ -25,6 +25,7 @@
 
 #include "server/access_control.h"
 #include "server/server_config.h"
+#include "server/serving_gate.h"
 #include "storage/model_store.h"
 
 namespace orbit::server {
@@ -41,7 +42,8 @@ class WorkerPool;
 
 class OrbitServer {
  public:
-  // Opens (creating if needed) the store, indexes its objects and starts serving.
+  // Opens (creating if needed) the store, starts listening (health NOT_SERVING, Orbit calls
+  // UNAVAILABLE), indexes the store's objects, calibrates rejection and starts serving.
   // Throws std::invalid_argument as ValidateServerConfig (server_config.h), and
   // std::runtime_error with a message for the operator when the configuration is unsafe
   // (no tokens on a non-loopback address), a file cannot be read, the store cannot be opened, or
@@ -75,6 +77,7 @@ class OrbitServer {
 
   ServerConfig config_;
   AccessControl access_;
+  ServingGate gate_;  // opened once the index is loaded
   std::unique_ptr<ServerMetrics> metrics_;
   std::unique_ptr<ModelStore> store_;
   std::unique_ptr<ModelCatalogue> catalogue_;

@@ -26,6 +26,9 @@ grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionServi
   if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize); !allowed.ok()) {
     return new RefusedSession(env_.metrics.Refuse(allowed, RefusalReason::kAccess));
   }
+  if (grpc::Status admitted = env_.gate.Admit(); !admitted.ok()) {
+    return new RefusedSession(env_.metrics.Refuse(admitted, RefusalReason::kStarting));
+  }
   return new SessionReactor(env_, context);
 }
 
@@ -36,7 +39,7 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
   const bool has_image = std::any_of(request->frames().begin(), request->frames().end(),
                                      [](const v1::Frame& frame) { return !frame.image().empty(); });
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
-  return RunUnaryCall(context, access_, Role::kRecognize, workers, env_.metrics,
+  return RunUnaryCall(context, access_, Role::kRecognize, env_.gate, workers, env_.metrics,
                       [this, request, response] {
     using Clock = std::chrono::steady_clock;
     ServerMetrics& metrics = env_.metrics;

@@ -13,6 +13,7 @@ std::string_view RefusalReasonName(RefusalReason reason) {
     case RefusalReason::kRequestSize: return "request_size";
     case RefusalReason::kIdleTimeout: return "idle_timeout";
     case RefusalReason::kShuttingDown: return "shutting_down";
+    case RefusalReason::kStarting: return "starting";
     case RefusalReason::kUnknownObject: return "unknown_object";
     case RefusalReason::kDuplicateName: return "duplicate_name";
     case RefusalReason::kStore: return "store";

@@ -27,6 +27,7 @@ enum class RefusalReason {
                    // frames in one Recognize call
   kIdleTimeout,    // idle_timeout: a session without a frame for --idle-timeout
   kShuttingDown,   // shutting_down: the server is stopping
+  kStarting,       // starting: the server is still loading its model index (server/serving_gate.h)
   kUnknownObject,  // unknown_object: no object with that id or name
   kDuplicateName,  // duplicate_name: an object of that name is already enrolled
   kStore,          // store: the model store failed (full, busy, I/O, corrupt)
@@ -40,7 +41,7 @@ std::string_view RefusalReasonName(RefusalReason reason);
 // Every (code, reason) pair the server answers with, so that each series exists, at 0, from
 // the start (a counter that appears only at its first increment hides that first increment
 // from rate() and increase()).
-inline constexpr std::array<std::pair<grpc::StatusCode, RefusalReason>, 16> kRefusalKinds = {{
+inline constexpr std::array<std::pair<grpc::StatusCode, RefusalReason>, 17> kRefusalKinds = {{
     {grpc::StatusCode::INVALID_ARGUMENT, RefusalReason::kInvalidField},
     {grpc::StatusCode::UNAUTHENTICATED, RefusalReason::kAccess},
     {grpc::StatusCode::PERMISSION_DENIED, RefusalReason::kAccess},
@@ -51,6 +52,7 @@ inline constexpr std::array<std::pair<grpc::StatusCode, RefusalReason>, 16> kRef
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kRequestSize},
     {grpc::StatusCode::DEADLINE_EXCEEDED, RefusalReason::kIdleTimeout},
     {grpc::StatusCode::UNAVAILABLE, RefusalReason::kShuttingDown},
+    {grpc::StatusCode::UNAVAILABLE, RefusalReason::kStarting},
     {grpc::StatusCode::NOT_FOUND, RefusalReason::kUnknownObject},
     {grpc::StatusCode::ALREADY_EXISTS, RefusalReason::kDuplicateName},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kStore},

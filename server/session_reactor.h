@@ -25,6 +25,7 @@
 #include "server/rejection_calibrator.h"
 #include "server/refusal_reason.h"
 #include "server/server_metrics.h"
+#include "server/serving_gate.h"
 #include "server/session_engine.h"
 #include "server/session_registry.h"
 #include "server/session_settings.h"
@@ -42,6 +43,7 @@ struct SessionEnvironment {
   const ServerLimits& limits;
   const SessionSettings& defaults;
   ServerMetrics& metrics;
+  const ServingGate& gate;  // closed until the index is loaded: sessions refused UNAVAILABLE
 };
 
 class SessionReactor final

@@ -1,4 +1,5 @@
-// Runs a unary call's work on the worker pool after checking the caller's role, and finishes
+// Runs a unary call's work on the worker pool after checking the caller's role and that the
+// server has loaded its models (server/serving_gate.h), and finishes
 // the call with the work's status (exceptions become statuses via StatusFromException). Keeps
 // store reads and writes (fsync) off gRPC's threads. Refusals are counted in `metrics`: the
 // caller's role and exceptions here, the statuses the work returns by the work itself
@@ -13,6 +14,7 @@
 #include "server/access_control.h"
 #include "server/error_status.h"
 #include "server/server_metrics.h"
+#include "server/serving_gate.h"
 #include "server/worker_pool.h"
 
 namespace orbit::server {
@@ -21,11 +23,16 @@ namespace orbit::server {
 // the call (gRPC's response object does).
 template <typename Work>
 grpc::ServerUnaryReactor* RunUnaryCall(grpc::CallbackServerContext* context,
-                                       const AccessControl& access, Role role, WorkerPool& pool,
+                                       const AccessControl& access, Role role,
+                                       const ServingGate& gate, WorkerPool& pool,
                                        ServerMetrics& metrics, Work work) {
   grpc::ServerUnaryReactor* reactor = context->DefaultReactor();
   if (grpc::Status allowed = access.Authorize(*context, role); !allowed.ok()) {
     reactor->Finish(metrics.Refuse(allowed, RefusalReason::kAccess));
+    return reactor;
+  }
+  if (grpc::Status admitted = gate.Admit(); !admitted.ok()) {
+    reactor->Finish(metrics.Refuse(admitted, RefusalReason::kStarting));
     return reactor;
   }
   pool.Post([reactor, metrics = &metrics, work = std::move(work)]() mutable {

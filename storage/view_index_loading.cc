@@ -14,8 +14,7 @@ std::optional<DescriptorVariant> StoreVariant(ModelStore& store) {
   return first.front().variant;
 }
 
-std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
-                                         const ViewIndexOptions& options) {
+std::vector<ObjectModel> LoadModels(ModelStore& store, DescriptorVariant variant) {
   std::vector<ObjectModel> models = store.LoadAll();
   for (const ObjectModel& model : models) {
     if (model.variant != variant) {
@@ -26,6 +25,12 @@ std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant va
                            std::string(VariantName(variant)));
     }
   }
+  return models;
+}
+
+std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
+                                         const ViewIndexOptions& options) {
+  std::vector<ObjectModel> models = LoadModels(store, variant);
   if (models.empty()) return std::make_unique<ViewIndex>(variant, options);
   return std::make_unique<ViewIndex>(std::move(models), options);
 }

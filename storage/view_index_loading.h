@@ -3,6 +3,7 @@
 
 #include <memory>
 #include <optional>
+#include <vector>
 
 #include "core/descriptor.h"
 #include "core/view_index.h"
@@ -10,19 +11,22 @@
 
 namespace orbit {
 
-// A ViewIndex of every object in `store`, built in one pass from one snapshot (ModelStore::LoadAll)
-// with the index's bulk constructor: one segment, one kd-tree. Adding the objects one by one
-// instead makes the index merge its segments over and over (about 7x slower in kd-tree mode for
-// 1000 objects x 72 views: `build/orbit_bench --benchmark_filter='store-load-index|index-add'`).
-// An empty store gives an empty index of `variant`.
-//
-// Throws StoreError kIncompatible, naming the first such object, when the store holds an object
-// of another variant than `variant` (SPEC.md, "Descriptor variants": never mix variants); other
-// errors as ModelStore::LoadAll and the ViewIndex constructor.
 // The variant of the objects `store` holds (that of its first object: LoadViewIndex refuses a
 // mix), or nullopt for an empty store. What a server serves when not told a variant.
 std::optional<DescriptorVariant> StoreVariant(ModelStore& store);
 
+// Every object of `store` (ModelStore::LoadAll), checked to be of `variant`: what the index's
+// bulk constructor and ViewIndex::ReplaceAll take. Throws StoreError kIncompatible, naming the
+// first such object, when the store holds an object of another variant (SPEC.md, "Descriptor
+// variants": never mix variants); other errors as ModelStore::LoadAll.
+std::vector<ObjectModel> LoadModels(ModelStore& store, DescriptorVariant variant);
+
+// A ViewIndex of every object in `store`, built in one pass from one snapshot (LoadModels) with
+// the index's bulk constructor: one segment, one kd-tree. Adding the objects one by one instead
+// makes the index merge its segments over and over (about 7x slower in kd-tree mode for 1000
+// objects x 72 views: `build/orbit_bench --benchmark_filter='store-load-index|index-add'`). An
+// empty store gives an empty index of `variant`. Throws as LoadModels and the ViewIndex
+// constructor.
 std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
                                          const ViewIndexOptions& options = {});
 

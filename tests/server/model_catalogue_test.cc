@@ -38,6 +38,7 @@ TEST(ModelCatalogueTest, EnrollAddViewsAndDeleteReachTheIndex) {
   ScratchDir dir;
   SqliteModelStore store(dir / "models.db", Create());
   ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {});
+  catalogue.Load();
   const ObjectSummary mug = catalogue.Enroll(SyntheticObject("mug", 4));
   EXPECT_EQ(mug.view_count, 4);
   ASSERT_NE(catalogue.Snapshot()->Find(mug.id), nullptr);
@@ -65,6 +66,7 @@ TEST(ModelCatalogueTest, FramesDuringAddViewsNeverSeeTheObjectMissing) {
   ScratchDir dir;
   SqliteModelStore store(dir / "models.db", Create());
   ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {.search = SearchMode::kKdTree});
+  catalogue.Load();
   const ObjectId mug = catalogue.Enroll(SyntheticObject("mug", 8)).id;
   catalogue.Enroll(SyntheticObject("bowl", 8, 100));
 
@@ -128,6 +130,7 @@ TEST(ModelCatalogueTest, AnObjectDeletedByAnotherStoreUserIsNotFoundAndLeavesThe
   // One object enrolled before the other user appears.
   const ObjectId mug = store.mine().Enroll(SyntheticObject("mug", 4));
   ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {});
+  catalogue.Load();
   ASSERT_NE(catalogue.Snapshot()->Find(mug), nullptr);
 
   EXPECT_EQ(CodeOf([&] { catalogue.AddViews(mug, {SyntheticView(9, 30)}, {}); }),
@@ -145,6 +148,7 @@ TEST(ModelCatalogueTest, ReloadPublishesOnlyWhatAnotherWriterChanged) {
   SqliteModelStore store(dir / "models.db", Create());
   SqliteModelStore other_writer(dir / "models.db");
   ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {});
+  catalogue.Load();
   const ObjectSummary mug = catalogue.Enroll(SyntheticObject("mug", 4));
   const std::uint64_t after_enroll = catalogue.Snapshot()->serial();
 

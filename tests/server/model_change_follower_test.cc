@@ -6,6 +6,7 @@
 #include <chrono>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <thread>
 #include <vector>
@@ -31,18 +32,21 @@ using orbit::testing::TestDatabase;
 
 // A replica: its own store on the shared database, its catalogue, and its follower.
 struct Replica {
-  Replica(const std::string& conninfo, ModelChangeFollowerOptions options = {})
+  explicit Replica(const std::string& conninfo, ModelChangeFollowerOptions options = {})
       : store(conninfo),
         after_seq(store.LatestChangeSeq()),
-        catalogue(store, DescriptorVariant::kCeddLire, {}),
-        follower(store, conninfo, catalogue, after_seq, std::move(options)) {}
+        catalogue(store, DescriptorVariant::kCeddLire, {}) {
+    catalogue.Load();
+    follower = std::make_unique<ModelChangeFollower>(store, conninfo, catalogue, after_seq,
+                                                     std::move(options));
+  }
 
   const IndexedObject* Find(ObjectId id) const { return catalogue.Snapshot()->Find(id); }
 
   PostgresModelStore store;
   std::int64_t after_seq;
   ModelCatalogue catalogue;
-  ModelChangeFollower follower;
+  std::unique_ptr<ModelChangeFollower> follower;
 };
 
 TEST(PostgresModelChangeFollowerTest, ReplicaBFollowsEveryKindOfChangeReplicaACommits) {
@@ -60,14 +64,14 @@ TEST(PostgresModelChangeFollowerTest, ReplicaBFollowsEveryKindOfChangeReplicaACo
   ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id)->model().name == "cup"; }));
   a.catalogue.Delete(mug.id);
   ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id) == nullptr; }));
-  EXPECT_EQ(b.follower.changes_applied(), 4);
+  EXPECT_EQ(b.follower->changes_applied(), 4);
 
   // B's own write comes back through the log and changes nothing there; A learns of it.
   const ObjectSummary jar = b.catalogue.Enroll(SyntheticObject("jar", 3, 9));
   const std::uint64_t serial = b.catalogue.Snapshot()->serial();
-  ASSERT_TRUE(WaitUntil([&] { return b.follower.applied_seq() == b.store.LatestChangeSeq(); }));
+  ASSERT_TRUE(WaitUntil([&] { return b.follower->applied_seq() == b.store.LatestChangeSeq(); }));
   EXPECT_EQ(b.catalogue.Snapshot()->serial(), serial);
-  EXPECT_EQ(b.follower.changes_applied(), 4);
+  EXPECT_EQ(b.follower->changes_applied(), 4);
   ASSERT_TRUE(WaitUntil([&] { return a.Find(jar.id) != nullptr; }));
 }
 
@@ -80,6 +84,7 @@ TEST(PostgresModelChangeFollowerTest, NothingCommittedAroundTheStartIsMissed) {
   const std::int64_t after_seq = store.LatestChangeSeq();
   const ObjectId before_load = writer.Enroll(SyntheticObject("mug", 2));
   ModelCatalogue catalogue(store, DescriptorVariant::kCeddLire, {});
+  catalogue.Load();
   const ObjectId after_load = writer.Enroll(SyntheticObject("jar", 2, 7));
   ModelChangeFollower follower(store, database.conninfo(), catalogue, after_seq);
   ASSERT_TRUE(WaitUntil([&] { return catalogue.Snapshot()->Find(after_load) != nullptr; }));
@@ -110,7 +115,7 @@ TEST(PostgresModelChangeFollowerTest, DroppedConnectionsLoseNoChange) {
   ASSERT_TRUE(WaitUntil([&] { return b.catalogue.Snapshot()->object_count() == enrolled.size(); }))
       << b.catalogue.Snapshot()->object_count() << " of " << enrolled.size();
   for (ObjectId id : enrolled) EXPECT_NE(b.Find(id), nullptr) << id;
-  EXPECT_EQ(b.follower.applied_seq(), a.store.LatestChangeSeq());
+  EXPECT_EQ(b.follower->applied_seq(), a.store.LatestChangeSeq());
 }
 
 // The database server crashes under the replicas: B carries on with the models it has, reports

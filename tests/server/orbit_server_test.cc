@@ -20,6 +20,9 @@
 #include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "storage/postgres_connection.h"
+#include "tests/support/free_port.h"
+#include "tests/support/health_check.h"
 #include "tests/support/postgres_test_cluster.h"
 #include "tests/support/server_process.h"
 #include "tests/support/test_data.h"
@@ -675,6 +678,51 @@ TEST(Server, PostgresStoreIsSharedByServersStartedOnIt) {
                               database.name()),
             std::string::npos)
       << second.Log();
+}
+
+// A server listens before it has loaded its index: while it loads, health says NOT_SERVING (a
+// balancer keeps sessions away) and Orbit calls get UNAVAILABLE naming the reason; then SERVING.
+// The load is held up by a test transaction locking the views table (for less than the store's
+// 5 s lock timeout).
+TEST(Server, PostgresReplicaIsNotServingUntilItHasLoadedItsIndex) {
+  const testing::TestDatabase database;
+  {
+    ServerProcess first({.store = database.conninfo()});
+    v1::ObjectInfo info;
+    ASSERT_TRUE(Client(first.address()).Enroll("obj92", 92, &info).ok());
+  }
+  PostgresConnection locker(database.conninfo(), 0);
+  locker.Execute("BEGIN; LOCK TABLE views IN ACCESS EXCLUSIVE MODE");
+  const std::string address = "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
+  auto starting = std::async(std::launch::async, [&] {
+    // The variant given: finding the store's own would read the locked table before listening.
+    return std::make_unique<ServerProcess>(ServerProcessOptions{
+        .store = database.conninfo(),
+        .listen = address,
+        .extra_args = {"--variant", std::string(VariantName(Product().variant))}});
+  });
+  std::optional<int> health;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+  while (!(health = testing::HealthStatus(address)) && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  EXPECT_EQ(health, testing::kNotServing);
+  EXPECT_EQ(testing::HealthStatus(address, "orbit.v1.Recognition"), testing::kNotServing);
+  Client client(address);
+  v1::ListObjectsResponse list;
+  const grpc::Status refused = client.List(&list);
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::UNAVAILABLE);
+  EXPECT_NE(refused.error_message().find("loading its model index"), std::string::npos)
+      << refused.error_message();
+  const auto session = client.Session(v1::SessionOptions(), {CoilFrame(92, 45, 0)});
+  EXPECT_EQ(session.status.error_code(), grpc::StatusCode::UNAVAILABLE);
+
+  locker.Execute("COMMIT");
+  const std::unique_ptr<ServerProcess> server = starting.get();
+  EXPECT_EQ(testing::HealthStatus(address), testing::kServing);
+  const auto recognised = client.Session(v1::SessionOptions(), {CoilFrame(92, 45, 0)});
+  ASSERT_TRUE(recognised.status.ok()) << recognised.status.error_message();
+  EXPECT_EQ(recognised.updates.at(0).candidates(0).name(), "obj92");
 }
 
 TEST(Server, PostgresStoreOutOfReachStopsTheStartWithAClearMessage) {

@@ -1,10 +1,7 @@
 #include "tests/support/balancer_process.h"
 
-#include <arpa/inet.h>
 #include <fcntl.h>
-#include <netinet/in.h>
 #include <signal.h>
-#include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -16,27 +13,12 @@
 #include <grpcpp/grpcpp.h>
 
 #include "orbit/v1/models.grpc.pb.h"
+#include "tests/support/free_port.h"
 
 namespace orbit::testing {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A loopback port free at the time of asking.
-int FreeLoopbackPort() {
-  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in address{};
-  address.sin_family = AF_INET;
-  address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t length = sizeof address;
-  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof address) != 0 ||
-      ::getsockname(fd, reinterpret_cast<sockaddr*>(&address), &length) != 0) {
-    throw std::runtime_error("cannot find a free loopback port");
-  }
-  const int port = ntohs(address.sin_port);
-  ::close(fd);
-  return port;
-}
 
 }  // namespace
 
