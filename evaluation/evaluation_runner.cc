@@ -468,7 +468,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
 // The report's cells, in its fixed order (variant, distortion, method, n), each summing its
 // outcomes over every object and trial.
 std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
-                                           const TrialGrid& grid, const EvaluationDataset& dataset,
+                                           const TrialGrid& grid,
                                            const EvaluationOptions& options) {
   std::vector<EvaluationCell> cells;
   for (std::size_t v = 0; v < grid.variants; ++v) {
@@ -565,7 +565,7 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
       RunTrials(dataset, described, models, grid, options, report.engine, report.threads);
   report.trial_seconds = SecondsSince(trial_start);
 
-  report.cells = AggregateCells(outcomes, grid, dataset, options);
+  report.cells = AggregateCells(outcomes, grid, options);
   return report;
 }
 

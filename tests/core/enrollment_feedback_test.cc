@@ -16,7 +16,12 @@ ObjectModel Object(ObjectId id, std::vector<std::pair<double, DescriptorValues>>
   ObjectModel model;
   model.id = id;
   model.name = "obj" + std::to_string(id);
-  for (const auto& [azimuth, descriptor] : views) model.views.push_back({descriptor, azimuth});
+  for (const auto& [azimuth, descriptor] : views) {
+    ModelView view;
+    view.descriptor = descriptor;
+    view.azimuth = azimuth;
+    model.views.push_back(view);
+  }
   return model;
 }
 

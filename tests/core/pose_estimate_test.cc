@@ -18,7 +18,12 @@ IndexedObject ObjectWithViews(const std::vector<std::pair<double, DescriptorValu
   ObjectModel model;
   model.id = 1;
   model.name = "obj1";
-  for (const auto& [azimuth, descriptor] : views) model.views.push_back({descriptor, azimuth});
+  for (const auto& [azimuth, descriptor] : views) {
+    ModelView view;
+    view.descriptor = descriptor;
+    view.azimuth = azimuth;
+    model.views.push_back(view);
+  }
   return IndexedObject(std::move(model));
 }
 
