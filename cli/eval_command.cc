@@ -59,7 +59,7 @@ struct EvalOptions {
   std::string verdicts;
   bool active = false;
   double active_step = 20;
-  bool active_ignore_moves = false;
+  std::string active_policy{ActivePolicyName(ActivePolicy::kFollowMoves)};
   std::string recognition_plot;
   double orientation_weight = EngineOptions{}.orientation_weight;
   int list_length = EngineOptions{}.list_length;
@@ -99,7 +99,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.threshold = o.threshold;
   options.engine.rejection = ParseRejectionRule(o.rejection);
   options.active_step = o.active ? o.active_step : 0;
-  options.active_follows_moves = !o.active_ignore_moves;
+  options.active_policy = *ParseActivePolicy(o.active_policy);
   options.engine.false_accept_rate = o.false_accept_rate;
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
@@ -288,9 +288,13 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                     "active vision: after its first two views, each query takes its next view "
                     "--active-step degrees on in the direction its method's latest update "
                     "suggested, instead of at random");
-  command->add_flag("--active-ignore-moves", o->active_ignore_moves,
-                    "with --active: step always the same way, whatever the updates suggest (the "
-                    "control that measures the suggestion)");
+  command->add_option("--active-policy", o->active_policy,
+                      "with --active, which way each step goes: follow (the method's suggestion), "
+                      "one-way (always the same way: the control that measures the suggestion), "
+                      "oracle (both ways at every step, keeping the path best for the truth: the "
+                      "bound of any left / right suggestion; 2^(n-2) paths per query)")
+      ->check(CLI::IsMember({"follow", "one-way", "oracle"}))
+      ->capture_default_str();
   command->add_option("--active-step", o->active_step, "degrees per step of --active")
       ->check(CLI::Range(1.0, 180.0))
       ->capture_default_str();

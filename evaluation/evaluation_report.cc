@@ -84,9 +84,19 @@ std::string MarkdownReport(const EvaluationReport& report) {
   if (report.active_step > 0) {
     out << " Active vision (`--active`): after the first two views, each next view "
         << Format("%g", report.active_step)
-        << (report.active_follows_moves
-                ? " degrees from the latest in the direction the method suggested."
-                : " degrees on from the latest, always the same way (the suggestion ignored).");
+        << [&] {
+             switch (report.active_policy) {
+               case ActivePolicy::kFollowMoves:
+                 return " degrees from the latest in the direction the method suggested.";
+               case ActivePolicy::kOneWay:
+                 return " degrees on from the latest, always the same way (the suggestion "
+                        "ignored).";
+               case ActivePolicy::kBestOfBoth:
+                 return " degrees from the latest, both ways at every step, keeping the path "
+                        "best for the truth (the bound of any left / right suggestion).";
+             }
+             return "";
+           }();
   }
   if (report.search == SearchMode::kKdTree) {
     out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks

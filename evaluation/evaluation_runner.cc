@@ -3,6 +3,7 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <chrono>
 #include <functional>
@@ -98,7 +99,7 @@ EvaluationReport ReportOf(const EvaluationOptions& options) {
   report.search = options.index.search;
   report.use_orientation = options.use_orientation;
   report.active_step = options.active_step;
-  report.active_follows_moves = options.active_follows_moves;
+  report.active_policy = options.active_policy;
   report.index = options.index;
   report.threads = options.threads > 0 ? options.threads : AvailableCpus();
   report.engine = options.engine;
@@ -351,56 +352,107 @@ std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectMode
 }
 
 // One active query (EvaluationOptions::active_step) of one method: the protocol's first views
-// (two, or one when n = 1), then NextActiveView after each update, each frame's device azimuth
-// its true azimuth + the first frame's offset + N(0, 3 degrees). Returns the last update and
-// sets `latest_view` to the view of the last frame.
+// (two, or one when n = 1), then NextActiveView after each update as `policy` says, each
+// frame's device azimuth its true azimuth + the first frame's offset + N(0, 3 degrees) (the
+// k-th frame's draw the same on every path). Returns the last update and sets `latest_view` to
+// the view of the last frame.
 struct ActiveQueryInput {
   const std::vector<ObjectModel>* models = nullptr;  // the variant's known objects
   std::size_t object = 0;                            // the target's position
   bool known = true;
+  ObjectId expected = 0;                                // the target's id; 0 for unknown
   std::shared_ptr<const ViewIndexSnapshot> full_index;  // for unknown targets
   std::vector<double> azimuths;                         // the target's views' true azimuths
   std::function<Descriptor(int view)> descriptor;       // a view's query under the distortion
   std::uint64_t trial_seed = 0;
   int n = 1;
   double step = 20;
-  bool follow_moves = true;  // false: on in one direction whatever the updates say
+  ActivePolicy policy = ActivePolicy::kFollowMoves;
   bool use_orientation = true;
   ViewIndexOptions index;
 };
 
-FrameUpdate ActiveQuery(RecognitionEngine& engine, const ActiveQueryInput& in, int& latest_view) {
-  const TrialQuery first = SampleTrial(in.azimuths, std::min(in.n, 2), in.trial_seed);
-  const double offset = first.azimuths[0] - in.azimuths[first.views[0]];
-  SeededRandom noise(MixSeed(in.trial_seed, 0x616374697665ULL /* "active" */));
-  std::vector<int> views = first.views;
-  std::vector<QueryFrame> frames;
-  for (std::size_t k = 0; k < views.size(); ++k) {
-    frames.push_back({in.descriptor(views[k]), in.use_orientation
-                                                   ? std::optional<double>(first.azimuths[k])
-                                                   : std::nullopt});
+// How good `update` is for the truth, for ActivePolicy::kBestOfBoth: 2 a right top-1 accepted,
+// 1 a right top-1, 0 otherwise; for an unknown target 1 when not accepted.
+int ScoreForTruth(const FrameUpdate& update, ObjectId expected) {
+  if (expected == 0) return update.decision == Decision::kAccept ? 0 : 1;
+  if (!IsTopOneHit(update.ranking, expected)) return 0;
+  return update.decision == Decision::kAccept ? 2 : 1;
+}
+
+class ActiveQuery {
+ public:
+  ActiveQuery(RecognitionEngine& engine, const ActiveQueryInput& in) : engine_(engine), in_(in) {
+    SeededRandom noise(MixSeed(in.trial_seed, 0x616374697665ULL /* "active" */));
+    for (int k = 0; k < in.n; ++k) noise_.push_back(kQueryAzimuthNoiseDegrees * noise.Normal());
   }
-  int direction = 1;
-  while (true) {
+
+  FrameUpdate Run(int& latest_view) {
+    const TrialQuery first = SampleTrial(in_.azimuths, std::min(in_.n, 2), in_.trial_seed);
+    offset_ = first.azimuths[0] - in_.azimuths[first.views[0]];
+    Path path{first.views, {}, 1};
+    for (std::size_t k = 0; k < path.views.size(); ++k) {
+      path.frames.push_back({in_.descriptor(path.views[k]),
+                             in_.use_orientation ? std::optional<double>(first.azimuths[k])
+                                                 : std::nullopt});
+    }
+    return Extend(std::move(path), latest_view);
+  }
+
+ private:
+  struct Path {
+    std::vector<int> views;
+    std::vector<QueryFrame> frames;
+    int direction = 1;  // the way the last step went (NextActiveView)
+  };
+
+  FrameUpdate Extend(Path path, int& latest_view) {
     const std::shared_ptr<const ViewIndexSnapshot> index =
-        in.known ? TrialIndex(*in.models, in.object,
-                              {views, {}, ExcludedViews(in.azimuths, views)}, in.index)
-                 : in.full_index;
-    const FrameUpdate update = engine.ObserveSequence(index, frames);
-    if (static_cast<int>(frames.size()) == in.n) {
-      latest_view = views.back();
+        in_.known ? TrialIndex(*in_.models, in_.object,
+                               {path.views, {}, ExcludedViews(in_.azimuths, path.views)},
+                               in_.index)
+                  : in_.full_index;
+    const FrameUpdate update = engine_.ObserveSequence(index, path.frames);
+    if (static_cast<int>(path.frames.size()) == in_.n) {
+      latest_view = path.views.back();
       return update;
     }
-    const int next = NextActiveView(in.azimuths, views.back(),
-                                    in.follow_moves ? update.move : SuggestedMove::kNone, in.step,
-                                    direction);
-    views.push_back(next);
-    const double azimuth =
-        NormaliseAzimuth(in.azimuths[next] + offset + kQueryAzimuthNoiseDegrees * noise.Normal());
-    frames.push_back({in.descriptor(next), in.use_orientation ? std::optional<double>(azimuth)
-                                                              : std::nullopt});
+    switch (in_.policy) {
+      case ActivePolicy::kFollowMoves:
+        return Extend(Step(std::move(path), update.move), latest_view);
+      case ActivePolicy::kOneWay:
+        return Extend(Step(std::move(path), SuggestedMove::kNone), latest_view);
+      case ActivePolicy::kBestOfBoth:
+        break;
+    }
+    int right_view = 0;
+    const FrameUpdate right = Extend(Step(path, SuggestedMove::kRight), right_view);
+    int left_view = 0;
+    const FrameUpdate left = Extend(Step(std::move(path), SuggestedMove::kLeft), left_view);
+    const bool left_better =
+        ScoreForTruth(left, in_.expected) > ScoreForTruth(right, in_.expected);
+    latest_view = left_better ? left_view : right_view;
+    return left_better ? left : right;
   }
-}
+
+  // `path` with its next view, `move`'s way from its latest.
+  Path Step(Path path, SuggestedMove move) const {
+    const int next = NextActiveView(in_.azimuths, path.views.back(), move, in_.step,
+                                    path.direction);
+    const double azimuth =
+        NormaliseAzimuth(in_.azimuths[next] + offset_ + noise_[path.frames.size()]);
+    path.views.push_back(next);
+    path.frames.push_back({in_.descriptor(next), in_.use_orientation
+                                                     ? std::optional<double>(azimuth)
+                                                     : std::nullopt});
+    return path;
+  }
+
+  RecognitionEngine& engine_;
+  const ActiveQueryInput& in_;
+  std::vector<double> noise_;  // the k-th frame's azimuth noise
+  double offset_ = 0;
+};
 
 // Step 3: every task of `grid` on `threads` threads; returns the outcome table. Each task
 // draws its query (SampleTrial, from its own TrialSeed) and asks every method, for every
@@ -443,14 +495,14 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         FrameUpdate update;
         if (options.active_step > 0) {
           ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
-                                  models[t.variant].full_index, azimuths, nullptr, trial_seed,
-                                  n, options.active_step, options.active_follows_moves,
-                                  options.use_orientation, options.index};
+                                  is_known ? expected : 0, models[t.variant].full_index,
+                                  azimuths, nullptr, trial_seed, n, options.active_step,
+                                  options.active_policy, options.use_orientation, options.index};
           active.descriptor = [&](int view) -> Descriptor {
             return {options.variants[t.variant],
                     described[target.images[view]][t.variant].queries[d]};
           };
-          update = ActiveQuery(*engines[m], active, latest_view);
+          update = ActiveQuery(*engines[m], active).Run(latest_view);
         } else {
           update = engines[m]->ObserveSequence(snapshot, frames);
         }
@@ -538,6 +590,30 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
     }
   }
   return described;
+}
+
+namespace {
+
+constexpr std::array<std::pair<ActivePolicy, std::string_view>, 3> kActivePolicyNames = {{
+    {ActivePolicy::kFollowMoves, "follow"},
+    {ActivePolicy::kOneWay, "one-way"},
+    {ActivePolicy::kBestOfBoth, "oracle"},
+}};
+
+}  // namespace
+
+std::string_view ActivePolicyName(ActivePolicy policy) {
+  for (const auto& [p, name] : kActivePolicyNames) {
+    if (p == policy) return name;
+  }
+  return "?";
+}
+
+std::optional<ActivePolicy> ParseActivePolicy(std::string_view name) {
+  for (const auto& [policy, n] : kActivePolicyNames) {
+    if (n == name) return policy;
+  }
+  return std::nullopt;
 }
 
 EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,

@@ -26,6 +26,7 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -44,6 +45,23 @@ namespace orbit {
 
 // kProductMethod, then every engine of EngineNames().
 std::vector<std::string> DefaultMethods();
+
+// Which way an active query's next view goes (`orbit eval --active`, EvaluationOptions::
+// active_step).
+enum class ActivePolicy {
+  kFollowMoves,  // "follow": the way the method's latest update suggested (on the same way at NONE)
+  kOneWay,       // "one-way": always the same way, whatever the updates say: the control that
+                 // measures the suggestion alone
+  kBestOfBoth,   // "oracle": both ways at every step, keeping the path whose last answer is best
+                 // for the truth (a right top-1 accepted, then a right top-1; for an unknown
+                 // object, not accepted): the bound of any LEFT / RIGHT suggestion at this step.
+                 // 2^(n-2) paths per query
+};
+
+// The policy's name, as above; and back (nullopt for any other text).
+std::string_view ActivePolicyName(ActivePolicy policy);
+std::optional<ActivePolicy> ParseActivePolicy(std::string_view name);
+
 
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
@@ -67,9 +85,8 @@ struct EvaluationOptions {
   // core/evaluation_protocol.h), in capture order. Known objects' models lack the views near
   // every view taken so far, at each step.
   double active_step = 0;
-  // With active_step: false steps on in one direction whatever the updates say (the control
-  // that measures the suggestion alone).
-  bool active_follows_moves = true;
+  // With active_step: which way each step goes (ActivePolicy).
+  ActivePolicy active_policy = ActivePolicy::kFollowMoves;
   ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
   EngineOptions engine;     // the engines' options; the window is raised to the largest n
   int threads = 0;          // worker threads; 0: every CPU this process may run on
@@ -145,7 +162,7 @@ struct EvaluationReport {
   SearchMode search = SearchMode::kExact;
   bool use_orientation = true;      // as the options said
   double active_step = 0;           // as the options said
-  bool active_follows_moves = true;  // as the options said
+  ActivePolicy active_policy = ActivePolicy::kFollowMoves;  // as the options said
   ViewIndexOptions index;           // as used
   EngineOptions engine;             // as used (window raised to the largest n)
   double descriptor_seconds = 0;    // wall-clock time of step 1

@@ -177,11 +177,43 @@ TEST(RunEvaluationTest, ActiveQueriesTakeTheirViewsFromTheMethodsMoves) {
   EXPECT_EQ(active.cells[1].n, 4);
   EXPECT_EQ(active.cells[1].hits, 9);
   // The control steps on one way whatever the moves say: the same first two views again.
-  options.active_follows_moves = false;
+  options.active_policy = ActivePolicy::kOneWay;
   const EvaluationReport control = RunEvaluation(known, unknown, options);
-  EXPECT_FALSE(control.active_follows_moves);
+  EXPECT_EQ(control.active_policy, ActivePolicy::kOneWay);
   EXPECT_EQ(control.cells[0].hits, passive.cells[0].hits);
   EXPECT_EQ(control.cells[1].trials, 9);
+}
+
+// The oracle tries both ways at every step and keeps the best path for the truth: never worse
+// than following the suggestion or stepping one way, query for query, and the same at n = 2
+// (no step taken).
+TEST(RunEvaluationTest, TheActiveOracleBoundsEveryLeftRightPolicy) {
+  EvaluationOptions options;
+  options.methods = {"hmm"};
+  options.distortions = {ParseDistortionSpec("mb:len=25:angle=30")};
+  options.query_lengths = {2, 4};
+  options.trials = 4;
+  options.active_step = 20;
+  const std::vector<DatasetImage> known =
+      ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3, 4, 5, 6});
+  const auto run = [&](ActivePolicy policy) {
+    options.active_policy = policy;
+    return RunEvaluation(known, {}, options);
+  };
+  const EvaluationReport follow = run(ActivePolicy::kFollowMoves);
+  const EvaluationReport one_way = run(ActivePolicy::kOneWay);
+  const EvaluationReport oracle = run(ActivePolicy::kBestOfBoth);
+  ASSERT_EQ(oracle.cells.size(), 2u);
+  EXPECT_EQ(oracle.cells[0].hits, follow.cells[0].hits);
+  for (std::size_t q = 0; q < oracle.cells[1].verdicts.size(); ++q) {
+    const bool best = oracle.cells[1].verdicts[q].hit;
+    EXPECT_GE(best, follow.cells[1].verdicts[q].hit) << "query " << q;
+    EXPECT_GE(best, one_way.cells[1].verdicts[q].hit) << "query " << q;
+  }
+  EXPECT_GE(oracle.cells[1].hits, std::max(follow.cells[1].hits, one_way.cells[1].hits));
+  std::cout << "n = 4 hits of " << oracle.cells[1].trials << ": follow " << follow.cells[1].hits
+            << ", one way " << one_way.cells[1].hits << ", oracle " << oracle.cells[1].hits
+            << "\n";
 }
 
 // Captured sequences against a model set: objects 1-3 of COIL-100 every 10 degrees are the
