@@ -47,10 +47,21 @@ Separation SideSeparation(std::span<const MoveCandidate> candidates, int average
   return separation;
 }
 
-SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int averaged_views) {
+SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int averaged_views,
+                          std::span<const double> seen_turns) {
   Validate(candidates, averaged_views);
   if (candidates.size() < 2) return SuggestedMove::kNone;
   const double step = 360.0 / averaged_views;
+  // A side is seen when an earlier frame lies on it, less than one and a half sectors away.
+  const auto seen = [&](double sign) {
+    for (double turn : seen_turns) {
+      const double along = sign * AzimuthChange(0, turn);
+      if (along > 0 && along < 1.5 * step) return true;
+    }
+    return false;
+  };
+  const bool right_seen = seen(+1);
+  if (right_seen != seen(-1)) return right_seen ? SuggestedMove::kLeft : SuggestedMove::kRight;
   const Separation right = SideSeparation(candidates, averaged_views, +step);
   const Separation left = SideSeparation(candidates, averaged_views, -step);
   if (right.smallest != left.smallest) {

@@ -232,7 +232,13 @@ FrameUpdate RecognitionEngine::Answer() {
     Complete(*index_, window_, assessments[i]);
     candidates.push_back({assessments[i].object, assessments[i].latest_azimuth});
   }
-  update.move = SuggestMove(candidates, options_.averaged_views);
+  std::vector<double> seen_turns;
+  for (std::size_t k = 0; options_.move_prefers_new_side && k + 1 < window_.size(); ++k) {
+    if (const std::optional<double> turn = MeasuredTurn(window_.back(), window_[k])) {
+      seen_turns.push_back(*turn);
+    }
+  }
+  update.move = SuggestMove(candidates, options_.averaged_views, seen_turns);
   return update;
 }
 

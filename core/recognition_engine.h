@@ -104,6 +104,10 @@ struct EngineOptions {
   // Active vision: objects whose score is within this margin of the best are the ambiguous
   // candidates; when only the best is, it dominates and the move is NONE (>= 0).
   double ambiguity_margin = 0.05;
+  // Active vision: never suggest going back to a side the window has already seen when the
+  // other side is new (SuggestMove's seen_turns). false: SPEC.md's rule alone; the product sets
+  // it (docs/results/recognition.md, "Active vision").
+  bool move_prefers_new_side = false;
 };
 
 // Throws std::invalid_argument naming the first option out of its range.

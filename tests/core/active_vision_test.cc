@@ -45,6 +45,35 @@ TEST(ActiveVisionTest, MovesTowardTheSideWhereAnAmbiguousPairDiffers) {
   EXPECT_EQ(SuggestMove(at_370, 8), SuggestedMove::kLeft);
 }
 
+// A side the window has already seen (a frame on it less than 1.5 sectors away) is not suggested
+// when the other side is new, whatever the averaged views say; when both or neither are seen,
+// the averaged views decide as before.
+TEST(ActiveVisionTest, PrefersTheSideNotYetSeen) {
+  const IndexedObject a = Object(1, 2, Bin(10, 7));
+  const IndexedObject b = Object(2, 2, Bin(100, 7));
+  const std::vector<MoveCandidate> at_50 = {{&a, 50}, {&b, 50}};  // the views differ on the right
+  const std::vector<double> came_from_the_right = {40};  // a frame 40 degrees to the right
+  EXPECT_EQ(SuggestMove(at_50, 8, came_from_the_right), SuggestedMove::kLeft);
+  const std::vector<double> came_from_the_left = {-30, -60};
+  EXPECT_EQ(SuggestMove(at_50, 8, came_from_the_left), SuggestedMove::kRight);
+  const std::vector<double> both_sides = {44, -44};
+  EXPECT_EQ(SuggestMove(at_50, 8, both_sides), SuggestedMove::kRight);
+  const std::vector<double> near_here = {20, -20};
+  EXPECT_EQ(SuggestMove(at_50, 8, near_here), SuggestedMove::kRight);
+  const std::vector<double> across_360 = {-315};  // 45 degrees to the right, written round
+  EXPECT_EQ(SuggestMove(at_50, 8, across_360), SuggestedMove::kLeft);
+  // Seen at 150, the views differ on the left; a step of 20 degrees came from there: RIGHT. A
+  // frame 70 degrees away (more than 1.5 sectors of 45) does not count: LEFT.
+  const std::vector<MoveCandidate> at_150 = {{&a, 150}, {&b, 150}};
+  const std::vector<double> one_step_back = {-20};
+  EXPECT_EQ(SuggestMove(at_150, 8, one_step_back), SuggestedMove::kRight);
+  const std::vector<double> far_back = {-70, 180};
+  EXPECT_EQ(SuggestMove(at_150, 8, far_back), SuggestedMove::kLeft);
+  // One candidate dominates: no move, seen or not.
+  const std::vector<MoveCandidate> alone = {{&a, 50}};
+  EXPECT_EQ(SuggestMove(alone, 8, came_from_the_right), SuggestedMove::kNone);
+}
+
 TEST(ActiveVisionTest, NoMoveWhenOneCandidateDominatesOrNothingHelps) {
   const IndexedObject a = Object(1, 2, Bin(10, 7));
   const IndexedObject twin = Object(2, 2, Bin(10, 7));
