@@ -1,10 +1,12 @@
 # Third-party libraries, all from Debian 12 packages (see scripts/setup.sh).
 #
-# Debian splits OpenCV into per-module -dev packages that ship no CMake config, so the three
-# modules the project uses are found by hand and exposed as imported targets.
+# Debian splits OpenCV into per-module -dev packages that ship no CMake config, so the modules
+# the project uses are found by hand and exposed as imported targets: core, imgproc, imgcodecs;
+# video and videoio (captures: client/capture_reader.h) and opencv_contrib's tracking
+# (client/object_tracker.h, libopencv-contrib-dev).
 
 find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4 REQUIRED)
-foreach(module core imgproc imgcodecs)
+foreach(module core imgproc imgcodecs video videoio tracking)
   find_library(OPENCV_${module}_LIBRARY opencv_${module} REQUIRED)
   add_library(opencv::${module} UNKNOWN IMPORTED)
   set_target_properties(opencv::${module} PROPERTIES
