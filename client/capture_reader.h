@@ -17,11 +17,12 @@
 #pragma once
 
 #include <memory>
-#include <opencv2/core.hpp>
-#include <opencv2/videoio.hpp>
 #include <optional>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
+#include <opencv2/videoio.hpp>
 
 #include "client/frame_quality.h"
 #include "client/object_tracker.h"

@@ -1,8 +1,9 @@
 #include "client/frame_quality.h"
 
 #include <algorithm>
-#include <opencv2/imgproc.hpp>
 #include <stdexcept>
+
+#include <opencv2/imgproc.hpp>
 
 #include "core/noise_estimate.h"
 

@@ -13,9 +13,10 @@
 // Pure and thread-safe.
 #pragma once
 
-#include <opencv2/core.hpp>
 #include <optional>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "orbit/v1/recognition.pb.h"
 

@@ -2,30 +2,34 @@
 // frame, so that each frame's descriptor is computed on the object and not on the whole scene
 // (issue 14; the thesis' field test did the same with CamShift).
 //
-// Trackers (all from Debian 12's OpenCV 4.6; measured in docs/results/capture.md):
+// Trackers (all from Debian 12's OpenCV 4.6; measured in docs/results/capture.md on generated
+// walks, tests/client/object_tracker_test.cc):
 // - kCsrt, the default: the discriminative correlation filter with channel and spatial
 //   reliability (Lukezic et al., CVPR 2017; opencv_contrib's tracking module). It follows the
 //   object's appearance, texture included, so a cluttered background of the same colours does
-//   not pull it away; it keeps the box's size.
-// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015), faster, less robust.
+//   not pull it away. Every frame within IoU 0.64 of the true box, none lost.
+// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015): close when it holds,
+//   but it loses the object on whole stretches of some walks.
 // - kCamShift: mean shift on the hue back-projection of the first box (Bradski 1998; the video
 //   module). Cheapest, but it follows colour alone and drifts onto background of the object's
 //   colours.
 //
 // Lost: a frame is reported lost, and must not be described, when the tracker says its match
-// failed (a correlation peak too weak - for CSRT a peak-to-sidelobe ratio under 0.07, measured
-// to hold every frame of the generated walks and to drop a scene the object is not in; a
-// back-projection with too little of the object's colours) or when less than half of the
-// tracked box lies inside the frame (the object is leaving the view). The tracker keeps trying on
-// the next frames and reports found again when the match recovers.
+// failed (for CSRT a peak-to-sidelobe ratio under 0.07; for CamShift a back-projection with too
+// little of the object's colours), when the region found no longer looks like the last matched
+// one (CSRT, KCF: grey correlation under 0.25 - the camera turned away, or the tracker jumped to
+// the background), or when less than half of the box lies inside the frame (the object is
+// leaving the view). After a loss the tracker retries each frame from the last matched frame
+// and box, and reports found again when the object is still near it.
 //
 // Thread safety: none; one tracker per capture, fed its frames in order.
 #pragma once
 
 #include <memory>
-#include <opencv2/core.hpp>
 #include <string>
 #include <string_view>
+
+#include <opencv2/core.hpp>
 
 namespace orbit {
 

@@ -3,10 +3,11 @@
 #include <cmath>
 #include <fstream>
 #include <numbers>
+#include <stdexcept>
+
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
-#include <stdexcept>
 
 #include "core/angles.h"
 #include "core/distortion.h"
@@ -22,15 +23,18 @@ constexpr double kNoiseVariance = 0.01;  // the noisy frames' Gaussian noise, [0
 // A cluttered, textured scene larger than the frame, for the camera to pan over: a fine grain,
 // then overlapping rectangles, discs and lines of every colour.
 cv::Mat RenderBackground(cv::Size size, SeededRandom& random) {
-  cv::Mat grain(size, CV_8UC3);
-  for (int y = 0; y < size.height; ++y) {
-    for (int x = 0; x < size.width; ++x) {
+  // The grain is drawn at a quarter of the resolution and enlarged, so that it is texture (a
+  // few pixels across), not pixel noise the noise estimate would read.
+  const cv::Size coarse(size.width / 4 + 1, size.height / 4 + 1);
+  cv::Mat grain(coarse, CV_8UC3);
+  for (int y = 0; y < coarse.height; ++y) {
+    for (int x = 0; x < coarse.width; ++x) {
       const int level = 60 + static_cast<int>(random.UniformInt(120));
       grain.at<cv::Vec3b>(y, x) = cv::Vec3b(level, level, level);
     }
   }
   cv::Mat scene;
-  cv::GaussianBlur(grain, scene, cv::Size(3, 3), 0);
+  cv::resize(grain, scene, size, 0, 0, cv::INTER_LINEAR);
   auto colour = [&] {
     return cv::Scalar(static_cast<double>(random.UniformInt(256)),
                       static_cast<double>(random.UniformInt(256)),
@@ -73,8 +77,10 @@ double DeviceAzimuth(const CaptureGeneratorOptions& options, double azimuth, dou
 }  // namespace
 
 GeneratedCapture GenerateCapture(const CaptureGeneratorOptions& options) {
-  if (options.frames < 1 || !(options.fps > 0) || !(options.log_rate_hz > 0)) {
-    throw std::invalid_argument("a generated capture needs frames >= 1, fps > 0, log rate > 0");
+  if (options.frames < 1 || !(options.fps > 0) || !(options.log_rate_hz > 0) ||
+      options.motion_period < 1) {
+    throw std::invalid_argument(
+        "a generated capture needs frames >= 1, fps > 0, log rate > 0, motion period >= 1");
   }
   SeededRandom random(MixSeed(options.seed, static_cast<std::uint64_t>(options.object)));
   const cv::Size frame = options.frame_size;
@@ -84,18 +90,18 @@ GeneratedCapture GenerateCapture(const CaptureGeneratorOptions& options) {
   capture.fps = options.fps;
   const double n = options.frames;
   for (int i = 0; i < options.frames; ++i) {
-    const double t = i / n;  // 0..1 along the walk
-    const double azimuth = options.start_azimuth_deg + options.turn_deg * t;
+    const double azimuth = options.start_azimuth_deg + options.turn_deg * i / n;
+    const double t = static_cast<double>(i % options.motion_period) / options.motion_period;
     const int shown =
         static_cast<int>(std::lround(NormaliseAzimuth(azimuth) / kCoilStep)) * kCoilStep % 360;
     // The camera pans over the scene while the object drifts in the frame and its apparent
-    // size breathes by +-15% (the walker's distance changes).
+    // size breathes by +-10% (the walker's distance changes).
     const cv::Point pan(
         static_cast<int>(frame.width / 2 * (1 + std::sin(2 * std::numbers::pi * t))),
-        static_cast<int>(frame.height / 2 * t));
+        static_cast<int>(frame.height / 2 * (1 - std::cos(2 * std::numbers::pi * t))));
     cv::Mat image = scene(cv::Rect(pan, frame)).clone();
-    const double scale = 1 + 0.15 * std::sin(2 * std::numbers::pi * 1.5 * t);
-    const int side = static_cast<int>(std::lround(options.box_side * scale));
+    const double scale = 1 + 0.1 * std::sin(2 * std::numbers::pi * t);
+    const int side = static_cast<int>(std::lround(options.box_fraction * frame.height * scale));
     const cv::Point2d centre(frame.width * (0.5 + 0.18 * std::sin(2 * std::numbers::pi * t)),
                              frame.height * (0.5 + 0.12 * std::cos(2 * std::numbers::pi * t)));
     cv::Rect square(static_cast<int>(std::lround(centre.x - side / 2.0)),
@@ -109,7 +115,7 @@ GeneratedCapture GenerateCapture(const CaptureGeneratorOptions& options) {
     cv::cvtColor(view, grey, cv::COLOR_BGR2GRAY);
     cv::threshold(grey, mask, kMaskThreshold, 255, cv::THRESH_BINARY);
     cv::morphologyEx(mask, mask, cv::MORPH_OPEN, cv::Mat());
-    view.copyTo(image(square), mask);
+    if (options.draw_object) view.copyTo(image(square), mask);
     cv::Rect object = cv::boundingRect(mask);
     object.x += square.x;
     object.y += square.y;
@@ -148,11 +154,12 @@ GeneratedCapture GenerateCapture(const CaptureGeneratorOptions& options) {
 void WriteCapture(const GeneratedCapture& capture, const std::filesystem::path& video,
                   const std::filesystem::path& log, const std::filesystem::path& boxes) {
   if (capture.frames.empty()) throw std::invalid_argument("a capture without frames");
-  cv::VideoWriter writer(video.string(), cv::CAP_OPENCV_MJPEG,
+  // FFmpeg's Motion-JPEG encoder: OpenCV's own (CAP_OPENCV_MJPEG) writes an occasional frame
+  // that decoders report as corrupt.
+  cv::VideoWriter writer(video.string(), cv::CAP_FFMPEG,
                          cv::VideoWriter::fourcc('M', 'J', 'P', 'G'), capture.fps,
                          capture.frames.front().size());
   if (!writer.isOpened()) throw std::runtime_error("cannot write video " + video.string());
-  writer.set(cv::VIDEOWRITER_PROP_QUALITY, 95);
   for (const cv::Mat& frame : capture.frames) writer.write(frame);
   writer.release();
 

@@ -10,9 +10,10 @@
 
 #include <cstdint>
 #include <filesystem>
-#include <opencv2/core.hpp>
 #include <string>
 #include <vector>
+
+#include <opencv2/core.hpp>
 
 #include "client/orientation_log.h"
 
@@ -21,12 +22,14 @@ namespace orbit {
 struct CaptureGeneratorOptions {
   std::filesystem::path coil_dir;  // COIL-100's folder (objN__A.png)
   int object = 1;                  // COIL-100 object number, 1..100
+  bool draw_object = true;         // false: the scene alone, as when the camera turned away
   cv::Size frame_size{320, 240};
   int frames = 72;
   double fps = 10;
   double start_azimuth_deg = 0;      // the view shown in the first frame (COIL's azimuths)
   double turn_deg = 360;             // how far the walk goes round, over all the frames
-  double box_side = 110;             // the object's square at scale 1, pixels (COIL's 128 scaled)
+  int motion_period = 72;            // frames of one cycle of the pan, the drift and the scaling
+  double box_fraction = 0.46;        // the object's square at scale 1, of the frame's height
   double log_rate_hz = 27;           // orientation readings per second (not the video's rate)
   double log_noise_deg = 3;          // deviation of each reading's noise
   double log_drift_deg_per_s = 0.4;  // slow drift of the device's compass
@@ -48,10 +51,9 @@ struct GeneratedCapture {
 // Renders the capture. Throws std::runtime_error naming a COIL-100 file it cannot read.
 GeneratedCapture GenerateCapture(const CaptureGeneratorOptions& options);
 
-// Writes `capture` as a video (Motion-JPEG in AVI, OpenCV's own encoder, readable by any
-// OpenCV), its orientation log (CSV with header, docs/capture.md) and, when `boxes` is not
-// empty, the true boxes (CSV `frame_index,x,y,w,h`). Throws std::runtime_error naming a file it
-// cannot write.
+// Writes `capture` as a video (Motion-JPEG in AVI, readable by any OpenCV), its orientation log
+// (CSV with header, docs/capture.md) and, when `boxes` is not empty, the true boxes (CSV
+// `frame_index,x,y,w,h`). Throws std::runtime_error naming a file it cannot write.
 void WriteCapture(const GeneratedCapture& capture, const std::filesystem::path& video,
                   const std::filesystem::path& log, const std::filesystem::path& boxes = {});
 
