@@ -7,9 +7,9 @@
 // - kCsrt, the default: the discriminative correlation filter with channel and spatial
 //   reliability (Lukezic et al., CVPR 2017; opencv_contrib's tracking module). It follows the
 //   object's appearance, texture included, so a cluttered background of the same colours does
-//   not pull it away. Every frame within IoU 0.64 of the true box, none lost.
-// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015): close when it holds,
-//   but it loses the object on whole stretches of some walks.
+//   not pull it away. Every frame within IoU 0.60 of the true box, none lost.
+// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015): faster, as close when
+//   it holds, but it loses the object on some frames.
 // - kCamShift: mean shift on the hue back-projection of the first box (Bradski 1998; the video
 //   module). Cheapest, but it follows colour alone and drifts onto background of the object's
 //   colours.
