@@ -1,5 +1,6 @@
 #include "client/capture_reader.h"
 
+#include <cerrno>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -9,19 +10,28 @@
 namespace orbit {
 namespace {
 
-// Four integers separated by commas: x,y,w,h with w, h > 0 and x, y >= 0; nullopt otherwise.
+// Boxes lie within this many pixels of the origin (a 1M x 1M frame): larger numbers are typing
+// errors, and their sums must not overflow.
+constexpr long kMaxBoxCoordinate = 1L << 20;
+
+// Four integers separated by commas: x,y,w,h with w, h > 0, x, y >= 0 and x + w, y + h at most
+// kMaxBoxCoordinate; nullopt otherwise.
 std::optional<cv::Rect> ParseRect(const std::string& text) {
   std::vector<long> values;
   std::stringstream in(text);
   std::string field;
   while (std::getline(in, field, ',')) {
     char* end = nullptr;
+    errno = 0;
     const long value = std::strtol(field.c_str(), &end, 10);
-    if (field.empty() || *end != '\0') return std::nullopt;
+    if (field.empty() || *end != '\0' || errno == ERANGE || value < 0 ||
+        value > kMaxBoxCoordinate) {
+      return std::nullopt;
+    }
     values.push_back(value);
   }
-  if (values.size() != 4 || values[0] < 0 || values[1] < 0 || values[2] <= 0 || values[3] <= 0 ||
-      values[0] + values[2] > 1 << 20 || values[1] + values[3] > 1 << 20) {
+  if (values.size() != 4 || values[2] == 0 || values[3] == 0 ||
+      values[0] + values[2] > kMaxBoxCoordinate || values[1] + values[3] > kMaxBoxCoordinate) {
     return std::nullopt;
   }
   return cv::Rect(static_cast<int>(values[0]), static_cast<int>(values[1]),

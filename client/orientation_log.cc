@@ -68,9 +68,10 @@ OrientationLog::OrientationLog(std::vector<OrientationReading> readings, Orienta
         (r.elevation_deg && !std::isfinite(*r.elevation_deg))) {
       throw std::invalid_argument(where + ": values must be finite numbers");
     }
-    if (r.time < 0) {
+    if (r.time < 0 || r.time > kMaxOrientationTime) {
       throw std::invalid_argument(where + ": " + ClockName(clock_) + " " + Number(r.time) +
-                                  " is negative; it counts from the video's first frame (0)");
+                                  " is outside [0, 1e12]; it counts from the video's first "
+                                  "frame (0)");
     }
     if (clock_ == OrientationClock::kFrameIndex && r.time != std::floor(r.time)) {
       throw std::invalid_argument(where + ": frame_index " + Number(r.time) +

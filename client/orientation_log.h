@@ -15,7 +15,8 @@
 // first reading or after the last is not covered: nothing is extrapolated.
 //
 // Errors: every refusal is std::invalid_argument whose message names the file and line and
-// says what is allowed: a time or frame that does not increase, a non-finite or unparsable
+// says what is allowed: a time or frame that does not increase or lies outside
+// [0, kMaxOrientationTime], a non-finite or unparsable
 // value, an elevation outside [-90, 90], a log without readings, a frame the log does not cover.
 // Thread safety: immutable once built; any number of threads may read it.
 #pragma once
@@ -26,6 +27,10 @@
 #include <vector>
 
 namespace orbit {
+
+// The largest time a log may give, in its clock's unit (1e12 ms is 31 years; frame indices fit
+// a long and stay exact in a double).
+inline constexpr double kMaxOrientationTime = 1e12;
 
 // What a log's first column counts.
 enum class OrientationClock {

@@ -3,9 +3,9 @@
 // frame's azimuth from the log, the tracked or given region and its quality.
 #include "client/capture_reader.h"
 
-#include <gtest/gtest.h>
-
 #include <cmath>
+
+#include <gtest/gtest.h>
 
 #include "core/angles.h"
 #include "evaluation/capture_generator.h"
@@ -86,6 +86,9 @@ TEST(CaptureReaderTest, ParsesBoxes) {
             "box '10,20,0,40' must be x,y,w,h in pixels (x, y >= 0; w, h > 0)");
   EXPECT_THROW(ParseBox("10,20,30"), std::invalid_argument);
   EXPECT_THROW(ParseBox("a,20,30,40"), std::invalid_argument);
+  EXPECT_THROW(ParseBox("12,40,105066666666666666666666666666660,7"), std::invalid_argument);
+  EXPECT_THROW(ParseBox("1048570,0,10,10"), std::invalid_argument);  // past 2^20
+  EXPECT_EQ(ParseBox("1048566,0,10,10"), cv::Rect(1048566, 0, 10, 10));
   const ScratchDir dir;
   const std::string boxes = dir.Write("boxes.csv", "frame_index,x,y,w,h\n0,1,2,3,4\n2,1,2,3,4\n");
   EXPECT_EQ(ErrorMessageOf([&] { ReadBoxesFile(boxes); }),

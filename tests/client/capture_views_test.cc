@@ -2,9 +2,9 @@
 // sharpest usable frame of the step, never a blurred, noisy or lost frame.
 #include "client/capture_views.h"
 
-#include <gtest/gtest.h>
-
 #include <set>
+
+#include <gtest/gtest.h>
 
 #include "evaluation/capture_generator.h"
 #include "tests/support/test_data.h"

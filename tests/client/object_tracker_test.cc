@@ -3,9 +3,9 @@
 // frames blurred or noisy.
 #include "client/object_tracker.h"
 
-#include <gtest/gtest.h>
-
 #include <algorithm>
+
+#include <gtest/gtest.h>
 
 #include "evaluation/capture_generator.h"
 #include "tests/support/test_data.h"

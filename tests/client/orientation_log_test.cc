@@ -2,9 +2,9 @@
 // file and line, and the azimuth each frame gets, across 0/360 and across gaps.
 #include "client/orientation_log.h"
 
-#include <gtest/gtest.h>
-
 #include <sstream>
+
+#include <gtest/gtest.h>
 
 #include "tests/support/test_data.h"
 
@@ -97,7 +97,11 @@ TEST(OrientationLogTest, RefusesBadLinesNamingFileAndLine) {
             "walk.csv:2: expected 2 or 3 values (timestamp_ms,azimuth_deg[,elevation_deg]), "
             "got 4");
   EXPECT_EQ(ErrorMessageOf([] { Parse("-5,1\n"); }),
-            "walk.csv:1: timestamp_ms -5 is negative; it counts from the video's first frame (0)");
+            "walk.csv:1: timestamp_ms -5 is outside [0, 1e12]; it counts from the video's first "
+            "frame (0)");
+  EXPECT_EQ(ErrorMessageOf([] { Parse("frame_index,azimuth_deg\n0,1\n2e12,2\n"); }),
+            "walk.csv:3: frame_index 2e+12 is outside [0, 1e12]; it counts from the video's "
+            "first frame (0)");
   EXPECT_EQ(ErrorMessageOf([] { Parse("frame_index,azimuth_deg\n0.5,1\n"); }),
             "walk.csv:2: frame_index 0.5 is not a whole number");
   EXPECT_EQ(ErrorMessageOf([] { Parse("time,heading\n0,1\n"); }),
