@@ -48,10 +48,12 @@ struct CaptureProgress::Bar {
   ProgressBar bar{std::cerr, ::isatty(STDERR_FILENO) == 1};
 };
 
-CaptureProgress::CaptureProgress() : bar_(std::make_shared<Bar>()) {}
+CaptureProgress::CaptureProgress(bool enabled)
+    : bar_(enabled ? std::make_shared<Bar>() : nullptr) {}
 CaptureProgress::~CaptureProgress() = default;
 
 void CaptureProgress::operator()(long read, long total) {
+  if (!bar_) return;
   bar_->bar.Update("frames", static_cast<std::size_t>(read),
                    static_cast<std::size_t>(std::max(total, read)));
 }

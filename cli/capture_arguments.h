@@ -28,10 +28,11 @@ void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments);
 std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments);
 
 // The progress callback of a capture: a bar on stderr ("frames"), drawn by cli/progress_bar.h
-// for runs longer than two seconds.
+// for runs longer than two seconds; nothing when `enabled` is false (`orbit recognize` printing
+// its updates on the same terminal, where they show the progress and a bar would break them).
 class CaptureProgress {
  public:
-  CaptureProgress();
+  explicit CaptureProgress(bool enabled = true);
   ~CaptureProgress();
   void operator()(long read, long total);
 

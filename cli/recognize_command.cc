@@ -1,6 +1,8 @@
 // orbit recognize: streams image files, or a video with its orientation log (docs/capture.md),
 // as the frames of one recognition session and prints the server's update for each frame as it
 // arrives.
+#include <unistd.h>
+
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -42,7 +44,8 @@ int RunRecognizeVideo(const RecognizeOptions& options) {
     // Frames the tracker lost are not sent: the frame numbers of the updates count sent frames.
     try {
       streamed = StreamCapture(*session, *capture,
-                               {.real_time = !options.fast, .progress = CaptureProgress()});
+                               {.real_time = !options.fast,
+                                .progress = CaptureProgress(::isatty(STDOUT_FILENO) != 1)});
     } catch (const RpcError&) {
       // The session ended early; Close() reports why.
     }
