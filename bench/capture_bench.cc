@@ -65,7 +65,7 @@ void BM_FrameQuality(benchmark::State& state, bool region) {
 }
 
 int RegisterCaptureBenchmarks() {
-  for (TrackerKind kind : {TrackerKind::kCsrt, TrackerKind::kKcf, TrackerKind::kCamShift}) {
+  for (TrackerKind kind : kTrackerKinds) {
     const std::string name = "track-" + std::string(TrackerName(kind)) + "/640x480";
     benchmark::RegisterBenchmark(name.c_str(), BM_Track, kind, false)
         ->Unit(benchmark::kMicrosecond);

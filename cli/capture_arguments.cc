@@ -28,11 +28,14 @@ void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments) {
                   "CSV frame_index,x,y,w,h: the object's box in every frame")
       ->needs(video)
       ->excludes(box);
+  std::string trackers;
+  for (TrackerKind kind : kTrackerKinds) {
+    trackers += (trackers.empty() ? "" : ", ") + std::string(TrackerName(kind));
+  }
+  // The name is checked by ParseTrackerName when the capture opens.
   command
-      .add_option("--tracker", arguments.tracker,
-                  "the tracker following --box: csrt, kcf or camshift")
-      ->capture_default_str()
-      ->check(CLI::IsMember({"csrt", "kcf", "camshift"}));
+      .add_option("--tracker", arguments.tracker, "the tracker following --box: " + trackers)
+      ->capture_default_str();
 }
 
 std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments) {

@@ -46,11 +46,12 @@ std::string_view TrackerName(TrackerKind kind) {
 }
 
 TrackerKind ParseTrackerName(std::string_view name) {
-  for (TrackerKind kind : {TrackerKind::kCsrt, TrackerKind::kKcf, TrackerKind::kCamShift}) {
+  std::string names;
+  for (TrackerKind kind : kTrackerKinds) {
     if (name == TrackerName(kind)) return kind;
+    names += (names.empty() ? "" : ", ") + std::string(TrackerName(kind));
   }
-  throw std::invalid_argument("unknown tracker '" + std::string(name) +
-                              "': expected csrt, kcf or camshift");
+  throw std::invalid_argument("unknown tracker '" + std::string(name) + "': expected " + names);
 }
 
 double IntersectionOverUnion(const cv::Rect& a, const cv::Rect& b) {

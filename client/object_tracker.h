@@ -34,6 +34,8 @@
 namespace orbit {
 
 enum class TrackerKind { kCsrt, kKcf, kCamShift };
+inline constexpr TrackerKind kTrackerKinds[] = {TrackerKind::kCsrt, TrackerKind::kKcf,
+                                                TrackerKind::kCamShift};
 
 // "csrt", "kcf", "camshift": the names of `--tracker`, written once.
 std::string_view TrackerName(TrackerKind kind);

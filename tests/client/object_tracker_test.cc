@@ -109,7 +109,7 @@ TEST(ObjectTrackerTest, RefusesABoxOutsideTheFrameAndNamesTrackers) {
   EXPECT_EQ(ParseTrackerName("camshift"), TrackerKind::kCamShift);
   EXPECT_EQ(TrackerName(ParseTrackerName("csrt")), "csrt");
   EXPECT_EQ(testing::ErrorMessageOf([] { ParseTrackerName("mosse"); }),
-            "unknown tracker 'mosse': expected csrt, kcf or camshift");
+            "unknown tracker 'mosse': expected csrt, kcf, camshift");
   EXPECT_DOUBLE_EQ(IntersectionOverUnion(cv::Rect(0, 0, 10, 10), cv::Rect(5, 0, 10, 10)),
                    50.0 / 150);
   EXPECT_DOUBLE_EQ(IntersectionOverUnion(cv::Rect(0, 0, 10, 10), cv::Rect()), 0);
