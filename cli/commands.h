@@ -18,5 +18,6 @@ void AddBackupCommand(CLI::App& app, int& exit_code);
 void AddEvalCommand(CLI::App& app, int& exit_code);
 void AddServeCommand(CLI::App& app, int& exit_code);
 void AddLoadtestCommand(CLI::App& app, int& exit_code);
+void AddWalkCommand(CLI::App& app, int& exit_code);
 
 }  // namespace orbit::cli

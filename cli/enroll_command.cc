@@ -1,14 +1,18 @@
 // orbit enroll: enrolls one object on a server from images taken around it, each with its
-// azimuth. Descriptors and typical distances are computed here (client/enroller.h).
+// azimuth, or from a video of a walk around it with the walk's orientation log (docs/capture.md).
+// Descriptors and typical distances are computed here (client/enroller.h).
 #include <iostream>
+#include <sstream>
 #include <memory>
 #include <string>
 #include <vector>
 
+#include "cli/capture_arguments.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"
 #include "cli/image_arguments.h"
 #include "cli/network_options.h"
+#include "client/capture_views.h"
 #include "client/enroller.h"
 #include "core/parallel_for.h"
 
@@ -20,12 +24,46 @@ struct EnrollOptions {
   std::string name;
   std::vector<std::string> images;
   std::vector<double> azimuths;
+  CaptureArguments capture;
+  double step = kDefaultEnrollmentStepDeg;
   std::string metadata = "{}";
   std::uint64_t seed = EnrollerOptions{}.seed;
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
+// "  capture: 72 frames, 0 lost, 8 too blurred or noisy; views in 51 of 72 steps of 5 degrees"
+std::string CaptureCoverageText(const CaptureViewSelection& selection, double step) {
+  std::ostringstream text;
+  text << "  capture: " << selection.frames_read << " frames, " << selection.frames_lost
+       << " lost, " << selection.frames_unusable << " too blurred or noisy; views in "
+       << selection.views.size() << " of " << selection.steps_total << " steps of " << step
+       << " degrees\n";
+  return text.str();
+}
+
+int RunEnrollFromVideo(const EnrollOptions& options) {
+  const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture);
+  const Connection connection(ToConnectionOptions(options.network));
+  Enroller enroller(connection, {.seed = options.seed, .threads = options.threads});
+  const Enroller::VideoEnrollment enrolled = enroller.FromVideo(
+      options.name, *capture, {.step_deg = options.step, .progress = CaptureProgress()},
+      options.metadata);
+  const v1::ObjectInfo& object = enrolled.object;
+  std::cout << "enrolled " << object.name() << " (id " << object.id() << ", "
+            << object.view_count() << " views)\n"
+            << CaptureCoverageText(enrolled.selection, options.step)
+            << EnrollmentReportText(object.report());
+  return 0;
+}
+
 int RunEnroll(const EnrollOptions& options) {
+  if (!options.capture.video.empty()) {
+    if (!options.images.empty() || !options.azimuths.empty()) {
+      throw std::invalid_argument("give --video or --image, not both");
+    }
+    return RunEnrollFromVideo(options);
+  }
+  if (options.images.empty()) throw std::invalid_argument("give --image F --azimuth A, or --video");
   const std::vector<cv::Mat> pixels = ReadImageArguments(options.images, options.azimuths);
   std::vector<EnrollmentImage> images;
   for (std::size_t i = 0; i < pixels.size(); ++i) {
@@ -47,15 +85,20 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "enroll",
       "Enroll a new object on a server from images around it: --image F --azimuth A, once per\n"
-      "view. Descriptors and typical distances are computed here; the object is stored\n"
-      "atomically and recognisable at once. Needs a token with the admin role when the server\n"
-      "has tokens.");
+      "view; or from a video of a walk around it: --video V --orientation LOG [--box x,y,w,h],\n"
+      "which keeps the sharpest frame of every --step degrees of azimuth. Descriptors and\n"
+      "typical distances are computed here; the object is stored atomically and recognisable\n"
+      "at once. Needs a token with the admin role when the server has tokens.");
   AddNetworkOptions(*command, options->network, /*server_required=*/true);
   command->add_option("--name", options->name, "the new object's unique name")->required();
-  command->add_option("--image", options->images, "a view's image file (repeat)")->required();
+  command->add_option("--image", options->images, "a view's image file (repeat)");
   command->add_option("--azimuth", options->azimuths,
-                      "that view's azimuth in degrees (repeat, in the order of --image)")
-      ->required();
+                      "that view's azimuth in degrees (repeat, in the order of --image)");
+  AddCaptureOptions(*command, options->capture);
+  command->add_option("--step", options->step,
+                      "with --video: one view per this many degrees of azimuth")
+      ->capture_default_str()
+      ->check(CLI::Range(0.5, 180.0));
   command->add_option("--metadata", options->metadata, "a JSON object stored with the object")
       ->capture_default_str();
   command->add_option("--seed", options->seed,

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   orbit::cli::AddEvalCommand(app, exit_code);
   orbit::cli::AddServeCommand(app, exit_code);
   orbit::cli::AddLoadtestCommand(app, exit_code);
+  orbit::cli::AddWalkCommand(app, exit_code);
 
   try {
     app.parse(argc, argv);

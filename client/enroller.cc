@@ -54,6 +54,24 @@ v1::ObjectInfo Enroller::Enroll(const std::string& name, const std::vector<Enrol
   return EnrollViews(name, ComputeViews(images), metadata_json);
 }
 
+Enroller::VideoEnrollment Enroller::FromVideo(const std::string& name, CaptureReader& capture,
+                                              const CaptureViewOptions& options,
+                                              const std::string& metadata_json) {
+  VideoEnrollment enrollment;
+  enrollment.selection = SelectCaptureViews(capture, options);
+  if (enrollment.selection.views.empty()) {
+    throw std::invalid_argument("no usable frame in " + capture.video_path() + " (" +
+                                std::to_string(enrollment.selection.frames_read) + " read, " +
+                                std::to_string(enrollment.selection.frames_lost) + " lost, " +
+                                std::to_string(enrollment.selection.frames_unusable) +
+                                " too blurred or noisy): nothing to enroll for " + name);
+  }
+  std::vector<EnrollmentImage> images;
+  for (const CaptureView& view : enrollment.selection.views) images.push_back(view.image);
+  enrollment.object = Enroll(name, images, metadata_json);
+  return enrollment;
+}
+
 v1::ObjectInfo Enroller::EnrollViews(const std::string& name, const std::vector<v1::View>& views,
                                      const std::string& metadata_json) {
   if (views.empty()) throw std::invalid_argument("no views to enroll for " + name);

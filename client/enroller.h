@@ -20,20 +20,15 @@
 
 #include <opencv2/core.hpp>
 
+#include "client/capture_reader.h"
+#include "client/capture_views.h"
 #include "client/connection.h"
+#include "client/enrollment_image.h"
 #include "core/descriptor.h"
 #include "core/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 
 namespace orbit {
-
-// One image of the object to enroll.
-struct EnrollmentImage {
-  cv::Mat image;                         // as ExtractCedd accepts (BGR, grey or BGRA, 8-bit)
-  double azimuth_deg = 0;                // where the camera stood, in degrees
-  std::optional<cv::Rect> region;        // the object's region; the whole image when unset
-  std::optional<double> elevation_deg;
-};
 
 // The view the server stores for `image`: DescribeView of the region (or whole image), with
 // `base_seed` in the seed rule of core/view_description.h, and the image's azimuth and elevation.
@@ -60,6 +55,19 @@ class Enroller {
   // Computes the views and enrolls them as object `name`; returns the stored object.
   v1::ObjectInfo Enroll(const std::string& name, const std::vector<EnrollmentImage>& images,
                         const std::string& metadata_json = "{}");
+
+  // Enrolls object `name` from a walk around it (issue 14, docs/capture.md): chooses the views
+  // (SelectCaptureViews: the sharpest usable frame of each azimuth step, on the tracked
+  // region), computes them and enrolls them in one atomic Enroll. Returns the stored object and
+  // what the capture gave. Throws std::invalid_argument, before anything is sent, when no frame
+  // is usable, and as SelectCaptureViews and Enroll.
+  struct VideoEnrollment {
+    v1::ObjectInfo object;
+    CaptureViewSelection selection;
+  };
+  VideoEnrollment FromVideo(const std::string& name, CaptureReader& capture,
+                            const CaptureViewOptions& options = {},
+                            const std::string& metadata_json = "{}");
 
   // Enrolls views computed already (by ComputeViews, or descriptors from elsewhere).
   v1::ObjectInfo EnrollViews(const std::string& name, const std::vector<v1::View>& views,

@@ -108,17 +108,21 @@ bool RecognitionSession::StartStream() {
 
 std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double> azimuth_deg,
                                       std::optional<cv::Rect> region,
-                                      std::optional<std::int64_t> timestamp_us) {
-  return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us);
+                                      std::optional<std::int64_t> timestamp_us,
+                                      std::optional<FrameQuality> quality) {
+  return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us,
+                        quality);
 }
 
 std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& cedd,
                                                 std::optional<double> azimuth_deg,
-                                                std::optional<std::int64_t> timestamp_us) {
+                                                std::optional<std::int64_t> timestamp_us,
+                                                std::optional<FrameQuality> quality) {
   v1::Frame frame;
   frame.set_cedd(cedd.data(), cedd.size());
   if (azimuth_deg) frame.set_azimuth_deg(*azimuth_deg);
   if (timestamp_us) frame.set_timestamp_us(*timestamp_us);
+  if (quality) *frame.mutable_quality() = ToProtoFrameQuality(*quality);
   return Send(std::move(frame));
 }
 

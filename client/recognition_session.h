@@ -44,6 +44,7 @@
 #include <opencv2/core.hpp>
 
 #include "client/connection.h"
+#include "client/frame_quality.h"
 #include "core/descriptor.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
@@ -95,16 +96,19 @@ class RecognitionSession {
   // device azimuth in degrees (any finite value; only differences between frames matter), or
   // none (nullopt) from a device without an orientation sensor: the server then recognises
   // from the descriptors alone (docs/service.md, "Frames without azimuth").
-  // `timestamp_us` is echoed in the update. Returns the frame's index (0 for the first frame
+  // `timestamp_us` is echoed in the update; `quality`, when measured (client/frame_quality.h),
+  // travels as Frame.quality. Returns the frame's index (0 for the first frame
   // after Open or Reset), which its update carries as frame_index.
   // Throws std::invalid_argument as ExtractCedd does; RpcError when the session has ended.
   std::int64_t Push(const cv::Mat& image, std::optional<double> azimuth_deg,
                     std::optional<cv::Rect> region = std::nullopt,
-                    std::optional<std::int64_t> timestamp_us = std::nullopt);
+                    std::optional<std::int64_t> timestamp_us = std::nullopt,
+                    std::optional<FrameQuality> quality = std::nullopt);
 
   // Sends a descriptor computed elsewhere, in variant(). As Push otherwise.
   std::int64_t PushDescriptor(const DescriptorValues& cedd, std::optional<double> azimuth_deg,
-                              std::optional<std::int64_t> timestamp_us = std::nullopt);
+                              std::optional<std::int64_t> timestamp_us = std::nullopt,
+                              std::optional<FrameQuality> quality = std::nullopt);
 
   // Starts over on another object: the server forgets every frame and the next frame gets
   // index 0. Updates of frames pushed before still arrive.
@@ -121,6 +125,9 @@ class RecognitionSession {
 
   DescriptorVariant variant() const { return variant_; }
   int window() const { return window_size_; }
+  // The least time between frames that keeps within the server's frame-rate limit
+  // (ServerInfo.limits.max_frames_per_second); 0 when the server states none.
+  std::chrono::microseconds min_frame_interval() const { return replay_interval_; }
   // How many times the stream was reopened after a dropped connection.
   int reconnections() const;
 

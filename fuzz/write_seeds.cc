@@ -378,6 +378,21 @@ void WriteManifestSeeds() {
   Write(t, "edge-large-range", "1-999999" + nul + "" + nul + "path,object,azimuth\na,o1,0\n");
 }
 
+// ---- orientation logs ------------------------------------------------------------------------
+
+void WriteOrientationLogSeeds() {
+  const std::string t = "orientation_log";
+  Write(t, "timestamps", "timestamp_ms,azimuth_deg\n0,350.5\n33.3,355\n66.7,2.25\n100,10\n");
+  Write(t, "elevation-gap-comments",
+        "# walk\ntimestamp_ms,azimuth_deg,elevation_deg\n\n0,-20,5\n20,-18,5.5\n900,70,-30\r\n");
+  Write(t, "frame-index", "frame_index,azimuth_deg\n0,359\n1,1\n3,7\n");
+  Write(t, "no-header-box", "12,40,100,80\n0,0\n500,720\n");
+  Write(t, "edge-backwards", "timestamp_ms,azimuth_deg\n0,1\n50,2\n40,3\n");
+  Write(t, "edge-non-finite", "0,1\n10,nan\n20,inf\n");
+  Write(t, "edge-huge", "0,1e308\n1e308,-1e308,90\n");
+  Write(t, "edge-fields", "timestamp_ms,azimuth_deg\n0,1,2,3\n1,\n,\n");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -392,5 +407,6 @@ int main(int argc, char** argv) {
   WriteEnrollSeeds();
   WriteCeddSeeds();
   WriteManifestSeeds();
+  WriteOrientationLogSeeds();
   return 0;
 }

@@ -7,6 +7,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
+  libopencv-video-dev libopencv-videoio-dev libopencv-contrib-dev  # captures, object tracking
   libcli11-dev nlohmann-json3-dev libsqlite3-dev libpq-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev

@@ -1,6 +1,7 @@
 // orbit enroll and orbit recognize (cli/enroll_command.cc, cli/recognize_command.cc,
 // cli/update_format.cc) against a real `orbit serve` process, as a user would type them.
 
+#include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -106,6 +107,86 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_NE(uneven.err.find("give one --azimuth per --image (4 images, 1 azimuths)"),
             std::string::npos)
       << uneven.err;
+}
+
+// `orbit walk` renders a capture and prints "... first box X,Y,W,H"; returns "X,Y,W,H".
+std::string RenderWalk(const std::string& dir, const std::string& name, int object,
+                       const std::string& shape) {
+  const auto r = RunCommand(OrbitBinary() + " walk --coil " + testing::CoilDir() + " --object " +
+                            std::to_string(object) + " --video " + dir + "/" + name +
+                            ".avi --orientation " + dir + "/" + name + ".csv " + shape);
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  const auto at = r.out.find("first box ");
+  if (at == std::string::npos) return "";
+  return r.out.substr(at + 10, r.out.find('\n', at) - at - 10);
+}
+
+TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
+  ServerProcess server;
+  const testing::ScratchDir scratch;
+  const std::string dir = scratch.path().string();
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  const std::vector<int> objects = {3, 8};
+  for (int object : objects) {
+    // A whole walk round the object: 72 frames, 10 fps, a view every 5 degrees.
+    const std::string name = "enroll" + std::to_string(object);
+    const std::string box = RenderWalk(dir, name, object, "--frames 72 --seed 1");
+    const auto r = RunCommand(orbit + "enroll" + at + " --name obj" + std::to_string(object) +
+                              " --video " + dir + "/" + name + ".avi --orientation " + dir + "/" +
+                              name + ".csv --box " + box);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = OutputLines(r.out);
+    ASSERT_GE(lines.size(), 3u);
+    // "enrolled obj3 (id 1, 48 views)": blurred, noisy, lost frames and steps the noisy
+    // compass skipped leave some of the 72 steps empty, but no gap wider than 30 degrees.
+    int views = 0;
+    ASSERT_EQ(std::sscanf(lines[0].c_str(), ("enrolled obj" + std::to_string(object) +
+                                             " (id %*d, %d views)").c_str(), &views), 1)
+        << lines[0];
+    EXPECT_GE(views, 40);
+    EXPECT_EQ(lines[1].rfind("  capture: 72 frames, ", 0), 0u) << lines[1];
+    EXPECT_NE(lines[1].find("views in " + std::to_string(views) + " of 72 steps of 5 degrees"),
+              std::string::npos) << lines[1];
+    EXPECT_EQ(lines[2], "  coverage: no gap wider than 30 degrees");
+  }
+  for (int object : objects) {
+    // A second, shorter walk on another background, from azimuth 100.
+    const std::string name = "query" + std::to_string(object);
+    const std::string box =
+        RenderWalk(dir, name, object, "--frames 24 --turn 120 --start 100 --seed 7");
+    const auto r = RunCommand(orbit + "recognize --json --fast --top-k 2" + at + " --video " +
+                              dir + "/" + name + ".avi --orientation " + dir + "/" + name +
+                              ".csv --box " + box);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = OutputLines(r.out);
+    EXPECT_EQ(lines.size(), 24u);  // one update per frame, none lost
+    int right = 0;
+    for (const std::string& line : lines) {
+      const auto update = nlohmann::json::parse(line);
+      right += update["candidates"][0]["name"] == "obj" + std::to_string(object) ? 1 : 0;
+    }
+    // Measured: 24 of 24 for object 3, 21 of 24 for object 8 (the tracked box drifts late in
+    // the walk; with the true boxes both are 24 of 24, docs/results/capture.md).
+    EXPECT_GE(right, 16) << "object " << object;
+  }
+
+  // A log that stops before the video ends is refused before anything is sent.
+  const std::string log = scratch.Write("short.csv", "timestamp_ms,azimuth_deg\n0,0\n1000,90\n");
+  const auto short_log = RunCommand(orbit + "recognize" + at + " --video " + dir +
+                                    "/query3.avi --orientation " + log);
+  EXPECT_EQ(short_log.exit_code, 1);
+  EXPECT_NE(short_log.err.find(log + " does not cover frame 23 (at 2300 ms): it covers "
+                               "timestamp_ms 0 to 1000"),
+            std::string::npos)
+      << short_log.err;
+  const auto no_log = RunCommand(orbit + "recognize" + at + " --video " + dir + "/query3.avi");
+  EXPECT_EQ(no_log.exit_code, 2) << no_log.err;
+  const auto both = RunCommand(orbit + "enroll" + at + " --name x --video " + dir +
+                               "/query3.avi --orientation " + dir + "/query3.csv" +
+                               CoilImageArguments(1, {0}));
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_NE(both.err.find("give --video or --image, not both"), std::string::npos) << both.err;
 }
 
 }  // namespace

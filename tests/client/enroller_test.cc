@@ -4,9 +4,18 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/videoio.hpp>
+
+#include "client/image_file.h"
+#include "client/models_client.h"
 #include "core/cedd.h"
 #include "core/view_description.h"
+#include "evaluation/capture_generator.h"
 #include "tests/support/client_test_support.h"
+#include "tests/support/server_process.h"
 
 namespace orbit {
 namespace {
@@ -43,6 +52,64 @@ TEST(EnrollerTest, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
                std::invalid_argument);
   EXPECT_THROW(ComputeView({cv::Mat(), 0, {}, {}}, DescriptorVariant::kCeddLire, 1),
                std::invalid_argument);
+}
+
+TEST(EnrollerTest, FromVideoStoresTheViewsOfItsChosenFramesGivenAsImages) {
+  const testing::ScratchDir dir;
+  CaptureGeneratorOptions walk;
+  walk.coil_dir = testing::CoilDir();
+  walk.object = 3;
+  walk.frames = 40;
+  walk.turn_deg = 200;
+  const GeneratedCapture capture = GenerateCapture(walk);
+  WriteCapture(capture, dir / "walk.avi", dir / "walk.csv");
+
+  testing::ServerProcess server;
+  const Connection connection(testing::At(server.address()));
+  Enroller enroller(connection, {.seed = 5, .threads = 2});
+  CaptureReader reader((dir / "walk.avi").string(),
+                       OrientationLog::ReadFile((dir / "walk.csv").string()),
+                       {.first_box = capture.true_boxes[0]});
+  const Enroller::VideoEnrollment enrolled = enroller.FromVideo("walked", reader);
+  const std::vector<CaptureView>& chosen = enrolled.selection.views;
+  // 40 frames over 200 degrees, one per 5-degree step but for the log's 3 degrees of noise:
+  // some steps get two frames and others none; 4 frames are blurred, 3 noisy (measured: 21).
+  ASSERT_GE(chosen.size(), 18u);
+  EXPECT_EQ(enrolled.object.view_count(), static_cast<int>(chosen.size()));
+
+  // The same frames, saved as lossless images, enrolled the old way with their azimuths and
+  // the tracked regions: view for view the same descriptors and typical distances.
+  cv::VideoCapture video((dir / "walk.avi").string());
+  std::vector<EnrollmentImage> images;
+  cv::Mat frame;
+  for (long f = 0, c = 0; video.read(frame) && c < static_cast<long>(chosen.size()); ++f) {
+    if (f != chosen[c].frame_index) continue;
+    const std::string file = (dir / ("frame" + std::to_string(f) + ".png")).string();
+    cv::imwrite(file, frame);
+    images.push_back({ReadImageFile(file), chosen[c].image.azimuth_deg, chosen[c].region, {}});
+    ++c;
+  }
+  ASSERT_EQ(images.size(), chosen.size());
+  std::vector<v1::View> expected = enroller.ComputeViews(images);
+  const v1::GetObjectResponse stored =
+      ModelsClient(connection).GetObject(ObjectByName("walked"), true);
+  ASSERT_EQ(stored.views_size(), static_cast<int>(expected.size()));
+  std::sort(expected.begin(), expected.end(), [](const v1::View& a, const v1::View& b) {
+    return a.azimuth_deg() < b.azimuth_deg();
+  });  // the store orders views by azimuth
+  for (int v = 0; v < stored.views_size(); ++v) {
+    EXPECT_EQ(stored.views(v).cedd(), expected[v].cedd()) << v;
+    EXPECT_EQ(stored.views(v).azimuth_deg(), expected[v].azimuth_deg()) << v;
+    EXPECT_DOUBLE_EQ(stored.views(v).typical_distance(), expected[v].typical_distance()) << v;
+  }
+
+  // A capture whose object is lost at once has nothing to enroll: refused before any call.
+  CaptureReader whole((dir / "walk.avi").string(),
+                      OrientationLog::ReadFile((dir / "walk.csv").string()),
+                      {.boxes = std::vector<cv::Rect>(40, cv::Rect(400, 300, 10, 10))});
+  EXPECT_EQ(testing::ErrorMessageOf([&] { enroller.FromVideo("nothing", whole); }),
+            "no usable frame in " + (dir / "walk.avi").string() +
+                " (40 read, 40 lost, 0 too blurred or noisy): nothing to enroll for nothing");
 }
 
 }  // namespace

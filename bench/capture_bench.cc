@@ -1,0 +1,86 @@
+// The device's per-frame cost of a capture (issue 14), against bgr2gray/640x480 of the same run
+// (bench/cedd_bench.cc): following the object with each tracker (client/object_tracker.h) and
+// measuring the frame's quality (client/frame_quality.h). Frames are a generated walk
+// (evaluation/capture_generator.h) at 640x480, the object about 220 pixels across; the tracker
+// is started on the first frame and fed the next ones in turn, restarted after the last.
+// Run: build/orbit_bench --benchmark_filter='track-|frame-quality|bgr2gray'
+
+#include <benchmark/benchmark.h>
+
+#include <memory>
+#include <string>
+
+#include "bench/bench_data.h"
+#include "client/frame_quality.h"
+#include "client/object_tracker.h"
+#include "evaluation/capture_generator.h"
+
+namespace orbit {
+namespace {
+
+GeneratedCapture MakeWalk(cv::Size size) {
+  CaptureGeneratorOptions options;
+  options.coil_dir = bench::DataDir() / "coil-100";
+  options.object = 5;
+  options.frame_size = size;
+  options.frames = 72;
+  return GenerateCapture(options);
+}
+
+const GeneratedCapture& Walk() {
+  static const GeneratedCapture walk = MakeWalk(cv::Size(640, 480));
+  return walk;
+}
+
+const GeneratedCapture& SmallWalk() {
+  static const GeneratedCapture walk = MakeWalk(cv::Size(320, 240));
+  return walk;
+}
+
+void BM_Track(benchmark::State& state, TrackerKind kind, bool small) {
+  const GeneratedCapture& walk = small ? SmallWalk() : Walk();
+  std::unique_ptr<ObjectTracker> tracker;
+  std::size_t next = walk.frames.size();
+  for (auto _ : state) {
+    if (next == walk.frames.size()) {
+      state.PauseTiming();
+      tracker = std::make_unique<ObjectTracker>(walk.frames[0], walk.true_boxes[0], kind);
+      next = 1;
+      state.ResumeTiming();
+    }
+    benchmark::DoNotOptimize(tracker->Track(walk.frames[next++]));
+  }
+  state.SetItemsProcessed(state.iterations());
+}
+
+void BM_FrameQuality(benchmark::State& state, bool region) {
+  const GeneratedCapture& walk = Walk();
+  std::size_t f = 0;
+  for (auto _ : state) {
+    const std::optional<cv::Rect> box =
+        region ? std::optional<cv::Rect>(walk.true_boxes[f]) : std::nullopt;
+    benchmark::DoNotOptimize(MeasureFrameQuality(walk.frames[f], box));
+    f = (f + 1) % walk.frames.size();
+  }
+}
+
+int RegisterCaptureBenchmarks() {
+  for (TrackerKind kind : kTrackerKinds) {
+    const std::string name = "track-" + std::string(TrackerName(kind)) + "/640x480";
+    benchmark::RegisterBenchmark(name.c_str(), BM_Track, kind, false)
+        ->Unit(benchmark::kMicrosecond);
+    const std::string small = "track-" + std::string(TrackerName(kind)) + "/320x240";
+    benchmark::RegisterBenchmark(small.c_str(), BM_Track, kind, true)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  benchmark::RegisterBenchmark("frame-quality/640x480", BM_FrameQuality, false)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("frame-quality/object-region", BM_FrameQuality, true)
+      ->Unit(benchmark::kMicrosecond);
+  return 0;
+}
+
+const int registered = RegisterCaptureBenchmarks();
+
+}  // namespace
+}  // namespace orbit

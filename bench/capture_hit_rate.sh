@@ -1,0 +1,64 @@
+#!/usr/bin/env bash
+# Hit rate from generated walks (docs/results/capture.md): objects FIRST..LAST of COIL-100 are
+# each enrolled from a walk round them (`orbit walk`: 72 frames, clutter, blurred and noisy
+# frames, a noisy drifting compass) and recognised from a second walk on another background
+# (24 frames from azimuth 100, 120 degrees), twice: with the object's box tracked from the first
+# frame (--box), and with the true box of every frame given (--boxes). Prints, for each, the
+# share of updates whose first candidate is the right object, of final updates that are right,
+# the views enrolled and the frames the tracker lost.
+#   bench/capture_hit_rate.sh [BUILD_DIR] [COIL_DIR] [FIRST] [LAST]
+set -euo pipefail
+build=${1:-build}
+coil=${2:-../shared/data/coil-100}
+first=${3:-1}
+last=${4:-20}
+orbit="$build/orbit"
+work=$(mktemp -d)
+trap 'kill "${server_pid:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
+
+for mode in tracked true; do
+  "$orbit" serve --db "$work/$mode.db" --listen 127.0.0.1:0 >"$work/serve.log" 2>&1 &
+  server_pid=$!
+  address=""
+  for _ in $(seq 100); do
+    address=$(sed -n 's/.*listening on \(127\.0\.0\.1:[0-9]*\).*/\1/p' "$work/serve.log" | head -1)
+    [[ -n "$address" ]] && break
+    sleep 0.1
+  done
+  views=0 lost=0 right=0 updates=0 final_right=0 objects=0
+  for object in $(seq "$first" "$last"); do
+    for walk in enroll query; do
+      if [[ $walk == enroll ]]; then shape="--frames 72 --seed 1"; else
+        shape="--frames 24 --turn 120 --start 100 --seed 7"; fi
+      # shellcheck disable=SC2086
+      box=$("$orbit" walk --coil "$coil" --object "$object" --video "$work/$walk.avi" \
+        --orientation "$work/$walk.csv" --boxes "$work/$walk.boxes" $shape | sed 's/.*first box //')
+      if [[ $mode == tracked ]]; then where=(--box "$box"); else where=(--boxes "$work/$walk.boxes"); fi
+      if [[ $walk == enroll ]]; then
+        out=$("$orbit" enroll --server "$address" --name "obj$object" --video "$work/$walk.avi" \
+          --orientation "$work/$walk.csv" "${where[@]}" 2>"$work/err") ||
+          { echo "enroll obj$object ($mode) failed:" >&2; cat "$work/err" >&2; exit 1; }
+        views=$((views + $(sed -n 's/.*, \([0-9]*\) views).*/\1/p' <<<"$out")))
+        lost=$((lost + $(sed -n 's/.*frames, \([0-9]*\) lost.*/\1/p' <<<"$out")))
+      fi
+    done
+  done
+  for object in $(seq "$first" "$last"); do
+    box=$("$orbit" walk --coil "$coil" --object "$object" --video "$work/query.avi" \
+      --orientation "$work/query.csv" --boxes "$work/query.boxes" --frames 24 --turn 120 \
+      --start 100 --seed 7 | sed 's/.*first box //')
+    if [[ $mode == tracked ]]; then where=(--box "$box"); else where=(--boxes "$work/query.boxes"); fi
+    firsts=$("$orbit" recognize --server "$address" --json --fast --top-k 1 \
+      --video "$work/query.avi" --orientation "$work/query.csv" "${where[@]}" 2>"$work/err" |
+      sed -n 's/.*"candidates":\[{"id":[0-9]*,"name":"\([^"]*\)".*/\1/p')
+    n=$(wc -l <<<"$firsts")
+    updates=$((updates + n))
+    lost=$((lost + 24 - n))
+    right=$((right + $(grep -c -x "obj$object" <<<"$firsts" || true)))
+    [[ $(tail -1 <<<"$firsts") == "obj$object" ]] && final_right=$((final_right + 1))
+    objects=$((objects + 1))
+  done
+  kill "$server_pid"; wait "$server_pid" 2>/dev/null || true
+  awk -v m="$mode" -v r="$right" -v u="$updates" -v f="$final_right" -v o="$objects" \
+    -v v="$views" -v l="$lost" 'BEGIN { printf "%-8s updates right %5.1f%% (%d/%d), final updates right %d/%d, views enrolled %d, frames lost %d\n", m, 100*r/u, r, u, f, o, v, l }'
+done

@@ -1,0 +1,35 @@
+# The third-party libraries of the device library (orbit_client and the orbit_core, orbit_api and
+# orbit_proto it links), as imported targets. Used by the build (cmake/OrbitDeps.cmake) and by
+# the installed package (OrbitClientConfig.cmake), so that both find them the same way.
+#
+# Debian splits OpenCV into per-module -dev packages that ship no CMake config, so the modules
+# are found by hand: core, imgproc, imgcodecs; video and videoio (captures:
+# client/capture_reader.h) and opencv_contrib's tracking (client/object_tracker.h,
+# libopencv-contrib-dev).
+
+find_path(OPENCV_INCLUDE_DIR opencv2/core.hpp PATH_SUFFIXES opencv4 REQUIRED)
+foreach(module core imgproc imgcodecs video videoio tracking)
+  if(NOT TARGET opencv::${module})
+    find_library(OPENCV_${module}_LIBRARY opencv_${module} REQUIRED)
+    add_library(opencv::${module} UNKNOWN IMPORTED)
+    set_target_properties(opencv::${module} PROPERTIES
+      IMPORTED_LOCATION "${OPENCV_${module}_LIBRARY}"
+      INTERFACE_INCLUDE_DIRECTORIES "${OPENCV_INCLUDE_DIR}")
+  endif()
+endforeach()
+
+# FLANN (the view index's kd-trees) is used header-only; its headers use lz4.
+if(NOT TARGET flann::flann)
+  find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
+  find_path(LZ4_INCLUDE_DIR lz4.h REQUIRED)
+  find_library(LZ4_LIBRARY lz4 REQUIRED)
+  add_library(flann::flann INTERFACE IMPORTED)
+  set_target_properties(flann::flann PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
+endif()
+
+find_package(Threads REQUIRED)
+# gRPC and Protobuf (Debian ships gRPC's CMake config; Protobuf is found by CMake's module).
+find_package(Protobuf REQUIRED)
+find_package(gRPC CONFIG REQUIRED)

@@ -1,0 +1,52 @@
+# `cmake --install build --prefix P` installs the device library as a C++ package (issue 14):
+#   P/lib/liborbit_client.a and the libraries it links (orbit_api, orbit_core, orbit_proto),
+#   P/include/{client,core,api}/*.h and P/include/orbit/v1/*.pb.h (headers keep the paths they
+#   are included by: "client/enroller.h"),
+#   P/lib/cmake/OrbitClient/: find_package(OrbitClient) gives the target Orbit::orbit_client,
+#   P/lib/pkgconfig/orbit-client.pc: pkg-config --cflags --libs orbit-client.
+# The third-party libraries are Debian's, found again by the package
+# (cmake/OrbitClientDependencies.cmake). examples/capture_client builds against it
+# (tests/install/build_example.cmake).
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(orbit_client_libraries orbit_client orbit_api orbit_core orbit_proto)
+# Inside the build the libraries include from the source and build trees; installed, from
+# P/include.
+foreach(library orbit_client orbit_api orbit_core)
+  set_target_properties(${library} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES
+    "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>;$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
+endforeach()
+set_target_properties(orbit_proto PROPERTIES
+  INTERFACE_INCLUDE_DIRECTORIES
+    "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/proto>;$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>"
+  INTERFACE_SYSTEM_INCLUDE_DIRECTORIES "$<BUILD_INTERFACE:${PROJECT_BINARY_DIR}/proto>")
+
+# The headers use C++20.
+set_property(TARGET orbit_client APPEND PROPERTY INTERFACE_COMPILE_FEATURES cxx_std_20)
+
+install(TARGETS ${orbit_client_libraries} EXPORT OrbitClientTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
+  INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+foreach(folder client core api)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${folder}
+    FILES_MATCHING PATTERN "*.h")
+endforeach()
+install(DIRECTORY ${PROJECT_BINARY_DIR}/proto/orbit/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/orbit
+  FILES_MATCHING PATTERN "*.pb.h")
+
+set(orbit_cmake_dir ${CMAKE_INSTALL_LIBDIR}/cmake/OrbitClient)
+install(EXPORT OrbitClientTargets NAMESPACE Orbit:: DESTINATION ${orbit_cmake_dir})
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/OrbitClientConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/OrbitClientConfig.cmake INSTALL_DESTINATION ${orbit_cmake_dir})
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/OrbitClientConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/OrbitClientConfig.cmake
+  ${PROJECT_BINARY_DIR}/OrbitClientConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/OrbitClientDependencies.cmake
+  DESTINATION ${orbit_cmake_dir})
+
+configure_file(${PROJECT_SOURCE_DIR}/cmake/orbit-client.pc.in
+  ${PROJECT_BINARY_DIR}/orbit-client.pc @ONLY)
+install(FILES ${PROJECT_BINARY_DIR}/orbit-client.pc
+  DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

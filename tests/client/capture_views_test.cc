@@ -1,0 +1,58 @@
+// Choosing enrollment views from a walk (client/capture_views.h): one view per azimuth step, the
+// sharpest usable frame of the step, never a blurred, noisy or lost frame.
+#include "client/capture_views.h"
+
+#include <set>
+
+#include <gtest/gtest.h>
+
+#include "evaluation/capture_generator.h"
+#include "tests/support/test_data.h"
+
+namespace orbit {
+namespace {
+
+using testing::ScratchDir;
+
+TEST(CaptureViewsTest, KeepsTheSharpestUsableFrameOfEachStep) {
+  const ScratchDir dir;
+  CaptureGeneratorOptions walk;
+  walk.coil_dir = testing::CoilDir();
+  walk.object = 9;
+  walk.frames = 60;
+  walk.turn_deg = 180;  // 3 degrees of walk per frame: two or three frames per 10-degree step
+  const GeneratedCapture capture = GenerateCapture(walk);
+  WriteCapture(capture, dir / "walk.avi", dir / "walk.csv");
+
+  CaptureReader reader((dir / "walk.avi").string(),
+                       OrientationLog::ReadFile((dir / "walk.csv").string()),
+                       {.first_box = capture.true_boxes[0]});
+  long progress_calls = 0;
+  const CaptureViewSelection selection =
+      SelectCaptureViews(reader, {.step_deg = 10, .progress = [&](long read, long total) {
+                                    EXPECT_EQ(total, 60);
+                                    progress_calls = read;
+                                  }});
+  EXPECT_EQ(progress_calls, 60);
+  EXPECT_EQ(selection.frames_read, 60);
+  EXPECT_EQ(selection.frames_lost, 0);
+  EXPECT_EQ(selection.steps_total, 36);
+  // The log turns 180 degrees plus drift and noise: about 18 or 19 steps of 10 degrees.
+  EXPECT_GE(selection.views.size(), 17u);
+  EXPECT_LE(selection.views.size(), 20u);
+  std::set<int> steps;
+  long previous = -1;
+  for (const CaptureView& view : selection.views) {
+    EXPECT_GT(view.frame_index, previous);  // in frame order
+    previous = view.frame_index;
+    EXPECT_FALSE(capture.degraded[view.frame_index]) << "frame " << view.frame_index;
+    EXPECT_TRUE(steps.insert(static_cast<int>(view.image.azimuth_deg / 10)).second);
+    EXPECT_EQ(view.image.image.size(), view.region.size());
+    EXPECT_FALSE(view.image.region.has_value());
+  }
+  // Every degraded frame that was not outdone by a sharper one in its step counts as unusable.
+  EXPECT_GE(selection.frames_unusable, 1);
+}
+
+}  // namespace
+}  // namespace orbit
