@@ -23,7 +23,7 @@ inline constexpr double kDefaultEnrollmentStepDeg = 5;
 
 struct CaptureViewOptions {
   double step_deg = kDefaultEnrollmentStepDeg;  // in (0, 180]
-  FrameQualityLimits quality;
+  FrameQualityLimits quality = {};
   // Called after each frame read with the frames read so far and the capture's frame count
   // (0 when unknown).
   std::function<void(long read, long total)> progress;

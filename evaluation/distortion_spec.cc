@@ -51,8 +51,8 @@ class StepParser {
                bool low_open, bool high_open) const {
     double value = 0;
     const auto [end, error] = std::from_chars(token.data(), token.data() + token.size(), value);
-    const std::string range = std::string(low_open ? "(" : "[") + Number(low) + ", " +
-                              Number(high) + (high_open ? ")" : "]");
+    std::string range(low_open ? "(" : "[");
+    range.append(Number(low)).append(", ").append(Number(high)).append(high_open ? ")" : "]");
     if (token.empty() || error != std::errc() || end != token.data() + token.size() ||
         !std::isfinite(value)) {
       Fail(std::string(what) + " must be a number in " + range + ", not '" + std::string(token) +
@@ -174,7 +174,8 @@ DistortionSpec ParseDistortionSpec(std::string_view text) {
                                   "': df means no distortion and cannot be combined");
     }
     spec.steps.push_back(StepParser(step_text).Parse());
-    spec.name += (spec.name.empty() ? "" : "+") + StepName(spec.steps.back());
+    if (!spec.name.empty()) spec.name += '+';
+    spec.name += StepName(spec.steps.back());
   }
   return spec;
 }

@@ -92,7 +92,9 @@ TEST(ObjectTrackerTest, ReportsLostWhenTheBoxLeavesTheFrame) {
     lost = tracked.lost;
     const cv::Rect truth =
         (walk.true_boxes[0] - cv::Point(dx, 0)) & cv::Rect(0, 0, first.cols, first.rows);
-    if (!lost) EXPECT_GT(IntersectionOverUnion(tracked.box, truth), 0.5) << frame;
+    if (!lost) {
+      EXPECT_GT(IntersectionOverUnion(tracked.box, truth), 0.5) << frame;
+    }
   }
   // The box starts at x = 105, 110 wide: half of it is out of the frame from frame 6 on.
   EXPECT_TRUE(lost);
