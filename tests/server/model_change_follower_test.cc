@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -41,7 +42,14 @@ struct Replica {
                                                      std::move(options));
   }
 
-  const IndexedObject* Find(ObjectId id) const { return catalogue.Snapshot()->Find(id); }
+  // A copy of the object as the index holds it now: the follower may publish a new snapshot and
+  // free the old one at any moment, so no pointer into a snapshot outlives this call.
+  std::optional<ObjectModel> Find(ObjectId id) const {
+    const std::shared_ptr<const ViewIndexSnapshot> snapshot = catalogue.Snapshot();
+    const IndexedObject* object = snapshot->Find(id);
+    if (object == nullptr) return std::nullopt;
+    return object->model();
+  }
 
   PostgresModelStore store;
   std::int64_t after_seq;
@@ -55,15 +63,15 @@ TEST(PostgresModelChangeFollowerTest, ReplicaBFollowsEveryKindOfChangeReplicaACo
   Replica b(database.conninfo());
 
   const ObjectSummary mug = a.catalogue.Enroll(SyntheticObject("mug", 4));
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id) != nullptr; }));
-  EXPECT_EQ(b.Find(mug.id)->model(), a.Find(mug.id)->model());
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id).has_value(); }));
+  EXPECT_EQ(b.Find(mug.id), a.Find(mug.id));
 
   a.catalogue.AddViews(mug.id, {SyntheticView(50, 200)}, {});
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id)->model().views.size() == 5; }));
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id)->views.size() == 5; }));
   a.store.Rename(mug.id, "cup");
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id)->model().name == "cup"; }));
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id)->name == "cup"; }));
   a.catalogue.Delete(mug.id);
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id) == nullptr; }));
+  ASSERT_TRUE(WaitUntil([&] { return !b.Find(mug.id).has_value(); }));
   EXPECT_EQ(b.follower->changes_applied(), 4);
 
   // B's own write comes back through the log and changes nothing there; A learns of it.
@@ -72,7 +80,7 @@ TEST(PostgresModelChangeFollowerTest, ReplicaBFollowsEveryKindOfChangeReplicaACo
   ASSERT_TRUE(WaitUntil([&] { return b.follower->applied_seq() == b.store.LatestChangeSeq(); }));
   EXPECT_EQ(b.catalogue.Snapshot()->serial(), serial);
   EXPECT_EQ(b.follower->changes_applied(), 4);
-  ASSERT_TRUE(WaitUntil([&] { return a.Find(jar.id) != nullptr; }));
+  ASSERT_TRUE(WaitUntil([&] { return a.Find(jar.id).has_value(); }));
 }
 
 // A change committed after the replica read the log's position but before it loaded its index
@@ -114,7 +122,7 @@ TEST(PostgresModelChangeFollowerTest, DroppedConnectionsLoseNoChange) {
   }
   ASSERT_TRUE(WaitUntil([&] { return b.catalogue.Snapshot()->object_count() == enrolled.size(); }))
       << b.catalogue.Snapshot()->object_count() << " of " << enrolled.size();
-  for (ObjectId id : enrolled) EXPECT_NE(b.Find(id), nullptr) << id;
+  for (ObjectId id : enrolled) EXPECT_TRUE(b.Find(id).has_value()) << id;
   EXPECT_EQ(b.follower->applied_seq(), a.store.LatestChangeSeq());
 }
 
@@ -141,18 +149,18 @@ TEST(PostgresModelChangeFollowerTest, ARestartedDatabaseIsCaughtUpAndFitnessFoll
   Replica a(conninfo);
   Replica b(conninfo, options);
   const ObjectSummary mug = a.catalogue.Enroll(SyntheticObject("mug", 3));
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id) != nullptr; }));
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id).has_value(); }));
 
   const Clock::time_point crash = Clock::now();
   server.Crash();
   ASSERT_TRUE(WaitUntil([&] { return !reported().empty(); }));
   EXPECT_GE(Clock::now() - crash, milliseconds(1500));  // not before the grace
   EXPECT_EQ(reported(), std::vector<bool>{false});
-  EXPECT_NE(b.Find(mug.id), nullptr);  // still serving what it had
+  EXPECT_TRUE(b.Find(mug.id).has_value());  // still serving what it had
 
   server.Restart();
   const ObjectSummary jar = a.catalogue.Enroll(SyntheticObject("jar", 3, 5));
-  ASSERT_TRUE(WaitUntil([&] { return b.Find(jar.id) != nullptr; }));
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(jar.id).has_value(); }));
   ASSERT_TRUE(WaitUntil([&] { return reported().size() == 2; }));
   EXPECT_EQ(reported(), (std::vector<bool>{false, true}));
 }
