@@ -16,11 +16,8 @@
 #include "tests/support/free_port.h"
 
 namespace orbit::testing {
-namespace {
 
 using Clock = std::chrono::steady_clock;
-
-}  // namespace
 
 BalancerProcess::BalancerProcess(const std::vector<std::string>& replicas) {
   if (replicas.empty() || replicas.size() > 3) {
