@@ -206,7 +206,7 @@ void BM_SessionFrames(benchmark::State& state, std::string engine_name, int obje
   SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
   const auto snapshot = set.index->Snapshot();
   std::vector<std::unique_ptr<RecognitionEngine>> engines;
-  for (int s = 0; s < sessions; ++s) engines.push_back(CreateEngine(engine_name));
+  for (int s = 0; s < sessions; ++s) engines.push_back(BenchEngine(engine_name));
   const int window = engines.front()->options().window;
   const std::vector<QueryFrame> frames = set.objects->Frames(objects / 3, 25.0, 4 * window);
   for (const auto& engine : engines) {
@@ -354,11 +354,15 @@ int RegisterEngineBenchmarks() {
           ->Unit(benchmark::kMicrosecond);
     }
   }
-  for (const char* engine : {"vci", "hmm"}) {
-    benchmark::RegisterBenchmark(
-        ("session-frame/" + std::string(engine) + "/1000/sessions:64").c_str(), BM_SessionFrames,
-        std::string(engine), 1000, 64)
-        ->Unit(benchmark::kMicrosecond);
+  for (const char* engine : {"vci", "hmm", "product"}) {
+    for (const int sessions : {8, 64, 256}) {
+      if (sessions != 64 && std::string(engine) != "product") continue;
+      benchmark::RegisterBenchmark(("session-frame/" + std::string(engine) +
+                                    "/1000/sessions:" + std::to_string(sessions))
+                                       .c_str(),
+                                   BM_SessionFrames, std::string(engine), 1000, sessions)
+          ->Unit(benchmark::kMicrosecond);
+    }
   }
   for (const char* engine : {"vci", "hmm", "product"}) {
     for (const int objects : {100, 1000}) {

@@ -13,6 +13,7 @@
 
 #include "core/cpu_dispatch.h"
 #include "core/sector_similarity_table.h"
+#include "core/similarity_rows.h"
 #include "core/similarity.h"
 
 namespace orbit {
@@ -180,6 +181,15 @@ ORBIT_AVX2_CLONES void Sharpen(float* __restrict values, std::size_t count, int 
   }
 }
 
+// out[o * rows + r] = in[r * columns + o]: a frame's [state][object] similarities stored object
+// by object, so that decoding a few objects reads a few cache lines per frame.
+void Transpose(const float* __restrict in, std::size_t rows, std::size_t columns,
+               float* __restrict out) {
+  for (std::size_t o = 0; o < columns; ++o) {
+    for (std::size_t r = 0; r < rows; ++r) out[o * rows + r] = in[r * columns + o];
+  }
+}
+
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
 // (SectorSimilarityTable) and the emissions from them, and the sparse transitions from the
 // previous frame; these stay with the frame while it is in the window. Per answer (Assess) it
@@ -203,7 +213,7 @@ class OrientationHmm final : public RecognitionEngine {
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
     if (!table_) table_ = SectorSimilarityTable::Of(index, states_);
-    WindowFrame stored;
+    WindowFrame stored = std::move(spare_);
     Score(*table_, frame.descriptor.values, stored);
     if (previous_) {
       const std::optional<double> turn = MeasuredTurn(*previous_, frame);
@@ -212,7 +222,10 @@ class OrientationHmm final : public RecognitionEngine {
     previous_ = frame;
     frames_.push_back(std::move(stored));
   }
-  void DropOldest() override { frames_.pop_front(); }
+  void DropOldest() override {
+    spare_ = std::move(frames_.front());  // its buffers serve the next frame
+    frames_.pop_front();
+  }
   void Clear() override {
     frames_.clear();
     previous_.reset();
@@ -224,7 +237,6 @@ class OrientationHmm final : public RecognitionEngine {
   // similarities and emissions depend on that object alone, so the state equals a re-append.
   void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
               const SnapshotChange& change, std::span<const QueryFrame> window) override {
-    const std::size_t before_objects = table_->object_count();
     table_ = SectorSimilarityTable::Of(after, states_);
     const std::size_t objects = table_->object_count();
 
@@ -233,8 +245,8 @@ class OrientationHmm final : public RecognitionEngine {
     const std::size_t added_count = added_objects.size();
     const SectorSimilarityTable added(added_objects, states_);
 
-    // Each state's row is rebuilt from runs of kept columns and runs of the added objects'
-    // columns (scored now against the kept frames): a few block copies per row.
+    // Each frame is rebuilt from runs of kept objects and runs of the added objects (scored now
+    // against the kept frames): a few block copies per frame.
     WindowFrame scored;
     for (std::size_t t = 0; t < frames_.size(); ++t) {
       WindowFrame& frame = frames_[t];
@@ -247,13 +259,11 @@ class OrientationHmm final : public RecognitionEngine {
         std::copy_n(from.unseen.begin() + run.source, run.length, unseen.begin() + run.after);
         std::copy_n(from.best.begin() + run.source, run.length, best.begin() + run.after);
       }
-      for (int i = 0; i < states_; ++i) {
-        float* row = &emission[static_cast<std::size_t>(i) * objects];
-        const float* kept = &frame.emission[static_cast<std::size_t>(i) * before_objects];
-        const float* fresh = added_count > 0 ? &scored.emission[i * added_count] : nullptr;
-        for (const SnapshotChange::Run& run : change.runs) {
-          std::copy_n((run.added ? fresh : kept) + run.source, run.length, row + run.after);
-        }
+      const std::size_t states = static_cast<std::size_t>(states_);
+      for (const SnapshotChange::Run& run : change.runs) {
+        const WindowFrame& from = run.added ? scored : frame;
+        std::copy_n(from.emission.begin() + run.source * states, run.length * states,
+                    emission.begin() + run.after * states);
       }
       frame.emission = std::move(emission);
       frame.unseen = std::move(unseen);
@@ -309,8 +319,9 @@ class OrientationHmm final : public RecognitionEngine {
     return assessments;
   }
 
+  // The matched view of each frame is the most similar view of the path's sector there.
   void Complete(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
-                Assessment& assessment) override {
+                const ObjectRows& rows, Assessment& assessment) override {
     const std::span<const std::uint16_t> path =
         viterbi_.path(static_cast<std::size_t>(lane_.at(index.PositionOf(assessment.object->id()))));
     const SectorViews& sectors = assessment.object->Sectors(states_);
@@ -319,7 +330,7 @@ class OrientationHmm final : public RecognitionEngine {
     for (std::size_t t = 0; t < window.size(); ++t) {
       MatchedView best{static_cast<int>(t), -1, -1};
       for (const int v : sectors.views[path[t]]) {
-        const double tc = Tanimoto(window[t].descriptor.values, views[v].descriptor);
+        const double tc = rows.rows[t][v];
         if (tc > best.similarity) best = {static_cast<int>(t), v, tc};
       }
       assessment.matched.push_back(best);
@@ -328,9 +339,10 @@ class OrientationHmm final : public RecognitionEngine {
   }
 
  private:
-  // What the engine keeps of a frame while it is in the window, [state * objects + object].
+  // What the engine keeps of a frame while it is in the window.
   struct WindowFrame {
-    std::vector<float> emission;       // EmissionsFromSimilarities() (Decode sharpens copies)
+    std::vector<float> emission;       // [object * states + state]: EmissionsFromSimilarities()
+                                       // (Decode sharpens copies)
     std::vector<std::uint8_t> unseen;  // [object]: 1 when every state's TC is 0
     std::vector<float> best;           // [object]: its highest emission, 0 when unseen
     SparseTransitions step;         // from the previous frame (empty for the first)
@@ -340,59 +352,57 @@ class OrientationHmm final : public RecognitionEngine {
   // sums[j] to the sum of TC along object j's path; lane_ maps positions to lanes for Complete.
   void Decode(std::span<const std::uint32_t> positions, std::size_t frames,
               std::vector<double>& sums) {
-    const std::size_t objects = table_->object_count();
     const std::size_t lanes = positions.size();
-    lane_.assign(objects, -1);
+    lane_.assign(table_->object_count(), -1);
     for (std::size_t j = 0; j < lanes; ++j) lane_[positions[j]] = static_cast<std::int32_t>(j);
-    // Every object and no sharpening: decode the window's own arrays; else gathered copies
-    // (sharpened as they are copied: the window keeps the similarities themselves).
+    // The decoded objects' emissions, gathered into BatchViterbi's [state][lane] layout and
+    // sharpened as they are copied (the window keeps the similarities themselves). An object's
+    // states are adjacent in a window frame, so a lane costs one cache line per frame.
+    const std::size_t states = static_cast<std::size_t>(states_);
     const int sharpness = options().hmm_sharpness;
-    const bool all = lanes == objects && sharpness == 0;
-    gathered_.resize(all ? 0 : frames);
+    gathered_.resize(frames);
     std::vector<const float*> emissions;
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
       const float* emission = frames_[t].emission.data();
-      if (!all) {
-        std::vector<float>& lanes_of_frame = gathered_[t];
-        lanes_of_frame.resize(static_cast<std::size_t>(states_) * lanes);
-        for (int i = 0; i < states_; ++i) {
-          const float* row = emission + static_cast<std::size_t>(i) * objects;
-          float* out = &lanes_of_frame[static_cast<std::size_t>(i) * lanes];
-          for (std::size_t j = 0; j < lanes; ++j) out[j] = row[positions[j]];
-        }
-        Sharpen(lanes_of_frame.data(), lanes_of_frame.size(), sharpness);
-        emission = lanes_of_frame.data();
+      std::vector<float>& lanes_of_frame = gathered_[t];
+      lanes_of_frame.resize(states * lanes);
+      for (std::size_t j = 0; j < lanes; ++j) {
+        const float* object_states = emission + positions[j] * states;
+        for (std::size_t i = 0; i < states; ++i) lanes_of_frame[i * lanes + j] = object_states[i];
       }
-      emissions.push_back(emission);
+      Sharpen(lanes_of_frame.data(), lanes_of_frame.size(), sharpness);
+      emissions.push_back(lanes_of_frame.data());
       if (t > 0) steps.push_back(&frames_[t].step);
     }
-    viterbi_.Decode(emissions, steps, all ? objects : lanes);
+    viterbi_.Decode(emissions, steps, lanes);
     sums.assign(lanes, 0.0);
     for (std::size_t j = 0; j < lanes; ++j) {
-      const std::size_t lane = all ? positions[j] : j;
-      const std::span<const std::uint16_t> path = viterbi_.path(lane);
+      const std::span<const std::uint16_t> path = viterbi_.path(j);
       for (std::size_t t = 0; t < frames; ++t) {
         // The TC of the path's state, from the window's own (unsharpened) array.
         if (!frames_[t].unseen[positions[j]]) {
-          sums[j] += frames_[t].emission[path[t] * objects + positions[j]];
+          sums[j] += frames_[t].emission[positions[j] * states + path[t]];
         }
       }
-      lane_[positions[j]] = static_cast<std::int32_t>(lane);
     }
   }
 
-  // The similarities and emissions of one frame for the objects of `table`.
+  // The similarities and emissions of one frame for the objects of `table`: computed state by
+  // state (the table's layout) in scratch, then stored object by object.
   void Score(const SectorSimilarityTable& table, const DescriptorValues& descriptor,
-             WindowFrame& frame) const {
+             WindowFrame& frame) {
     const std::size_t objects = table.object_count();
-    frame.emission.resize(objects * states_);
+    const std::size_t states = static_cast<std::size_t>(states_);
+    by_state_.resize(objects * states);
+    sum_.resize(objects);
+    frame.emission.resize(objects * states);
     frame.unseen.resize(objects);
     frame.best.resize(objects);
-    table.Compute(descriptor, frame.emission);
-    std::vector<float> sum(objects);
-    EmissionsFromSimilarities(frame.emission.data(), states_, sum.data(), frame.unseen.data(),
+    table.Compute(descriptor, by_state_);
+    EmissionsFromSimilarities(by_state_.data(), states_, sum_.data(), frame.unseen.data(),
                               frame.best.data(), objects);
+    Transpose(by_state_.data(), states, objects, frame.emission.data());
   }
 
   const int states_;
@@ -404,6 +414,8 @@ class OrientationHmm final : public RecognitionEngine {
   std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn
   std::vector<std::int32_t> lane_;                 // [object position]: its lane in viterbi_, or -1
   std::vector<std::vector<float>> gathered_;       // scratch: the decoded objects' emissions
+  std::vector<float> by_state_, sum_;              // scratch of Score
+  WindowFrame spare_;  // the last frame dropped: its buffers are reused by the next Append
 };
 
 }  // namespace

@@ -102,7 +102,7 @@ void RecognitionEngine::Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot
 }
 
 void RecognitionEngine::Complete(const ViewIndexSnapshot&, std::span<const QueryFrame>,
-                                 Assessment&) {}
+                                 const ObjectRows&, Assessment&) {}
 
 void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const {
   if (index == nullptr) throw std::invalid_argument("no view index to recognise against");
@@ -137,11 +137,13 @@ FrameUpdate RecognitionEngine::Observe(std::shared_ptr<const ViewIndexSnapshot> 
     if (window_.empty()) {
       Clear();
     } else {
-      Rebase(*index_, *index, *index->ChangeSince(*index_), window_);
+      const auto change = index->ChangeSince(*index_);
+      Rebase(*index_, *index, *change, window_);
+      // The rows of objects both snapshots share stay right; the removed objects' go (they are
+      // alive until index_ is replaced, so no added object can have their address).
+      rows_->Forget(change->removed);
     }
     index_ = std::move(index);
-    rows_->Clear();
-    for (std::size_t k = 0; k < window_.size(); ++k) rows_->PushFrame();
   }
   Push(frame);
   return Answer();
@@ -194,8 +196,8 @@ FrameUpdate RecognitionEngine::Answer() {
 
   // Recognition: accept or unknown, by the options' rule.
   Assessment& winner = assessments.front();
-  Complete(*index_, window_, winner);
   const ObjectRows winner_rows = rows_->For(window_, *winner.object);
+  Complete(*index_, window_, winner_rows, winner);
   if (ordered > 1) {
     const ObjectRows runner_up_rows = rows_->For(window_, *assessments[1].object);
     update.unknown_statistic = UnknownStatistic(winner_rows, &runner_up_rows);
@@ -229,7 +231,7 @@ FrameUpdate RecognitionEngine::Answer() {
   std::vector<MoveCandidate> candidates{{winner.object, winner.latest_azimuth}};
   for (std::size_t i = 1; i < shown; ++i) {
     if (assessments[i].score < winner.score - options_.ambiguity_margin) break;
-    Complete(*index_, window_, assessments[i]);
+    Complete(*index_, window_, rows_->For(window_, *assessments[i].object), assessments[i]);
     candidates.push_back({assessments[i].object, assessments[i].latest_azimuth});
   }
   std::vector<double> seen_turns;

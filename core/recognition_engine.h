@@ -56,6 +56,7 @@ namespace orbit {
 
 class RejectionCalibration;
 class SimilarityRows;
+struct ObjectRows;
 
 inline constexpr int kMaxWindow = 64;
 // Sectors of 1 degree at the finest: more states than degrees would hold empty sectors only.
@@ -237,9 +238,11 @@ class RecognitionEngine {
   virtual std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
                                          std::span<const QueryFrame> window) = 0;
   // Fills `matched` and `latest_azimuth` of an assessment from the last Assess() call; called
-  // only for the few objects the decision and the move need. Default: Assess() filled them.
+  // only for the few objects the decision and the move need, with the object's similarity rows
+  // for the window (rows.rows[t][v] = TC(window[t], view v), computed once per frame and
+  // object). Default: Assess() filled them.
   virtual void Complete(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
-                        Assessment& assessment);
+                        const ObjectRows& rows, Assessment& assessment);
 
  private:
   void Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const;

@@ -13,6 +13,12 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
   return row;
 }
 
+void SimilarityRows::Forget(std::span<const IndexedObject* const> objects) {
+  for (auto& rows : frames_) {
+    for (const IndexedObject* object : objects) rows.erase(object);
+  }
+}
+
 ObjectRows SimilarityRows::For(std::span<const QueryFrame> window, const IndexedObject& object) {
   ObjectRows rows{&object, {}};
   rows.rows.reserve(window.size());

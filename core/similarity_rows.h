@@ -4,9 +4,10 @@
 // (core/unknown_statistic.h) and the pose estimate (core/pose_estimate.h) read them; without
 // the cache each update would redo window x views comparisons for both.
 //
-// Keyed by the IndexedObject's address: clear it whenever the session moves to another index
-// snapshot (an object's new version is a new IndexedObject, and a freed one's address may be
-// reused).
+// Keyed by the IndexedObject's address: when the session moves to another index snapshot, forget
+// the objects the new one no longer holds before the old snapshot is released (an object's new
+// version is a new IndexedObject, and a freed one's address may be reused); the rows of the
+// objects both snapshots share (the same IndexedObject) stay right.
 //
 // Not thread-safe: one per session.
 #pragma once
@@ -36,6 +37,8 @@ class SimilarityRows {
   void PushFrame() { frames_.emplace_back(); }
   void DropOldest() { frames_.pop_front(); }
   void Clear() { frames_.clear(); }
+  // Drops every row of these objects.
+  void Forget(std::span<const IndexedObject* const> objects);
 
   // The rows of `object` for `window` (the frames pushed so far, oldest first), computing the
   // missing ones. The spans stay valid until the next call that changes the cache.
