@@ -9,7 +9,8 @@
 // docs/results/recognition.md); one object more or less barely moves a threshold set by the
 // whole model set. A session waits only for the very first calibration, when the server started
 // with fewer than two objects. A burst of changes costs one recalibration per change it cannot
-// coalesce, on one thread.
+// coalesce, on one thread, the least favoured by the scheduler (nice 19): it takes the core's idle
+// time, so it never delays a session's frame, and finishes later when the core is busy.
 //
 // Thread-safe.
 #pragma once

@@ -1,9 +1,6 @@
 #include "server/worker_pool.h"
 
-#include <sys/resource.h>
-#include <unistd.h>
-
-#include <algorithm>
+#include "server/thread_priority.h"
 
 namespace orbit::server {
 
@@ -11,12 +8,7 @@ WorkerPool::WorkerPool(int threads, int nice) {
   threads_.reserve(threads);
   for (int i = 0; i < threads; ++i) {
     threads_.emplace_back([this, nice] {
-      // Only lowers the priority, which needs no privilege; a failure leaves it as it was.
-      if (nice > 0) {
-        const auto thread = static_cast<id_t>(gettid());
-        (void)setpriority(PRIO_PROCESS, thread,
-                          std::min(19, getpriority(PRIO_PROCESS, thread) + nice));
-      }
+      LowerThisThreadsPriority(nice);
       Run();
     });
   }

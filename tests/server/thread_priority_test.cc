@@ -1,0 +1,41 @@
+// LowerThisThreadsPriority: the calling thread alone gets nicer, never past 19.
+#include "server/thread_priority.h"
+
+#include <sys/resource.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <thread>
+
+#include <gtest/gtest.h>
+
+namespace orbit::server {
+namespace {
+
+int ThisThreadsNice() { return getpriority(PRIO_PROCESS, static_cast<id_t>(gettid())); }
+
+TEST(ThreadPriorityTest, OnlyTheCallingThreadGetsNicer) {
+  const int caller = ThisThreadsNice();
+  int after = 0;
+  std::thread([&] {
+    LowerThisThreadsPriority(5);
+    after = ThisThreadsNice();
+  }).join();
+  EXPECT_EQ(after, std::min(19, caller + 5));
+  EXPECT_EQ(ThisThreadsNice(), caller);
+}
+
+TEST(ThreadPriorityTest, StopsAtNineteenAndNeverRaises) {
+  int capped = 0, unchanged = 0;
+  std::thread([&] {
+    LowerThisThreadsPriority(40);
+    capped = ThisThreadsNice();
+    LowerThisThreadsPriority(-10);  // not a way up
+    unchanged = ThisThreadsNice();
+  }).join();
+  EXPECT_EQ(capped, 19);
+  EXPECT_EQ(unchanged, 19);
+}
+
+}  // namespace
+}  // namespace orbit::server
