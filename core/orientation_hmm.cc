@@ -190,6 +190,42 @@ void Transpose(const float* __restrict in, std::size_t rows, std::size_t columns
   }
 }
 
+// Rearranges `values`, `width` values per object for `before` objects, into the order of a
+// snapshot of `after` objects described by `runs` (SnapshotChange::runs), in place; the added
+// objects' values come from `added`. Kept runs moving towards the front go first, front to back,
+// then those moving towards the back, back to front: since kept objects keep their relative
+// order (a ViewIndex appends objects and merges segments oldest first), no run overwrites
+// values still to be moved. Throws std::logic_error when they do not.
+template <typename T>
+void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std::size_t after,
+              std::size_t width, const std::vector<T>& added, std::vector<T>& values) {
+  std::size_t kept_end = 0;
+  for (const SnapshotChange::Run& run : runs) {
+    if (run.added) continue;
+    if (run.source < kept_end) throw std::logic_error("MoveRuns: kept objects were reordered");
+    kept_end = run.source + run.length;
+  }
+  if (after > before) values.resize(after * width);
+  for (const SnapshotChange::Run& run : runs) {
+    if (run.added || run.after >= run.source) continue;
+    const auto from = values.begin() + static_cast<std::ptrdiff_t>(run.source * width);
+    std::copy(from, from + static_cast<std::ptrdiff_t>(run.length * width),
+              values.begin() + static_cast<std::ptrdiff_t>(run.after * width));
+  }
+  for (auto run = runs.rbegin(); run != runs.rend(); ++run) {
+    if (run->added || run->after <= run->source) continue;
+    const auto from = values.begin() + static_cast<std::ptrdiff_t>(run->source * width);
+    std::copy_backward(from, from + static_cast<std::ptrdiff_t>(run->length * width),
+                       values.begin() + static_cast<std::ptrdiff_t>((run->after + run->length) * width));
+  }
+  for (const SnapshotChange::Run& run : runs) {
+    if (!run.added) continue;
+    std::copy_n(added.begin() + static_cast<std::ptrdiff_t>(run.source * width), run.length * width,
+                values.begin() + static_cast<std::ptrdiff_t>(run.after * width));
+  }
+  values.resize(after * width);
+}
+
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
 // (SectorSimilarityTable) and the emissions from them, and the sparse transitions from the
 // previous frame; these stay with the frame while it is in the window. Per answer (Assess) it
@@ -237,37 +273,26 @@ class OrientationHmm final : public RecognitionEngine {
   // similarities and emissions depend on that object alone, so the state equals a re-append.
   void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
               const SnapshotChange& change, std::span<const QueryFrame> window) override {
+    const std::size_t before_objects = table_->object_count();
     table_ = SectorSimilarityTable::Of(after, states_);
     const std::size_t objects = table_->object_count();
 
     std::vector<const IndexedObject*> added_objects;
     for (const ObjectSlot& slot : change.added) added_objects.push_back(slot.object);
-    const std::size_t added_count = added_objects.size();
     const SectorSimilarityTable added(added_objects, states_);
 
-    // Each frame is rebuilt from runs of kept objects and runs of the added objects (scored now
-    // against the kept frames): a few block copies per frame.
+    // Each frame's arrays are rearranged in place, a block per run of kept objects, and the
+    // added objects, scored now against the kept frames, copied in: an enrollment costs a
+    // session the new object's similarities and a move of the objects after a deleted one,
+    // not a copy of its whole window.
+    const std::size_t states = static_cast<std::size_t>(states_);
     WindowFrame scored;
     for (std::size_t t = 0; t < frames_.size(); ++t) {
       WindowFrame& frame = frames_[t];
-      if (added_count > 0) Score(added, window[t].descriptor.values, scored);
-      std::vector<float> emission(objects * states_);
-      std::vector<std::uint8_t> unseen(objects);
-      std::vector<float> best(objects);
-      for (const SnapshotChange::Run& run : change.runs) {
-        const WindowFrame& from = run.added ? scored : frame;
-        std::copy_n(from.unseen.begin() + run.source, run.length, unseen.begin() + run.after);
-        std::copy_n(from.best.begin() + run.source, run.length, best.begin() + run.after);
-      }
-      const std::size_t states = static_cast<std::size_t>(states_);
-      for (const SnapshotChange::Run& run : change.runs) {
-        const WindowFrame& from = run.added ? scored : frame;
-        std::copy_n(from.emission.begin() + run.source * states, run.length * states,
-                    emission.begin() + run.after * states);
-      }
-      frame.emission = std::move(emission);
-      frame.unseen = std::move(unseen);
-      frame.best = std::move(best);
+      if (!added_objects.empty()) Score(added, window[t].descriptor.values, scored);
+      MoveRuns(change.runs, before_objects, objects, states, scored.emission, frame.emission);
+      MoveRuns(change.runs, before_objects, objects, 1, scored.unseen, frame.unseen);
+      MoveRuns(change.runs, before_objects, objects, 1, scored.best, frame.best);
     }
   }
 
@@ -294,7 +319,11 @@ class OrientationHmm final : public RecognitionEngine {
       return bound[a] > bound[b] || (bound[a] == bound[b] && a < b);
     };
     const std::size_t shown = std::min<std::size_t>(objects, options().top_k);
-    std::size_t decoded = std::min(objects, std::max<std::size_t>(4 * shown, 32));
+    // A first guess a little above the shown objects, doubled while an object left out could
+    // still rank: every object decoded costs a cache line per frame when the session's window
+    // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 8% fewer
+    // frames/s, docs/results/load.md).
+    std::size_t decoded = std::min(objects, std::max<std::size_t>(shown + 3, 8));
     std::vector<double> sums;
     for (;;) {
       std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(decoded) - 1,
