@@ -321,7 +321,7 @@ class OrientationHmm final : public RecognitionEngine {
     const std::size_t shown = std::min<std::size_t>(objects, options().top_k);
     // A first guess a little above the shown objects, doubled while an object left out could
     // still rank: every object decoded costs a cache line per frame when the session's window
-    // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 8% fewer
+    // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 7% fewer
     // frames/s, docs/results/load.md).
     std::size_t decoded = std::min(objects, std::max<std::size_t>(shown + 3, 8));
     std::vector<double> sums;

@@ -9,12 +9,15 @@
 
 #include <gtest/gtest.h>
 
+#include "core/similarity.h"
+#include "tests/support/coil_models.h"
 #include "tests/support/hand_made_descriptors.h"
 
 namespace orbit {
 namespace {
 
 using testing::Bins;
+using testing::CoilObject;
 
 ObjectModel Model(ObjectId id, std::vector<DescriptorValues> views) {
   ObjectModel model;
@@ -50,6 +53,27 @@ TEST(SimilarityRowsTest, RowsHoldEachFramesTanimotoWithEachView) {
   // kDisjoint against kHalf: 16 / (16 + 32 - 16) = 1/2.
   EXPECT_EQ(std::vector<float>(got.rows[1].begin(), got.rows[1].end()),
             (std::vector<float>{0.0f, 0.5f, 1.0f}));
+}
+
+// The row is Tanimoto() view by view, rounded to float, on real descriptors and on the empty one
+// (1 against an empty view, 0 against the others).
+TEST(SimilarityRowsTest, RowsAreTanimotoOnCoilViews) {
+  const IndexedObject object(CoilObject(7));
+  std::vector<DescriptorValues> frames;
+  for (const int n : {7, 8, 52}) {
+    for (const ModelView& view : CoilObject(n).views) frames.push_back(view.descriptor);
+  }
+  frames.push_back(DescriptorValues{});
+  for (const DescriptorValues& frame : frames) {
+    const std::vector<float> row = SimilarityRow(frame, object);
+    ASSERT_EQ(row.size(), object.model().views.size());
+    for (std::size_t v = 0; v < row.size(); ++v) {
+      ASSERT_EQ(row[v], static_cast<float>(Tanimoto(frame, object.model().views[v].descriptor)))
+          << "view " << v;
+    }
+  }
+  const IndexedObject empty_view(Model(2, {DescriptorValues{}, kQuery}));
+  EXPECT_EQ(SimilarityRow(DescriptorValues{}, empty_view), (std::vector<float>{1.0f, 0.0f}));
 }
 
 TEST(SimilarityRowsTest, AFrameThatLeftTakesItsRowsWithIt) {
