@@ -1,5 +1,6 @@
 #include "server/rejection_calibrator.h"
 
+#include <algorithm>
 #include <utility>
 
 #include "server/thread_priority.h"
@@ -12,7 +13,16 @@ RejectionCalibrator::RejectionCalibrator(std::shared_ptr<const ViewIndexSnapshot
       calibration_(std::make_shared<const RejectionCalibration>(
           RejectionCalibration::FromIndex(*initial, options))),
       calibrated_serial_(initial->serial()),
+      calibrated_objects_(static_cast<int>(initial->object_count())),
       thread_([this] { Run(); }) {}
+
+bool RecalibrationDue(std::uint64_t changes, int calibrated_objects, double waited_seconds,
+                      bool calibrated) {
+  if (changes == 0) return false;
+  if (!calibrated) return true;
+  const double needed = std::max(1.0, kRecalibrationShare * calibrated_objects);
+  return static_cast<double>(changes) >= needed || waited_seconds >= kMaxRecalibrationDelaySeconds;
+}
 
 RejectionCalibrator::~RejectionCalibrator() {
   {
@@ -29,6 +39,7 @@ std::shared_ptr<const RejectionCalibration> RejectionCalibrator::For(
   // Snapshot serials grow with every publication, so a larger one is a newer model set.
   if (current->serial() > calibrated_serial_ &&
       (requested_ == nullptr || current->serial() > requested_->serial())) {
+    if (requested_ == nullptr) first_requested_ = std::chrono::steady_clock::now();
     requested_ = current;
     wake_.notify_one();
   }
@@ -45,16 +56,36 @@ void RejectionCalibrator::TEST_WaitFor(const ViewIndexSnapshot& snapshot) {
   done_.wait(lock, [&] { return calibrated_serial_ >= snapshot.serial() || stop_; });
 }
 
-void RejectionCalibrator::Run() {
-  // As nice as a thread gets: a recalibration is seconds of CPU at 1000 objects (1.8 s), and on
-  // a busy core at the sessions' priority it would delay their frames by scheduler slices
-  // (256 sessions x 10 frames/s with a 72-view enrollment every 5 s: p99 round trip 10-16 ms
-  // instead of under 1). Sessions keep the previous calibration meanwhile.
-  LowerThisThreadsPriority(19);
+bool RejectionCalibrator::TEST_WaitFor(const ViewIndexSnapshot& snapshot,
+                                       std::chrono::milliseconds timeout) {
   std::unique_lock lock(mutex_);
+  return done_.wait_for(lock, timeout,
+                        [&] { return calibrated_serial_ >= snapshot.serial() || stop_; });
+}
+
+void RejectionCalibrator::Run() {
+  // On the core's idle time only: a recalibration is seconds of CPU at 1000 objects (1.8 s), and
+  // on a busy core at the sessions' priority it delayed their frames by scheduler slices
+  // (256 sessions x 10 frames/s with a 72-view enrollment every 5 s: p99 round trip 16 ms
+  // instead of under 1; at nice 19 still 26-42 sessions above 5 ms in some runs). Sessions keep
+  // the previous calibration meanwhile.
+  RunThisThreadOnIdleTime();
+  std::unique_lock lock(mutex_);
+  const auto due = [this] {
+    const std::chrono::duration<double> waited =
+        std::chrono::steady_clock::now() - first_requested_;
+    return RecalibrationDue(requested_->serial() - calibrated_serial_, calibrated_objects_,
+                            waited.count(), calibration_->calibrated());
+  };
   while (true) {
     wake_.wait(lock, [this] { return stop_ || requested_ != nullptr; });
     if (stop_) return;
+    // A change too small to matter waits for more, or for its time.
+    if (!due()) {
+      wake_.wait_until(lock, first_requested_ + std::chrono::seconds(kMaxRecalibrationDelaySeconds),
+                       [&] { return stop_ || due(); });
+      if (stop_) return;
+    }
     const std::shared_ptr<const ViewIndexSnapshot> snapshot = std::move(requested_);
     requested_ = nullptr;
     lock.unlock();
@@ -63,6 +94,7 @@ void RejectionCalibrator::Run() {
     lock.lock();
     calibration_ = std::move(calibration);
     calibrated_serial_ = snapshot->serial();
+    calibrated_objects_ = static_cast<int>(snapshot->object_count());
     done_.notify_all();
   }
 }

@@ -3,18 +3,21 @@
 // for it.
 //
 // Computed once for the index the server starts with (before it serves), then again in the
-// background whenever a session shows it a snapshot newer than the one it was computed from:
-// an enrollment or deletion, from any source. Sessions keep the previous calibration until the
-// new one is ready (137 ms at 100 objects, 1.73 s at 1000 on one core: rejection-calibration in
-// docs/results/recognition.md); one object more or less barely moves a threshold set by the
-// whole model set. A session waits only for the very first calibration, when the server started
-// with fewer than two objects. A burst of changes costs one recalibration per change it cannot
-// coalesce, on one thread, the least favoured by the scheduler (nice 19): it takes the core's idle
-// time, so it never delays a session's frame, and finishes later when the core is busy.
+// background once a session shows it a snapshot that differs enough from the one it was
+// computed from (RecalibrationDue): an enrollment or deletion, from any source. Sessions keep
+// the previous calibration until the new one is ready (137 ms at 100 objects, 1.73 s at 1000 on
+// one core: rejection-calibration in docs/results/recognition.md). A session waits only for the
+// very first calibration, when the server started with fewer than two objects. A burst of
+// changes costs one recalibration per change it cannot coalesce, on one thread that runs on the
+// core's idle time (SCHED_IDLE, thread_priority.h), so it never takes the core from a session;
+// it still streams the whole model set through the caches, which slows the sessions' frames
+// while it runs (at 1000 objects: 256 sessions x 10 frames/s, 24-141 sessions with a p99 round
+// trip above 5 ms instead of 0-4), hence the wait for a change worth it.
 //
 // Thread-safe.
 #pragma once
 
+#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <memory>
@@ -25,6 +28,17 @@
 #include "core/view_index.h"
 
 namespace orbit::server {
+
+// One object more or less barely moves a threshold set by the whole model set (the null draws
+// about 2 views per object at 1000 objects): a recalibration is due once the model set has
+// changed by at least 1% of the objects it was calibrated on (at least 1 change: every change
+// up to 100 objects), or a change has waited kMaxRecalibrationDelaySeconds, or there is no
+// calibration yet. `changes` counts publications since the calibrated snapshot (snapshot
+// serials), so it may overcount, never undercount.
+inline constexpr double kRecalibrationShare = 0.01;
+inline constexpr int kMaxRecalibrationDelaySeconds = 300;
+bool RecalibrationDue(std::uint64_t changes, int calibrated_objects, double waited_seconds,
+                      bool calibrated);
 
 class RejectionCalibrator {
  public:
@@ -44,7 +58,10 @@ class RejectionCalibrator {
       const std::shared_ptr<const ViewIndexSnapshot>& current);
 
   // Waits until the calibration in use was computed from `snapshot` or a later one (tests).
+  // Tests only. The first form waits as long as it takes (a change that is not due yet waits up
+  // to kMaxRecalibrationDelaySeconds); the second at most `timeout`, and says whether it got there.
   void TEST_WaitFor(const ViewIndexSnapshot& snapshot);
+  bool TEST_WaitFor(const ViewIndexSnapshot& snapshot, std::chrono::milliseconds timeout);
 
  private:
   void Run();
@@ -55,7 +72,9 @@ class RejectionCalibrator {
   std::condition_variable done_;   // a recalibration finished
   std::shared_ptr<const RejectionCalibration> calibration_;  // guarded by mutex_
   std::uint64_t calibrated_serial_ = 0;                       // guarded by mutex_
+  int calibrated_objects_ = 0;                                // guarded by mutex_
   std::shared_ptr<const ViewIndexSnapshot> requested_;        // guarded by mutex_; null: none
+  std::chrono::steady_clock::time_point first_requested_;     // guarded by mutex_: pending since
   bool stop_ = false;                                         // guarded by mutex_
   std::thread thread_;
 };

@@ -8,4 +8,10 @@ namespace orbit::server {
 // Only lowers the priority, which needs no privilege; a failure leaves it as it was.
 void LowerThisThreadsPriority(int steps);
 
+// Puts the calling thread in Linux's SCHED_IDLE class: it runs on a core's idle time, and any
+// other thread waking up takes the core from it at once (a nice value only shifts shares and
+// deadlines). For work nobody waits for. Falls back to nice 19 where the class is refused;
+// returns whether SCHED_IDLE was set.
+bool RunThisThreadOnIdleTime();
+
 }  // namespace orbit::server

@@ -1,6 +1,9 @@
 // RejectionCalibrator: follows the model set in the background, never holding a session back
-// except for the very first calibration.
+// except for the very first calibration, and only once the model set has changed enough.
 #include "server/rejection_calibrator.h"
+
+#include <chrono>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -11,6 +14,12 @@ namespace {
 
 using testing::CoilObjects;
 using testing::EvenView;
+
+ObjectModel Renumbered(ObjectModel model, ObjectId id) {
+  model.id = id;
+  model.name = "copy-" + std::to_string(id);
+  return model;
+}
 
 TEST(RejectionCalibratorTest, RecalibratesInTheBackgroundAfterAChange) {
   ViewIndex index(CoilObjects(1, 4, EvenView));
@@ -40,6 +49,43 @@ TEST(RejectionCalibratorTest, WaitsOnlyForTheFirstCalibration) {
   const auto first = calibrator.For(index.Snapshot());
   EXPECT_TRUE(first->calibrated());
   EXPECT_EQ(first->sampled_objects(), 2);
+}
+
+TEST(RejectionCalibratorTest, RecalibrationIsDueAfterOnePercentOfTheObjectsOrFiveMinutes) {
+  EXPECT_FALSE(RecalibrationDue(0, 1000, 1e6, true));  // nothing changed
+  EXPECT_TRUE(RecalibrationDue(1, 1000, 0, false));    // no calibration yet
+  EXPECT_TRUE(RecalibrationDue(1, 100, 0, true));      // up to 100 objects: every change
+  EXPECT_TRUE(RecalibrationDue(1, 2, 0, true));
+  EXPECT_FALSE(RecalibrationDue(1, 150, 0, true));     // 1.5 needed
+  EXPECT_TRUE(RecalibrationDue(2, 150, 0, true));
+  EXPECT_FALSE(RecalibrationDue(9, 1000, 0, true));
+  EXPECT_TRUE(RecalibrationDue(10, 1000, 0, true));
+  EXPECT_FALSE(RecalibrationDue(1, 1000, 299, true));
+  EXPECT_TRUE(RecalibrationDue(1, 1000, 300, true));
+}
+
+// 200 objects (COIL-100 twice over): one enrollment is half of the 1% a recalibration waits
+// for, and the session keeps the calibration it has; a second one makes it due.
+TEST(RejectionCalibratorTest, ASmallChangeWaitsForMore) {
+  std::vector<ObjectModel> models = CoilObjects(1, 100, EvenView);
+  for (int n = 0; n < 100; ++n) models.push_back(Renumbered(models[n], n + 101));
+  ViewIndex index(std::move(models));
+  RejectionCalibrator calibrator(index.Snapshot());
+  const auto before = calibrator.For(index.Snapshot());
+  ASSERT_EQ(before->sampled_objects(), 200);
+
+  index.Add(Renumbered(CoilObjects(1, 1, EvenView)[0], 201));
+  const auto one = index.Snapshot();
+  EXPECT_EQ(calibrator.For(one), before);
+  // Calibrating 200 objects takes about 0.3 s here: it would have finished.
+  EXPECT_FALSE(calibrator.TEST_WaitFor(*one, std::chrono::seconds(3)));
+  EXPECT_EQ(calibrator.For(one), before);
+
+  index.Add(Renumbered(CoilObjects(2, 2, EvenView)[0], 202));
+  const auto two = index.Snapshot();
+  calibrator.For(two);
+  calibrator.TEST_WaitFor(*two);
+  EXPECT_EQ(calibrator.For(two)->sampled_objects(), 202);
 }
 
 }  // namespace

@@ -1,6 +1,8 @@
-// LowerThisThreadsPriority: the calling thread alone gets nicer, never past 19.
+// LowerThisThreadsPriority: the calling thread alone gets nicer, never past 19;
+// RunThisThreadOnIdleTime: the calling thread alone moves to SCHED_IDLE.
 #include "server/thread_priority.h"
 
+#include <sched.h>
 #include <sys/resource.h>
 #include <unistd.h>
 
@@ -35,6 +37,18 @@ TEST(ThreadPriorityTest, StopsAtNineteenAndNeverRaises) {
   }).join();
   EXPECT_EQ(capped, 19);
   EXPECT_EQ(unchanged, 19);
+}
+
+TEST(ThreadPriorityTest, IdleTimeIsForTheCallingThreadOnly) {
+  bool set = false;
+  int policy = -1;
+  std::thread([&] {
+    set = RunThisThreadOnIdleTime();
+    policy = sched_getscheduler(0);
+  }).join();
+  EXPECT_TRUE(set);  // Linux lets any thread lower itself to SCHED_IDLE
+  EXPECT_EQ(policy, SCHED_IDLE);
+  EXPECT_EQ(sched_getscheduler(0), SCHED_OTHER);
 }
 
 }  // namespace
