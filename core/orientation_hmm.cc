@@ -215,8 +215,9 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
   for (auto run = runs.rbegin(); run != runs.rend(); ++run) {
     if (run->added || run->after <= run->source) continue;
     const auto from = values.begin() + static_cast<std::ptrdiff_t>(run->source * width);
-    std::copy_backward(from, from + static_cast<std::ptrdiff_t>(run->length * width),
-                       values.begin() + static_cast<std::ptrdiff_t>((run->after + run->length) * width));
+    const auto to_end =
+        values.begin() + static_cast<std::ptrdiff_t>((run->after + run->length) * width);
+    std::copy_backward(from, from + static_cast<std::ptrdiff_t>(run->length * width), to_end);
   }
   for (const SnapshotChange::Run& run : runs) {
     if (!run.added) continue;
