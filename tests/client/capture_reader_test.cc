@@ -9,6 +9,7 @@
 
 #include "core/angles.h"
 #include "evaluation/capture_generator.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -17,15 +18,7 @@ namespace {
 using testing::ErrorMessageOf;
 using testing::ScratchDir;
 
-CaptureGeneratorOptions ShortWalk() {
-  CaptureGeneratorOptions options;
-  options.coil_dir = testing::CoilDir();
-  options.object = 7;
-  options.frames = 24;
-  options.turn_deg = 120;
-  options.fps = 12;
-  return options;
-}
+CaptureGeneratorOptions ShortWalk() { return testing::CoilWalk(7, 24, 120, 12); }
 
 TEST(CaptureReaderTest, ReadsAGeneratedWalkWithAzimuthsFromTheLog) {
   const ScratchDir dir;
@@ -62,11 +55,11 @@ TEST(CaptureReaderTest, ReadsAGeneratedWalkWithAzimuthsFromTheLog) {
 
 TEST(CaptureReaderTest, RefusesALogThatEndsBeforeTheVideoAndAMissingVideo) {
   const ScratchDir dir;
-  WriteCapture(GenerateCapture(ShortWalk()), dir / "walk.avi", dir / "walk.csv");
+  const std::string video = testing::WriteWalk(dir, ShortWalk()).video;
   // 24 frames at 12 fps: the last at 1916.67 ms.
   const std::string log = dir.Write("short.csv", "timestamp_ms,azimuth_deg\n0,0\n1500,90\n");
   EXPECT_EQ(ErrorMessageOf(
-                [&] { CaptureReader((dir / "walk.avi").string(), OrientationLog::ReadFile(log)); }),
+                [&] { CaptureReader(video, OrientationLog::ReadFile(log)); }),
             log +
                 " does not cover frame 23 (at 1916.67 ms): it covers timestamp_ms 0 to 1500; "
                 "a log must span the whole video, from its first frame to its last");

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include "evaluation/capture_generator.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -13,24 +14,16 @@ namespace {
 
 TEST(CaptureSessionTest, StreamsEveryFoundFrameAndSkipsLostOnes) {
   const testing::ScratchDir dir;
-  CaptureGeneratorOptions walk;
-  walk.coil_dir = testing::CoilDir();
-  walk.object = 2;
-  walk.frames = 16;
-  walk.turn_deg = 80;
-  walk.fps = 8;
-  const GeneratedCapture capture = GenerateCapture(walk);
-  WriteCapture(capture, dir / "walk.avi", dir / "walk.csv");
+  const testing::WrittenWalk walk = testing::WriteWalk(dir, testing::CoilWalk(2, 16, 80, 8));
 
   testing::ServerProcess server;
   const Connection connection(testing::At(server.address()));
   testing::EnrollCoilObjects(connection, 1, 3);  // every 10 degrees, on black
 
   // The true boxes; the first four frames' boxes outside the frame: lost, not sent.
-  std::vector<cv::Rect> boxes = capture.true_boxes;
+  std::vector<cv::Rect> boxes = walk.capture.true_boxes;
   for (int f = 0; f < 4; ++f) boxes[f] = cv::Rect(400, 300, 20, 20);
-  CaptureReader reader((dir / "walk.avi").string(),
-                       OrientationLog::ReadFile((dir / "walk.csv").string()), {.boxes = boxes});
+  CaptureReader reader(walk.video, OrientationLog::ReadFile(walk.log), {.boxes = boxes});
   auto session = RecognitionSession::Open(connection, testing::TopK(3));
   long progress = 0;
   const CaptureStreamResult streamed =

@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "evaluation/capture_generator.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -16,17 +17,11 @@ using testing::ScratchDir;
 
 TEST(CaptureViewsTest, KeepsTheSharpestUsableFrameOfEachStep) {
   const ScratchDir dir;
-  CaptureGeneratorOptions walk;
-  walk.coil_dir = testing::CoilDir();
-  walk.object = 9;
-  walk.frames = 60;
-  walk.turn_deg = 180;  // 3 degrees of walk per frame: two or three frames per 10-degree step
-  const GeneratedCapture capture = GenerateCapture(walk);
-  WriteCapture(capture, dir / "walk.avi", dir / "walk.csv");
+  // 3 degrees of walk per frame: two or three frames per 10-degree step.
+  const testing::WrittenWalk walk = testing::WriteWalk(dir, testing::CoilWalk(9, 60, 180));
 
-  CaptureReader reader((dir / "walk.avi").string(),
-                       OrientationLog::ReadFile((dir / "walk.csv").string()),
-                       {.first_box = capture.true_boxes[0]});
+  CaptureReader reader(walk.video, OrientationLog::ReadFile(walk.log),
+                       {.first_box = walk.capture.true_boxes[0]});
   long progress_calls = 0;
   const CaptureViewSelection selection =
       SelectCaptureViews(reader, {.step_deg = 10, .progress = [&](long read, long total) {
@@ -45,7 +40,7 @@ TEST(CaptureViewsTest, KeepsTheSharpestUsableFrameOfEachStep) {
   for (const CaptureView& view : selection.views) {
     EXPECT_GT(view.frame_index, previous);  // in frame order
     previous = view.frame_index;
-    EXPECT_FALSE(capture.degraded[view.frame_index]) << "frame " << view.frame_index;
+    EXPECT_FALSE(walk.capture.degraded[view.frame_index]) << "frame " << view.frame_index;
     EXPECT_TRUE(steps.insert(static_cast<int>(view.image.azimuth_deg / 10)).second);
     EXPECT_EQ(view.image.image.size(), view.region.size());
     EXPECT_FALSE(view.image.region.has_value());

@@ -14,6 +14,7 @@
 #include "core/cedd.h"
 #include "core/view_description.h"
 #include "evaluation/capture_generator.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -56,20 +57,13 @@ TEST(EnrollerTest, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
 
 TEST(EnrollerTest, FromVideoStoresTheViewsOfItsChosenFramesGivenAsImages) {
   const testing::ScratchDir dir;
-  CaptureGeneratorOptions walk;
-  walk.coil_dir = testing::CoilDir();
-  walk.object = 3;
-  walk.frames = 40;
-  walk.turn_deg = 200;
-  const GeneratedCapture capture = GenerateCapture(walk);
-  WriteCapture(capture, dir / "walk.avi", dir / "walk.csv");
+  const testing::WrittenWalk walk = testing::WriteWalk(dir, testing::CoilWalk(3, 40, 200));
 
   testing::ServerProcess server;
   const Connection connection(testing::At(server.address()));
   Enroller enroller(connection, {.seed = 5, .threads = 2});
-  CaptureReader reader((dir / "walk.avi").string(),
-                       OrientationLog::ReadFile((dir / "walk.csv").string()),
-                       {.first_box = capture.true_boxes[0]});
+  CaptureReader reader(walk.video, OrientationLog::ReadFile(walk.log),
+                       {.first_box = walk.capture.true_boxes[0]});
   const Enroller::VideoEnrollment enrolled = enroller.FromVideo("walked", reader);
   const std::vector<CaptureView>& chosen = enrolled.selection.views;
   // 40 frames over 200 degrees, one per 5-degree step but for the log's 3 degrees of noise:
@@ -79,7 +73,7 @@ TEST(EnrollerTest, FromVideoStoresTheViewsOfItsChosenFramesGivenAsImages) {
 
   // The same frames, saved as lossless images, enrolled the old way with their azimuths and
   // the tracked regions: view for view the same descriptors and typical distances.
-  cv::VideoCapture video((dir / "walk.avi").string());
+  cv::VideoCapture video(walk.video);
   std::vector<EnrollmentImage> images;
   cv::Mat frame;
   for (long f = 0, c = 0; video.read(frame) && c < static_cast<long>(chosen.size()); ++f) {
@@ -104,11 +98,10 @@ TEST(EnrollerTest, FromVideoStoresTheViewsOfItsChosenFramesGivenAsImages) {
   }
 
   // A capture whose object is lost at once has nothing to enroll: refused before any call.
-  CaptureReader whole((dir / "walk.avi").string(),
-                      OrientationLog::ReadFile((dir / "walk.csv").string()),
+  CaptureReader whole(walk.video, OrientationLog::ReadFile(walk.log),
                       {.boxes = std::vector<cv::Rect>(40, cv::Rect(400, 300, 10, 10))});
   EXPECT_EQ(testing::ErrorMessageOf([&] { enroller.FromVideo("nothing", whole); }),
-            "no usable frame in " + (dir / "walk.avi").string() +
+            "no usable frame in " + walk.video +
                 " (40 read, 40 lost, 0 too blurred or noisy): nothing to enroll for nothing");
 }
 

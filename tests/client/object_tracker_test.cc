@@ -8,18 +8,13 @@
 #include <gtest/gtest.h>
 
 #include "evaluation/capture_generator.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
 
-CaptureGeneratorOptions Walk(int object) {
-  CaptureGeneratorOptions options;
-  options.coil_dir = testing::CoilDir();
-  options.object = object;
-  options.frames = 48;
-  return options;
-}
+CaptureGeneratorOptions Walk(int object) { return testing::CoilWalk(object, 48); }
 
 struct TrackingScore {
   double min_iou = 1;

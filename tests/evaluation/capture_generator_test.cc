@@ -10,19 +10,13 @@
 
 #include "client/frame_quality.h"
 #include "core/angles.h"
+#include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
 
-CaptureGeneratorOptions Walk() {
-  CaptureGeneratorOptions options;
-  options.coil_dir = testing::CoilDir();
-  options.object = 4;
-  options.frames = 30;
-  options.turn_deg = 150;
-  return options;
-}
+CaptureGeneratorOptions Walk() { return testing::CoilWalk(4, 30, 150); }
 
 TEST(CaptureGeneratorTest, RendersAKnownWalk) {
   const GeneratedCapture capture = GenerateCapture(Walk());
