@@ -55,6 +55,7 @@ Json LoadReportJson(const LoadReport& report) {
   Json config{{"server", report.server},
               {"engine", report.engine},
               {"sessions", report.sessions},
+              {"connections", report.connections},
               {"mode", report.rate ? "open-loop" : "closed-loop"}};
   if (report.rate) config["rate_per_session"] = *report.rate;
   config["duration_s"] = report.duration_seconds;
@@ -122,7 +123,10 @@ std::string LoadReportText(const LoadReport& report) {
       << (report.rate ? "x " + Format("%g", *report.rate) + " frames/s (open loop)"
                       : std::string("(closed loop)"))
       << ", " << report.engine << ", " << (report.image_frames ? "image" : "descriptor")
-      << " frames, " << Format("%g", report.duration_seconds) << " s on " << report.server << "\n";
+      << " frames, " << Format("%g", report.duration_seconds) << " s on " << report.server
+      << (report.connections > 1 ? " over " + std::to_string(report.connections) + " connections"
+                                 : std::string())
+      << "\n";
   out << "frames       " << report.frames_sent << " sent, " << report.frames_answered
       << " answered in " << Format("%.2f", report.elapsed_seconds) << " s: "
       << Format("%.1f", report.FramesPerSecond()) << " frames/s\n";

@@ -22,6 +22,7 @@ struct LoadReport {
   std::string server;       // HOST:PORT
   std::string engine;       // the sessions' engine (api/engine_names.h)
   int sessions = 0;         // sessions asked for
+  int connections = 1;      // TCP connections they share (round robin)
   std::optional<double> rate;  // frames/s per session (open loop); unset: closed loop
   double duration_seconds = 0;
   bool image_frames = false;  // encoded images instead of descriptors

@@ -57,6 +57,7 @@ struct LoadtestOptions {
   NetworkOptions network;
   SessionFlags session;
   int sessions = 1;
+  int connections = 1;  // TCP connections the sessions share, round robin
   double rate = 0;  // frames/s per session; 0 with --closed-loop
   bool closed_loop = false;
   double duration = 10;  // seconds
@@ -346,8 +347,24 @@ int RunLoadtest(const LoadtestOptions& options) {
   std::atomic<int> enrolling{0};
   std::atomic<std::uint64_t> answered{0};
   const LoadShared shared{clock, enrolling, answered};
-  const std::unique_ptr<v1::Recognition::Stub> stub =
-      v1::Recognition::NewStub(connection.channel());
+  report.connections = options.connections;
+  // Session s streams on connection s mod N. With one, every session shares `connection`; with
+  // more, each has a TCP connection of its own, as separate devices would.
+  std::vector<std::unique_ptr<Connection>> own_connections;
+  std::vector<std::unique_ptr<v1::Recognition::Stub>> stubs;
+  if (options.connections == 1) {
+    stubs.push_back(v1::Recognition::NewStub(connection.channel()));
+  } else {
+    ConnectionOptions separate = connection.options();
+    separate.own_connection = true;
+    for (int c = 0; c < options.connections; ++c) {
+      own_connections.push_back(std::make_unique<Connection>(separate));
+      stubs.push_back(v1::Recognition::NewStub(own_connections.back()->channel()));
+    }
+  }
+  const auto connection_of = [&](std::size_t s) -> const Connection& {
+    return own_connections.empty() ? connection : *own_connections[s % own_connections.size()];
+  };
   std::vector<std::unique_ptr<LoadSession>> sessions;
   for (int s = 0; s < options.sessions; ++s) {
     sessions.push_back(std::make_unique<LoadSession>(
@@ -355,7 +372,9 @@ int RunLoadtest(const LoadtestOptions& options) {
         options.closed_loop, shared));
   }
   // Every stream is opened before the clock starts, so the load measures frames only.
-  for (auto& session : sessions) session->Start(*stub, connection, open);
+  for (std::size_t s = 0; s < sessions.size(); ++s) {
+    sessions[s]->Start(*stubs[s % stubs.size()], connection_of(s), open);
+  }
 
   if (options.server_pid > 0) report.server_start = SampleServer(options.server_pid);
   const double cpu_at_start = OwnCpuSeconds();
@@ -439,6 +458,12 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   command->add_option("--sessions", options->sessions, "concurrent sessions")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
+  command->add_option("--connections", options->connections,
+                      "TCP connections the sessions are spread over, round robin: 1 (the\n"
+                      "default, as ghz) multiplexes every session on one connection; as many as\n"
+                      "--sessions gives each session its own, as separate devices would")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
   CLI::Option_group* mode = command->add_option_group("mode", "give exactly one");
   mode->add_option("--rate", options->rate,
                    "open loop: frames per second per session (no default)")
@@ -491,7 +516,15 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
                     "print one JSON object: frames_per_second, rtt_ms {p50, p90, p99, max,\n"
                     "mean}, errors {STATUS: count}, sessions, frames, server, generator,\n"
                     "enrollments (docs/results/load.md)");
-  command->callback([options, &exit_code] { exit_code = RunLoadtest(*options); });
+  command->callback([options, &exit_code] {
+    if (options->connections > options->sessions) {
+      throw CLI::ValidationError("--connections", "must be in 1..--sessions (" +
+                                                      std::to_string(options->sessions) +
+                                                      "), got " +
+                                                      std::to_string(options->connections));
+    }
+    exit_code = RunLoadtest(*options);
+  });
 }
 
 }  // namespace orbit::cli

@@ -28,6 +28,7 @@ std::shared_ptr<grpc::Channel> MakeChannel(const ConnectionOptions& options) {
   // (its minimum connect timeout, 20 s by default), not as a gap between attempts. At 100 ms a
   // handshake of a few round trips on a slow link never completed, and the first call failed
   // with UNAVAILABLE.
+  if (options.own_connection) arguments.SetInt(GRPC_ARG_USE_LOCAL_SUBCHANNEL_POOL, 1);
   if (options.tls_root_certificates_file.empty()) {
     return grpc::CreateCustomChannel(options.address, grpc::InsecureChannelCredentials(),
                                      arguments);

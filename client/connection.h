@@ -29,6 +29,10 @@ struct ConnectionOptions {
   // Deadline of every unary call (ServerInfo, ListObjects, Enroll, ...). Streaming sessions
   // have none: they last as long as the device streams.
   std::chrono::milliseconds unary_deadline{10000};
+  // false: the channel shares its TCP connection with every other channel of this process to
+  // the same address and options (gRPC's global subchannel pool); true: it opens a connection of
+  // its own, as a separate device would (orbit loadtest --connections).
+  bool own_connection = false;
 };
 
 class Connection {

@@ -89,6 +89,19 @@ TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
   EXPECT_EQ(images.at("errors"), nlohmann::json::object());
 }
 
+// Sessions spread over connections of their own, as separate devices' would be, get every
+// frame answered too (each connection its own: tests/client/connection_test.cc).
+TEST(LoadtestCommandTest, SessionsOnConnectionsOfTheirOwnAreAnsweredAlike) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir)});
+  const nlohmann::json report = Loadtest(server, "--sessions 3 --connections 3 --rate 20 --duration 1");
+  EXPECT_EQ(report.at("config").at("connections"), 3) << report;
+  EXPECT_EQ(report.at("frames").at("sent"), 60);
+  EXPECT_EQ(report.at("frames").at("answered"), 60);
+  EXPECT_EQ(report.at("sessions").at("opened"), 3);
+  EXPECT_EQ(report.at("errors"), nlohmann::json::object());
+}
+
 TEST(LoadtestCommandTest, SessionsBeyondTheServersLimitAreCountedAsResourceExhausted) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-sessions", "2"}});
@@ -166,6 +179,9 @@ TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
   EXPECT_EQ(RunOrbit(at + "--rate 0").exit_code, 2);
   EXPECT_EQ(RunOrbit(at + "--rate 5 --sessions 0").exit_code, 2);
   EXPECT_EQ(RunOrbit(at + "--rate 5 --frobnicate").exit_code, 2);
+  const testing::CommandResult connections = RunOrbit(at + "--rate 5 --sessions 2 --connections 3");
+  EXPECT_EQ(connections.exit_code, 2);
+  EXPECT_THAT(connections.err, HasSubstr("--connections: must be in 1..--sessions (2), got 3"));
   const testing::CommandResult churn = RunOrbit(at + "--rate 5 --delete-during");
   EXPECT_EQ(churn.exit_code, 2);
   EXPECT_THAT(churn.err, HasSubstr("--delete-during requires --enroll-every"));
@@ -177,7 +193,8 @@ TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
   const testing::CommandResult help = RunOrbit("loadtest --help");
   EXPECT_EQ(help.exit_code, 0);
   for (const char* text : {"frames per second per session", "seconds of load",
-                           "concurrent sessions", "--enroll-every", "--server-pid", "in ms"}) {
+                           "concurrent sessions", "--connections", "--enroll-every",
+                           "--server-pid", "in ms"}) {
     EXPECT_THAT(help.out, HasSubstr(text));
   }
 }

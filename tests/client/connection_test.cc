@@ -1,5 +1,6 @@
 // Connections (client/connection.h): unreachable and silent servers fail within the deadline
-// with the right code; tokens and TLS reach a real `orbit serve` process.
+// with the right code; tokens and TLS reach a real `orbit serve` process; connections share a
+// TCP connection unless asked to open their own.
 #include "client/connection.h"
 
 #include <arpa/inet.h>
@@ -13,6 +14,8 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <sstream>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -249,6 +252,47 @@ TEST(ConnectionTest, ASlowHandshakeStillConnects) {
   const SlowLink link(server.port(), std::chrono::milliseconds(400));
   const Connection connection(testing::At(link.address()));
   EXPECT_EQ(ModelsClient(connection).ServerInfo().object_count(), 0);
+}
+
+// Established TCP connections on this machine to port `port` (/proc/net/tcp and tcp6, as gRPC
+// opens IPv6 sockets with IPv4-mapped addresses: the remote address's port in hex, state 01).
+int EstablishedConnectionsTo(int port) {
+  int count = 0;
+  for (const char* file : {"/proc/net/tcp", "/proc/net/tcp6"}) {
+    std::ifstream table(file);
+    std::string line;
+    std::getline(table, line);  // the header
+    while (std::getline(table, line)) {
+      std::istringstream fields(line);
+      std::string slot, local, remote, state;
+      fields >> slot >> local >> remote >> state;
+      const std::size_t colon = remote.rfind(':');
+      if (state == "01" && colon != std::string::npos &&
+          std::stoi(remote.substr(colon + 1), nullptr, 16) == port) {
+        ++count;
+      }
+    }
+  }
+  return count;
+}
+
+// gRPC shares one TCP connection among channels to the same address with the same options; a
+// load generator standing for separate devices needs one each (orbit loadtest --connections).
+TEST(ConnectionTest, OwnConnectionsOpenATcpConnectionEach) {
+  ServerProcess server;
+  const Connection shared_a(testing::At(server.address()));
+  const Connection shared_b(testing::At(server.address()));
+  ModelsClient(shared_a).ServerInfo();
+  ModelsClient(shared_b).ServerInfo();
+  EXPECT_EQ(EstablishedConnectionsTo(server.port()), 1);
+
+  ConnectionOptions own = testing::At(server.address());
+  own.own_connection = true;
+  const Connection own_a(own);
+  const Connection own_b(own);
+  ModelsClient(own_a).ServerInfo();
+  ModelsClient(own_b).ServerInfo();
+  EXPECT_EQ(EstablishedConnectionsTo(server.port()), 3);
 }
 
 }  // namespace
