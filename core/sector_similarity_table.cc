@@ -55,7 +55,7 @@ std::shared_ptr<const SectorSimilarityTable> SectorSimilarityTable::Of(
     const ViewIndexSnapshot& index, int states) {
   if (states < 1) throw std::invalid_argument("an HMM needs at least one state");
   return std::static_pointer_cast<const SectorSimilarityTable>(
-      index.Derived({"sector-similarity-table", states}, [&]() -> std::shared_ptr<const void> {
+      index.Derived({kDerivedName, states}, [&]() -> std::shared_ptr<const void> {
         return std::make_shared<const SectorSimilarityTable>(index, states);
       }));
 }

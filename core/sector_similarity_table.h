@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <string_view>
 #include <vector>
 
 #include "core/descriptor.h"
@@ -37,9 +38,10 @@ class SectorSimilarityTable {
   SectorSimilarityTable(std::span<const IndexedObject* const> objects, int states);
 
   // The table of `index` for `states`, shared by every caller with the same snapshot
-  // (ViewIndexSnapshot::Derived). Throws as the constructor.
+  // (ViewIndexSnapshot::Derived, key {kDerivedName, states}). Throws as the constructor.
   static std::shared_ptr<const SectorSimilarityTable> Of(const ViewIndexSnapshot& index,
                                                          int states);
+  static constexpr std::string_view kDerivedName = "sector-similarity-table";
 
   std::size_t object_count() const { return objects_; }
   int states() const { return states_; }

@@ -461,7 +461,19 @@ std::shared_ptr<const ViewIndexSnapshot> ViewIndex::Snapshot() const {
   return current_;
 }
 
+void ViewIndex::PrepareSnapshotsWith(SnapshotPreparation prepare) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  prepare_ = std::move(prepare);
+}
+
 void ViewIndex::Publish(std::shared_ptr<const ViewIndexSnapshot> next) {
+  if (prepare_) {
+    try {
+      prepare_(*next, *Snapshot());
+    } catch (const std::exception&) {
+      // A head start only (PrepareSnapshotsWith): the change itself must not be lost.
+    }
+  }
   std::lock_guard<std::mutex> lock(publish_mutex_);
   current_ = std::move(next);
 }

@@ -105,6 +105,15 @@ class ViewIndex {
   // The index as it is now. Never null; cheap (no copy of views).
   std::shared_ptr<const ViewIndexSnapshot> Snapshot() const;
 
+  // Work done on every new snapshot before it is published, on the writer's thread (Add,
+  // Replace, ReplaceAll, Remove), given the snapshot it replaces: for what readers derive from a
+  // snapshot on first use (ViewIndexSnapshot::Derived, ChangeSince), so that the first reader
+  // finds it ready instead of computing it while the others wait. Only a head start: when it
+  // throws, the snapshot is published all the same and readers derive what is missing.
+  using SnapshotPreparation =
+      std::function<void(const ViewIndexSnapshot& next, const ViewIndexSnapshot& previous)>;
+  void PrepareSnapshotsWith(SnapshotPreparation prepare);
+
   DescriptorVariant variant() const { return variant_; }
   const ViewIndexOptions& options() const { return options_; }
 
@@ -118,6 +127,7 @@ class ViewIndex {
   std::mutex write_mutex_;             // serialises Add/Remove
   mutable std::mutex publish_mutex_;   // guards current_ (held only to copy the pointer)
   std::shared_ptr<const ViewIndexSnapshot> current_;
+  SnapshotPreparation prepare_;        // guarded by write_mutex_
 };
 
 // An object's place in a snapshot: its data and the slots of its views in the arrays filled by

@@ -16,7 +16,8 @@
 # show the 100 original objects.
 #
 # Environment: ORBIT_DATA (default ../shared/data), DURATION (15), PORT (50151), SERVER_CPU (0),
-# LOAD_CPU (1), OBJECTS (100 or 1000), DB (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT
+# LOAD_CPU (1), OBJECTS (100 or 1000), CONNECTIONS (one: every session of a row on one TCP
+# connection, as ghz does; each: a connection per session, as separate devices would have), DB (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT
 # (BUILD_DIR/loadtest/<time>), COMMIT (the commit BUILD_DIR was built from, for the table's
 # heading; default the checkout's HEAD).
 set -euo pipefail
@@ -32,6 +33,8 @@ port=${PORT:-50151}
 server_cpu=${SERVER_CPU:-0}
 load_cpu=${LOAD_CPU:-1}
 objects=${OBJECTS:-100}
+connections=${CONNECTIONS:-one}
+[[ "$connections" == one || "$connections" == each ]] || { echo "CONNECTIONS must be one or each" >&2; exit 2; }
 [[ "$objects" == 100 || "$objects" == 1000 ]] || { echo "OBJECTS must be 100 or 1000" >&2; exit 2; }
 db=${DB:-$build/loadtest/coil$objects.db}
 out=${OUT:-$build/loadtest/$(date -u +%Y%m%dT%H%M%SZ)}
@@ -77,6 +80,12 @@ grep -q "listening on" "$out/serve.log" || { echo "the server did not start" >&2
 run() {
   local name=$1
   shift
+  if [[ "$connections" == each ]]; then
+    local args=("$@") i
+    for ((i = 0; i + 1 < ${#args[@]}; ++i)); do
+      [[ "${args[i]}" == --sessions ]] && set -- "$@" --connections "${args[i + 1]}"
+    done
+  fi
   echo "== $name: $* ($(uptime | sed 's/.*load average: //'))" >&2
   uptime | sed 's/.*load average: //; s/,.*//' >"$out/$name.load"
   taskset -c "$load_cpu" "$orbit" loadtest --json --server "127.0.0.1:$port" --server-pid "$server" \
@@ -141,7 +150,9 @@ else
   commit=$(git rev-parse --short HEAD)
   dirty=$(git status --porcelain --untracked-files=no | grep -q . && echo " (working tree has uncommitted changes)" || true)
 fi
-echo "Commit $commit$dirty, $objects objects x 72 views, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row; JSON in $out."
+sharing="every session of a row on one TCP connection"
+[[ "$connections" == each ]] && sharing="a TCP connection per session"
+echo "Commit $commit$dirty, $objects objects x 72 views, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row, $sharing; JSON in $out."
 echo
 echo "| load | engine | frames/s | RTT p50 (ms) | p90 | p99 | max | server processing p50 / p99 (us) | server CPU per frame (us) | generator CPU per frame (us) | server RSS start -> end (MB) | errors | load avg before |"
 echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: |"

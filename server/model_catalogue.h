@@ -52,6 +52,12 @@ class ModelCatalogue {
   bool Reload(ObjectId id);
 
   std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_->Snapshot(); }
+
+  // Work on every new snapshot before sessions see it (ViewIndex::PrepareSnapshotsWith): on the
+  // thread that writes, i.e. an enrollment's bulk worker, not a session's frame.
+  void PrepareSnapshotsWith(ViewIndex::SnapshotPreparation prepare) {
+    index_->PrepareSnapshotsWith(std::move(prepare));
+  }
   ModelStore& store() { return store_; }
   DescriptorVariant variant() const { return index_->variant(); }
 

@@ -18,6 +18,7 @@
 #include "server/models_service.h"
 #include "server/recognition_service.h"
 #include "server/server_metrics.h"
+#include "server/session_engine.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
 #include "storage/postgres_model_store.h"
@@ -85,6 +86,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
   catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
                                                 metrics_->store_writes());
+  catalogue_->PrepareSnapshotsWith(PrepareForSessions(config_.session_defaults));
   calibrator_ = std::make_unique<RejectionCalibrator>(catalogue_->Snapshot());
   const int cpus = AvailableCpus();
   pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);

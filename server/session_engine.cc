@@ -4,6 +4,7 @@
 #include <unordered_map>
 
 #include "api/engine_names.h"
+#include "core/sector_similarity_table.h"
 
 namespace orbit::server {
 namespace {
@@ -63,6 +64,15 @@ FrameUpdate SessionEngine::Observe(const std::shared_ptr<const ViewIndexSnapshot
 
 void SessionEngine::Reset() {
   for (auto& engine : engines_) engine->Reset();
+}
+
+ViewIndex::SnapshotPreparation PrepareForSessions(const SessionSettings& defaults) {
+  const bool hmm = RunsHmm(defaults.engine);
+  const int states = defaults.options.hmm_states;
+  return [hmm, states](const ViewIndexSnapshot& next, const ViewIndexSnapshot& previous) {
+    next.ChangeSince(previous);
+    if (hmm) SectorSimilarityTable::Of(next, states);
+  };
 }
 
 }  // namespace orbit::server

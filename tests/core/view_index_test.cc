@@ -3,6 +3,9 @@
 #include <cmath>
 #include <set>
 #include <stdexcept>
+#include <vector>
+#include <utility>
+#include <memory>
 
 #include <gtest/gtest.h>
 
@@ -110,6 +113,39 @@ TEST(ViewIndexTest, ChangeSinceNamesWhatChangedAndIsSharedByEverySessionComingFr
             (std::vector<SnapshotChange::Run>{{0, 0, 1, false}, {1, 2, 1, false}}));
   EXPECT_EQ(grown->PositionOf(4), 2u);
   EXPECT_THROW(grown->PositionOf(2), std::out_of_range);
+}
+
+TEST(ViewIndexTest, APreparationRunsOnEveryNewSnapshotBeforeItIsPublished) {
+  ViewIndex index(SmallModels(), {.search = SearchMode::kExact});  // objects 1, 2
+  std::vector<std::pair<std::size_t, std::size_t>> seen;  // (next, previous) object counts
+  bool published_before_prepared = false;
+  int builds = 0;
+  const auto build = [&builds] {
+    ++builds;
+    return std::make_shared<const int>(7);
+  };
+  index.PrepareSnapshotsWith([&](const ViewIndexSnapshot& next, const ViewIndexSnapshot& previous) {
+    published_before_prepared |= index.Snapshot().get() == &next;
+    seen.emplace_back(next.object_count(), previous.object_count());
+    next.Derived({"prepared", 1}, build);
+  });
+  index.Add(Model(3, {{kC, 10}}));
+  index.Remove(2);
+  index.Remove(2);  // no change, no snapshot
+  index.Replace(Model(1, {{kB, 0}}));
+  EXPECT_EQ(seen, (std::vector<std::pair<std::size_t, std::size_t>>{{3, 2}, {2, 3}, {2, 2}}));
+  EXPECT_FALSE(published_before_prepared);
+  EXPECT_EQ(builds, 3);
+  // A reader of the published snapshot finds the prepared data: it builds nothing.
+  index.Snapshot()->Derived({"prepared", 1}, build);
+  EXPECT_EQ(builds, 3);
+
+  // A preparation that fails loses no change.
+  index.PrepareSnapshotsWith([](const ViewIndexSnapshot&, const ViewIndexSnapshot&) {
+    throw std::runtime_error("out of memory");
+  });
+  index.Add(Model(4, {{kA, 5}}));
+  EXPECT_NE(index.Snapshot()->Find(4), nullptr);
 }
 
 TEST(ViewIndexTest, ExactSearchRanksViewsByTanimotoWithHandComputedValues) {
