@@ -118,6 +118,7 @@ class ViewIndex {
   const ViewIndexOptions& options() const { return options_; }
 
  private:
+  // Runs prepare_ on `next`, then makes it the current snapshot. REQUIRES write_mutex_ held.
   void Publish(std::shared_ptr<const ViewIndexSnapshot> next);
   // A snapshot holding exactly `models` (validated as the constructor does).
   std::shared_ptr<const ViewIndexSnapshot> BuildAll(std::vector<ObjectModel> models) const;

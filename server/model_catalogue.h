@@ -58,6 +58,7 @@ class ModelCatalogue {
   void PrepareSnapshotsWith(ViewIndex::SnapshotPreparation prepare) {
     index_->PrepareSnapshotsWith(std::move(prepare));
   }
+
   ModelStore& store() { return store_; }
   DescriptorVariant variant() const { return index_->variant(); }
 
