@@ -348,23 +348,21 @@ int RunLoadtest(const LoadtestOptions& options) {
   std::atomic<std::uint64_t> answered{0};
   const LoadShared shared{clock, enrolling, answered};
   report.connections = options.connections;
-  // Session s streams on connection s mod N. With one, every session shares `connection`; with
-  // more, each has a TCP connection of its own, as separate devices would.
+  // Session s streams on connections[s mod N]. With one, every session shares `connection`;
+  // with more, each is a TCP connection of its own, as separate devices' would be.
   std::vector<std::unique_ptr<Connection>> own_connections;
-  std::vector<std::unique_ptr<v1::Recognition::Stub>> stubs;
-  if (options.connections == 1) {
-    stubs.push_back(v1::Recognition::NewStub(connection.channel()));
-  } else {
+  std::vector<const Connection*> connections{&connection};
+  if (options.connections > 1) {
     ConnectionOptions separate = connection.options();
     separate.own_connection = true;
+    connections.clear();
     for (int c = 0; c < options.connections; ++c) {
       own_connections.push_back(std::make_unique<Connection>(separate));
-      stubs.push_back(v1::Recognition::NewStub(own_connections.back()->channel()));
+      connections.push_back(own_connections.back().get());
     }
   }
-  const auto connection_of = [&](std::size_t s) -> const Connection& {
-    return own_connections.empty() ? connection : *own_connections[s % own_connections.size()];
-  };
+  std::vector<std::unique_ptr<v1::Recognition::Stub>> stubs;
+  for (const Connection* c : connections) stubs.push_back(v1::Recognition::NewStub(c->channel()));
   std::vector<std::unique_ptr<LoadSession>> sessions;
   for (int s = 0; s < options.sessions; ++s) {
     sessions.push_back(std::make_unique<LoadSession>(
@@ -373,7 +371,8 @@ int RunLoadtest(const LoadtestOptions& options) {
   }
   // Every stream is opened before the clock starts, so the load measures frames only.
   for (std::size_t s = 0; s < sessions.size(); ++s) {
-    sessions[s]->Start(*stubs[s % stubs.size()], connection_of(s), open);
+    const std::size_t c = s % connections.size();
+    sessions[s]->Start(*stubs[c], *connections[c], open);
   }
 
   if (options.server_pid > 0) report.server_start = SampleServer(options.server_pid);

@@ -17,9 +17,9 @@
 #
 # Environment: ORBIT_DATA (default ../shared/data), DURATION (15), PORT (50151), SERVER_CPU (0),
 # LOAD_CPU (1), OBJECTS (100 or 1000), CONNECTIONS (one: every session of a row on one TCP
-# connection, as ghz does; each: a connection per session, as separate devices would have), DB (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT
-# (BUILD_DIR/loadtest/<time>), COMMIT (the commit BUILD_DIR was built from, for the table's
-# heading; default the checkout's HEAD).
+# connection, as ghz does; each: a connection per session, as separate devices would have), DB
+# (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT (BUILD_DIR/loadtest/<time>), COMMIT (the commit
+# BUILD_DIR was built from, for the table's heading; default the checkout's HEAD).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 

@@ -1,11 +1,11 @@
 #include "core/view_index.h"
 
 #include <cmath>
+#include <memory>
 #include <set>
 #include <stdexcept>
-#include <vector>
 #include <utility>
-#include <memory>
+#include <vector>
 
 #include <gtest/gtest.h>
 

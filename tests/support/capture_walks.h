@@ -12,8 +12,9 @@ namespace orbit::testing {
 
 // `frames` frames of COIL-100 object `object` going `turn_deg` degrees round it at `fps`; the
 // generator's defaults otherwise.
-inline CaptureGeneratorOptions CoilWalk(int object, int frames, double turn_deg = 360,
-                                        double fps = 10) {
+inline CaptureGeneratorOptions CoilWalk(int object, int frames,
+                                        double turn_deg = CaptureGeneratorOptions{}.turn_deg,
+                                        double fps = CaptureGeneratorOptions{}.fps) {
   CaptureGeneratorOptions options;
   options.coil_dir = CoilDir();
   options.object = object;
