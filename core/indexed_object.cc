@@ -102,6 +102,9 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
     ValidateDescriptorValues(view.descriptor,
                              "object " + std::to_string(model_.id) + " descriptor");
     view.azimuth = NormaliseAzimuth(view.azimuth);
+    std::int32_t norm = 0;
+    for (const std::uint8_t value : view.descriptor) norm += value * value;
+    squared_norms_.push_back(norm);
   }
   by_azimuth_.resize(model_.views.size());
   std::iota(by_azimuth_.begin(), by_azimuth_.end(), 0);

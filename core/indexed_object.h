@@ -60,6 +60,10 @@ class IndexedObject {
   // Indices of model().views in increasing azimuth order (ties: lower index first).
   const std::vector<int>& views_by_azimuth() const { return by_azimuth_; }
 
+  // c.c of each view's descriptor, in model().views order: the half of a Tanimoto coefficient
+  // that does not depend on the frame (core/similarity_rows.h).
+  const std::vector<std::int32_t>& squared_norms() const { return squared_norms_; }
+
   // The views on either side of `azimuth` (degrees, any value): `first` is the view at or
   // counter-clockwise-before it (largest azimuth <= it, circularly) and `second` the view at or
   // after it (smallest azimuth >= it, circularly). Both equal when a view sits exactly there
@@ -76,6 +80,7 @@ class IndexedObject {
  private:
   ObjectModel model_;
   std::vector<int> by_azimuth_;
+  std::vector<std::int32_t> squared_norms_;
   mutable std::mutex sectors_mutex_;
   mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_;
 };

@@ -8,21 +8,22 @@ namespace orbit {
 
 namespace {
 
-// qc[v] = q . c_v and cc[v] = c_v . c_v for `count` descriptors: Tanimoto()'s exact integer
-// products, without recomputing q . q for every view, in AVX2 where the CPU has it.
-ORBIT_AVX2_CLONES void Products(const std::uint8_t* __restrict q,
-                                const std::uint8_t* const* __restrict descriptors,
-                                std::size_t count, std::int32_t* __restrict qc,
-                                std::int32_t* __restrict cc) {
+// qc[v] = q . c_v for `count` descriptors: Tanimoto()'s exact integer products, in AVX2 where
+// the CPU has it. (c . c is the object's, IndexedObject::squared_norms; q . q the frame's.)
+// Summed in 16 bits, exactly: descriptor values are at most 7 (checked on every frame and
+// view), so a dot product is at most 144 x 49 = 7056; 16-bit lanes do twice the work of 32-bit
+// ones per instruction.
+static_assert(kDescriptorSize * 7 * 7 <= 0xFFFF);
+ORBIT_AVX2_CLONES void Dots(const std::uint8_t* __restrict q,
+                            const std::uint8_t* const* __restrict descriptors, std::size_t count,
+                            std::int32_t* __restrict qc) {
   for (std::size_t v = 0; v < count; ++v) {
     const std::uint8_t* __restrict c = descriptors[v];
-    std::int32_t dot = 0, norm = 0;
+    std::uint16_t dot = 0;
     for (int i = 0; i < kDescriptorSize; ++i) {
-      dot += q[i] * c[i];
-      norm += c[i] * c[i];
+      dot = static_cast<std::uint16_t>(dot + static_cast<std::uint16_t>(q[i] * c[i]));
     }
     qc[v] = dot;
-    cc[v] = norm;
   }
 }
 
@@ -30,11 +31,15 @@ ORBIT_AVX2_CLONES void Products(const std::uint8_t* __restrict q,
 
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object) {
   const std::vector<ModelView>& views = object.model().views;
+  const std::vector<std::int32_t>& cc = object.squared_norms();
   const std::size_t count = views.size();
-  std::vector<const std::uint8_t*> descriptors(count);
+  // The thread's scratch: a session's answer computes a few of these rows per frame.
+  thread_local std::vector<const std::uint8_t*> descriptors;
+  thread_local std::vector<std::int32_t> qc;
+  descriptors.resize(count);
+  qc.resize(count);
   for (std::size_t v = 0; v < count; ++v) descriptors[v] = views[v].descriptor.data();
-  std::vector<std::int32_t> qc(count), cc(count);
-  Products(frame.data(), descriptors.data(), count, qc.data(), cc.data());
+  Dots(frame.data(), descriptors.data(), count, qc.data());
   std::int32_t qq = 0;
   for (const std::uint8_t value : frame) qq += value * value;
   // As Tanimoto(): 1 for two zero vectors, else q.c / (q.q + c.c - q.c), rounded once.

@@ -23,6 +23,8 @@
 namespace orbit {
 
 // TC of `frame` with each view of `object`, in the object's view order.
+// REQUIRES: every value of `frame` at most 7 (ValidateDescriptorValues; views are checked when
+// the object is indexed).
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object);
 
 // One object's rows for a window: rows[k][v] = TC(window frame k, view v).

@@ -76,6 +76,21 @@ TEST(SimilarityRowsTest, RowsAreTanimotoOnCoilViews) {
   EXPECT_EQ(SimilarityRow(DescriptorValues{}, empty_view), (std::vector<float>{1.0f, 0.0f}));
 }
 
+// The largest products a descriptor can have are summed exactly: every bin at 7 gives a dot
+// product of 144 x 49 = 7056. Against itself TC = 1; against every other bin at 7 (dot 3528,
+// norms 7056 and 3528), 3528 / (7056 + 3528 - 3528) = 1/2; against every bin at 6, 6048 /
+// (7056 + 5184 - 6048) = 6048 / 6192.
+TEST(SimilarityRowsTest, TheLargestValuesAreSummedExactly) {
+  DescriptorValues full, alternate, six;
+  full.fill(7);
+  six.fill(6);
+  alternate.fill(0);
+  for (std::size_t i = 0; i < alternate.size(); i += 2) alternate[i] = 7;
+  const IndexedObject object(Model(1, {full, alternate, six}));
+  const std::vector<float> row = SimilarityRow(full, object);
+  EXPECT_EQ(row, (std::vector<float>{1.0f, 0.5f, static_cast<float>(6048.0 / 6192.0)}));
+}
+
 TEST(SimilarityRowsTest, AFrameThatLeftTakesItsRowsWithIt) {
   const IndexedObject object(Model(1, {kQuery, kHalf}));
   SimilarityRows rows;
