@@ -65,6 +65,7 @@ struct EvalOptions {
   int list_length = EngineOptions{}.list_length;
   int hmm_states = EngineOptions{}.hmm_states;
   int hmm_sharpness = EngineOptions{}.hmm_sharpness;
+  double nearest_view_weight = EngineOptions{}.nearest_view_weight;
   std::string csv;
   std::string plot;
   int threads = EvaluationOptions{}.threads;
@@ -105,6 +106,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.list_length = o.list_length;
   options.engine.hmm_states = o.hmm_states;
   options.engine.hmm_sharpness = o.hmm_sharpness;
+  options.engine.nearest_view_weight = o.nearest_view_weight;
   options.threads = o.threads;
   return options;
 }
@@ -314,6 +316,12 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--hmm-sharpness", o->hmm_sharpness,
                       "hmm decodes with emissions to the power 2^S (0: SPEC.md's HMM)")
       ->check(CLI::Range(0, kMaxHmmSharpness))
+      ->capture_default_str();
+  command->add_option("--nearest-view-weight", o->nearest_view_weight,
+                      "share of each ranked object's score the thesis' engines take from the "
+                      "window's nearest views (1 - T_EIS) instead of their own (0: SPEC.md's "
+                      "engines; the product's is its own)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
                       "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");

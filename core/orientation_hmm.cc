@@ -300,8 +300,8 @@ class OrientationHmm final : public RecognitionEngine {
   // Only the objects that can reach the ranking are decoded. An object's score averages the
   // emissions on its path, so it is at most the average of its best emission per frame
   // (WindowFrame::best): decoding the objects with the highest such bound until the next
-  // bound is below the top_k-th score gives exactly the ranking, ties included, that decoding
-  // every object gives. At 1000 objects that is a few dozen instead of 1000.
+  // bound is below the RankedDepth()-th score gives exactly the ranking, ties included, that
+  // decoding every object gives. At 1000 objects that is a few dozen instead of 1000.
   std::vector<Assessment> Assess(const ViewIndexSnapshot& index,
                                  std::span<const QueryFrame> window) override {
     const std::size_t frames = window.size();
@@ -319,7 +319,8 @@ class OrientationHmm final : public RecognitionEngine {
     const auto higher_bound = [&](std::uint32_t a, std::uint32_t b) {
       return bound[a] > bound[b] || (bound[a] == bound[b] && a < b);
     };
-    const std::size_t shown = std::min<std::size_t>(objects, options().top_k);
+    const std::size_t shown =
+        std::min<std::size_t>(objects, static_cast<std::size_t>(RankedDepth(options())));
     // A first guess a little above the shown objects, doubled while an object left out could
     // still rank: every object decoded costs a cache line per frame when the session's window
     // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 7% fewer

@@ -46,9 +46,16 @@ void ValidateEngineOptions(const EngineOptions& o) {
   Require(o.false_accept_rate > 0 && o.false_accept_rate < 1,
           "false_accept_rate must be in (0, 1)");
   Require(o.top_k >= 1, "top_k must be at least 1");
+  Require(o.nearest_view_weight >= 0 && o.nearest_view_weight <= 1,
+          "nearest_view_weight must be in [0, 1]");
   Require(o.averaged_views >= 2 && o.averaged_views <= 360, "averaged_views must be in 2..360");
   Require(std::isfinite(o.ambiguity_margin) && o.ambiguity_margin >= 0,
           "ambiguity_margin must be finite and >= 0");
+}
+
+int RankedDepth(const EngineOptions& options) {
+  return options.nearest_view_weight > 0 ? std::max(options.top_k, kNearestViewCandidates)
+                                         : options.top_k;
 }
 
 std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to) {
@@ -182,14 +189,27 @@ FrameUpdate RecognitionEngine::Answer() {
   std::vector<Assessment> assessments = Assess(*index_, window_);
   if (assessments.empty()) return update;
   const std::size_t shown = std::min<std::size_t>(assessments.size(), options_.top_k);
-  // Only the shown objects need ordering (an HMM session assesses every object per frame), and
+  // Only the ranked objects need ordering (an HMM session assesses every object per frame), and
   // the runner-up for the calibrated rule.
-  const std::size_t ordered = std::min<std::size_t>(assessments.size(), std::max<std::size_t>(shown, 2));
-  std::partial_sort(assessments.begin(), assessments.begin() + static_cast<std::ptrdiff_t>(ordered),
-                    assessments.end(), [](const Assessment& a, const Assessment& b) {
-                      return a.score > b.score ||
-                             (a.score == b.score && a.object->id() < b.object->id());
-                    });
+  const std::size_t ordered = std::min<std::size_t>(
+      assessments.size(), std::max<std::size_t>(static_cast<std::size_t>(RankedDepth(options_)), 2));
+  const auto better = [](const Assessment& a, const Assessment& b) {
+    return a.score > b.score || (a.score == b.score && a.object->id() < b.object->id());
+  };
+  const auto ranked = assessments.begin() + static_cast<std::ptrdiff_t>(ordered);
+  std::partial_sort(assessments.begin(), ranked, assessments.end(), better);
+  if (options_.nearest_view_weight > 0) {
+    const double weight = options_.nearest_view_weight;
+    for (auto it = assessments.begin(); it != ranked; ++it) {
+      double nearest = 0;
+      for (const std::span<const float> row : rows_->For(window_, *it->object).rows) {
+        nearest += *std::max_element(row.begin(), row.end());
+      }
+      nearest /= static_cast<double>(window_.size());
+      it->score = (1 - weight) * it->score + weight * nearest;
+    }
+    std::sort(assessments.begin(), ranked, better);
+  }
   for (std::size_t i = 0; i < shown; ++i) {
     update.ranking.push_back({assessments[i].object->id(), assessments[i].score});
   }

@@ -26,8 +26,10 @@ TEST(ProductPipelineTest, IsTheRobustVariantWithTheHmmAndSaysSo) {
   const auto names = EngineNames();
   EXPECT_NE(std::find(names.begin(), names.end(), Product().engine), names.end());
   const std::string text = DescribeProduct();
-  EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32) on cedd-robust"));
+  EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32, score 0.5 path "
+                              "+ 0.5 nearest views) on cedd-robust"));
   EXPECT_EQ(Product().options.hmm_sharpness, 5);
+  EXPECT_EQ(Product().options.nearest_view_weight, 0.5);
   EXPECT_THAT(text, HasSubstr("Gaussian blur of 2 px"));
 }
 

@@ -81,6 +81,9 @@ TEST(RecognitionEngineTest, FactoryKnowsTheSevenEnginesAndChecksOptions) {
   EXPECT_THROW(CreateEngine("vci", {.orientation_weight = 1001}), std::invalid_argument);
   EXPECT_NO_THROW(CreateEngine("vci", {.orientation_weight = 1000}));
   EXPECT_THROW(CreateEngine("vci", {.list_length = 0}), std::invalid_argument);
+  EXPECT_THROW(CreateEngine("hmm", {.nearest_view_weight = -0.1}), std::invalid_argument);
+  EXPECT_THROW(CreateEngine("hmm", {.nearest_view_weight = 1.1}), std::invalid_argument);
+  EXPECT_NO_THROW(CreateEngine("hmm", {.nearest_view_weight = 1}));
 }
 
 // Every engine names the right object of ten from four frames it has never seen (views 5
@@ -392,6 +395,70 @@ TEST(RecognitionEngineTest, BaselineScoresByHand) {
   EXPECT_NEAR(score("eiis", 1), 0.9, 1e-7);
   for (const std::string_view name : {"eis", "siis", "eiis"}) {
     EXPECT_NEAR(score(name, 2), 1.0 / 7, 1e-7) << name;
+  }
+}
+
+// The nearest-view blend, by hand, on one frame q = (bin 0: 2, bin 1: 2), HMM with SPEC.md's
+// emissions. Object 1 has views (bin 0: 4) at 0 and (bin 1: 4) at 10 degrees, one sector
+// whose mean view is q itself: path TC 1, but each view alone only 8 / (8 + 16 - 8) = 0.5.
+// Object 2 has one view q + (bin 2: 1): TC 8 / (8 + 9 - 8) = 8/9 both ways. The HMM alone
+// ranks 1 (1.0) over 2 (8/9); half from the nearest views, 2 (8/9) over 1 (0.75).
+TEST(RecognitionEngineTest, NearestViewBlendByHand) {
+  const ObjectModel one{1, "one", DescriptorVariant::kCeddLire,
+                        {View(Bins({{0, 4}}), 0), View(Bins({{1, 4}}), 10)}};
+  const ObjectModel two{2, "two", DescriptorVariant::kCeddLire,
+                        {View(Bins({{0, 2}, {1, 2}, {2, 1}}), 100)}};
+  ViewIndex index({one, two});
+  const std::vector<QueryFrame> frame = {
+      {{DescriptorVariant::kCeddLire, Bins({{0, 2}, {1, 2}})}, 5}};
+  const auto ranking = [&](double weight) {
+    return CreateEngine("hmm", {.nearest_view_weight = weight})
+        ->ObserveSequence(index.Snapshot(), frame)
+        .ranking;
+  };
+  const std::vector<RankedObject> path = ranking(0), blend = ranking(0.5), nearest = ranking(1);
+  ASSERT_EQ(path.size(), 2u);
+  EXPECT_EQ(path[0].object, 1);
+  EXPECT_NEAR(path[0].score, 1.0, 1e-6);
+  EXPECT_NEAR(path[1].score, 8.0 / 9, 1e-6);
+  ASSERT_EQ(blend.size(), 2u);
+  EXPECT_EQ(blend[0].object, 2);
+  EXPECT_NEAR(blend[0].score, 8.0 / 9, 1e-6);
+  EXPECT_EQ(blend[1].object, 1);
+  EXPECT_NEAR(blend[1].score, 0.75, 1e-6);
+  ASSERT_EQ(nearest.size(), 2u);
+  EXPECT_EQ(nearest[0].object, 2);
+  EXPECT_NEAR(nearest[1].score, 0.5, 1e-6);
+}
+
+// On real frames, every ranked object's blended score is (1 - w) x the engine's own + w x EIS'
+// score of the same window, whatever the engine: the blend needs no engine's internals.
+TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
+  const std::vector<QueryFrame> frames = Frames(4, {95, 135, 175, 215}, 25);
+  const std::shared_ptr<const ViewIndexSnapshot> index = CoilIndex(SearchMode::kExact);
+  std::map<ObjectId, double> eis;
+  for (const RankedObject& r :
+       CreateEngine("eis", {.top_k = 10})->ObserveSequence(index, frames).ranking) {
+    eis[r.object] = r.score;
+  }
+  for (const std::string_view name : {"hmm", "vci", "eiis"}) {
+    std::map<ObjectId, double> own;
+    for (const RankedObject& r :
+         CreateEngine(name, {.top_k = 10})->ObserveSequence(index, frames).ranking) {
+      own[r.object] = r.score;
+    }
+    const FrameUpdate blended =
+        CreateEngine(name, {.top_k = 4, .nearest_view_weight = 0.3})->ObserveSequence(index, frames);
+    // (VCI ranks only the objects its retrieval lists hold.)
+    ASSERT_EQ(blended.ranking.size(), std::min<std::size_t>(4, own.size())) << name;
+    for (std::size_t i = 0; i < blended.ranking.size(); ++i) {
+      const ObjectId object = blended.ranking[i].object;
+      ASSERT_TRUE(own.contains(object) && eis.contains(object)) << name << " object " << object;
+      EXPECT_NEAR(blended.ranking[i].score, 0.7 * own[object] + 0.3 * eis[object], 1e-6)
+          << name << " object " << object;
+      if (i > 0) EXPECT_GE(blended.ranking[i - 1].score, blended.ranking[i].score) << name;
+    }
+    EXPECT_EQ(blended.ranking[0].object, 4) << name;
   }
 }
 
