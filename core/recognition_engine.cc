@@ -191,8 +191,9 @@ FrameUpdate RecognitionEngine::Answer() {
   const std::size_t shown = std::min<std::size_t>(assessments.size(), options_.top_k);
   // Only the ranked objects need ordering (an HMM session assesses every object per frame), and
   // the runner-up for the calibrated rule.
-  const std::size_t ordered = std::min<std::size_t>(
-      assessments.size(), std::max<std::size_t>(static_cast<std::size_t>(RankedDepth(options_)), 2));
+  const std::size_t ranked_depth = static_cast<std::size_t>(RankedDepth(options_));
+  const std::size_t ordered =
+      std::min<std::size_t>(assessments.size(), std::max<std::size_t>(ranked_depth, 2));
   const auto better = [](const Assessment& a, const Assessment& b) {
     return a.score > b.score || (a.score == b.score && a.object->id() < b.object->id());
   };

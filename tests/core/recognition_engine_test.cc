@@ -447,8 +447,8 @@ TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
          CreateEngine(name, {.top_k = 10})->ObserveSequence(index, frames).ranking) {
       own[r.object] = r.score;
     }
-    const FrameUpdate blended =
-        CreateEngine(name, {.top_k = 4, .nearest_view_weight = 0.3})->ObserveSequence(index, frames);
+    const FrameUpdate blended = CreateEngine(name, {.top_k = 4, .nearest_view_weight = 0.3})
+                                    ->ObserveSequence(index, frames);
     // (VCI ranks only the objects its retrieval lists hold.)
     ASSERT_EQ(blended.ranking.size(), std::min<std::size_t>(4, own.size())) << name;
     for (std::size_t i = 0; i < blended.ranking.size(); ++i) {
