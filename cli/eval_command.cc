@@ -47,6 +47,7 @@ struct EvalOptions {
   int trials = EvaluationOptions{}.trials;
   std::uint64_t seed = EvaluationOptions{}.seed;
   std::string orientation = EvaluationOptions{}.use_orientation ? "use" : "ignore";
+  std::string noise_reading = EvaluationOptions{}.use_noise_reading ? "use" : "ignore";
   std::string objects;
   std::string unknown_objects;
   std::string index = "exact";
@@ -93,6 +94,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.trials = o.trials;
   options.seed = o.seed;
   options.use_orientation = o.orientation == "use";
+  options.use_noise_reading = o.noise_reading == "use";
   options.index.search = o.index == "kdtree" ? SearchMode::kKdTree : SearchMode::kExact;
   options.index.kd_trees = o.kd_trees;
   options.index.kd_checks = o.kd_checks;
@@ -250,6 +252,12 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                       "use: query frames carry the device's azimuth; ignore: they carry none, as "
                       "from a device without an orientation sensor (the same methods on the "
                       "descriptors alone)")
+      ->check(CLI::IsMember({"use", "ignore"}))
+      ->capture_default_str();
+  command->add_option("--noise-reading", o->noise_reading,
+                      "use: query frames carry their measured noise (Frame.quality.noise_sigma), "
+                      "as from the client library, and the calibrated rule allows noisy windows "
+                      "more (core/noise_allowance.h); ignore: they carry none")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
   command->add_option("--objects", o->objects,

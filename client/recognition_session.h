@@ -96,8 +96,8 @@ class RecognitionSession {
   // device azimuth in degrees (any finite value; only differences between frames matter), or
   // none (nullopt) from a device without an orientation sensor: the server then recognises
   // from the descriptors alone (docs/service.md, "Frames without azimuth").
-  // `timestamp_us` is echoed in the update; `quality`, when measured (client/frame_quality.h),
-  // travels as Frame.quality. Returns the frame's index (0 for the first frame
+  // `timestamp_us` is echoed in the update; `quality` (client/frame_quality.h), measured here
+  // when not given, travels as Frame.quality. Returns the frame's index (0 for the first frame
   // after Open or Reset), which its update carries as frame_index.
   // Throws std::invalid_argument as ExtractCedd does; RpcError when the session has ended.
   std::int64_t Push(const cv::Mat& image, std::optional<double> azimuth_deg,

@@ -11,6 +11,7 @@
 #include "core/baseline_engines.h"
 #include "core/confidence.h"
 #include "core/hough_voter.h"
+#include "core/noise_allowance.h"
 #include "core/orientation_hmm.h"
 #include "core/pose_estimate.h"
 #include "core/rejection.h"
@@ -122,6 +123,9 @@ void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFram
   if (frame.azimuth && !std::isfinite(*frame.azimuth)) {
     throw std::invalid_argument("frame azimuth is not finite");
   }
+  if (frame.noise_sigma && !(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma)) {
+    throw std::invalid_argument("frame noise sigma must be in [0, 255]");
+  }
 }
 
 void RecognitionEngine::Push(const QueryFrame& frame) {
@@ -226,19 +230,23 @@ FrameUpdate RecognitionEngine::Answer() {
     update.unknown_statistic = UnknownStatistic(winner_rows, nullptr);
   }
   update.confidence = Confidence(update.unknown_statistic, static_cast<int>(window_.size()));
+  std::vector<std::optional<double>> noise;
+  for (const QueryFrame& frame : window_) noise.push_back(frame.noise_sigma);
+  update.noise_sigma = MeanNoiseSigma(noise);
   const bool calibrated = calibration_ != nullptr && calibration_->calibrated();
   const int frames = static_cast<int>(window_.size());
   if (calibrated) {
-    update.unknown_p_value = calibration_->FalseAcceptRate(update.unknown_statistic, frames);
-  }
-  if (options_.rejection == RejectionRule::kCalibrated) {
-    if (calibrated) {
-      update.decision =
-          update.unknown_statistic <= calibration_->Threshold(frames, options_.false_accept_rate)
-              ? Decision::kAccept
-              : Decision::kUnknown;
+    // The calibrated rule judges U less what the window's noise alone adds to it.
+    const double allowance = update.noise_sigma ? NoiseAllowance(*update.noise_sigma) : 0.0;
+    const double judged = update.unknown_statistic - allowance;
+    update.unknown_p_value = calibration_->FalseAcceptRate(judged, frames);
+    if (options_.rejection == RejectionRule::kCalibrated) {
+      update.decision = judged <= calibration_->Threshold(frames, options_.false_accept_rate)
+                            ? Decision::kAccept
+                            : Decision::kUnknown;
     }
-  } else {
+  }
+  if (options_.rejection == RejectionRule::kTypicalDistance) {
     std::vector<MatchedDistance> distances;
     for (const MatchedView& match : winner.matched) {
       distances.push_back({1.0 - match.similarity,

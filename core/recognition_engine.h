@@ -139,9 +139,13 @@ int RankedDepth(const EngineOptions& options);
 // known only between two frames that both have one (MeasuredTurn); where it is not, the
 // engines assume nothing about it: the HMM lets the object turn to any sector, VCI puts no
 // orientation cost on a path and completes a list with the view most similar to the frame.
+// `noise_sigma`: the frame's estimated noise deviation in grey levels (core/noise_estimate.h),
+// when the device measured it; the calibrated accept / unknown rule allows noisy windows more
+// (core/noise_allowance.h). No engine's ranking reads it.
 struct QueryFrame {
   Descriptor descriptor;
   std::optional<double> azimuth;
+  std::optional<double> noise_sigma;
 };
 
 // AzimuthChange(from, to) when both frames have an azimuth, else nullopt.
@@ -177,10 +181,13 @@ struct FrameUpdate {
   Decision decision = Decision::kUndecided;
   SuggestedMove move = SuggestedMove::kNone;
   // The winner's unknown statistic U (core/unknown_statistic.h; 0 for an empty index) and the
-  // share of unknown objects' windows that look at least as known as this one (the
-  // calibration's p-value; 1 when there is no calibration).
+  // share of unknown objects' windows that look at least as known as this one once the noise
+  // allowance is taken off U (the calibration's p-value; 1 when there is no calibration).
   double unknown_statistic = 0;
   double unknown_p_value = 1;
+  // The mean noise reading of the window's frames that carry one (MeanNoiseSigma,
+  // core/noise_allowance.h); none when no frame does or the index is empty.
+  std::optional<double> noise_sigma;
   // How likely the top-1 object is the one in front of the camera, in [0, 1]
   // (core/confidence.h); 0 for an empty index.
   double confidence = 0;

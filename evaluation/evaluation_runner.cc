@@ -18,6 +18,7 @@
 #include "client/image_file.h"
 #include "core/angles.h"
 #include "core/cedd.h"
+#include "core/noise_estimate.h"
 #include "core/rejection_calibration.h"
 #include "core/seeded_random.h"
 #include "core/parallel_for.h"
@@ -259,6 +260,7 @@ void Judge(const FrameUpdate& update, ObjectId expected, std::optional<double> t
   verdict.unknown_statistic = update.unknown_statistic;
   verdict.unknown_p_value = update.unknown_p_value;
   verdict.confidence = update.confidence;
+  if (update.noise_sigma) verdict.noise_sigma = *update.noise_sigma;
   if (verdict.hit && true_azimuth && update.pose) {
     verdict.pose_error = std::abs(AzimuthChange(*true_azimuth, update.pose->azimuth));
     verdict.pose_spread = update.pose->spread;
@@ -363,7 +365,8 @@ struct ActiveQueryInput {
   ObjectId expected = 0;                                // the target's id; 0 for unknown
   std::shared_ptr<const ViewIndexSnapshot> full_index;  // for unknown targets
   std::vector<double> azimuths;                         // the target's views' true azimuths
-  std::function<Descriptor(int view)> descriptor;       // a view's query under the distortion
+  // A view's query frame under the distortion (descriptor and noise reading; no azimuth).
+  std::function<QueryFrame(int view)> frame;
   std::uint64_t trial_seed = 0;
   int n = 1;
   double step = 20;
@@ -371,6 +374,13 @@ struct ActiveQueryInput {
   bool use_orientation = true;
   ViewIndexOptions index;
 };
+
+// The noise reading a query frame carries: none with options.use_noise_reading off.
+std::optional<double> QueryNoise(const DescribedImage& image, std::size_t distortion,
+                                 const EvaluationOptions& options) {
+  if (!options.use_noise_reading) return std::nullopt;
+  return image.query_noise[distortion];
+}
 
 // How good `update` is for the truth, for ActivePolicy::kBestOfBoth: 2 a right top-1 accepted,
 // 1 a right top-1, 0 otherwise; for an unknown target 1 when not accepted.
@@ -392,9 +402,8 @@ class ActiveQuery {
     offset_ = first.azimuths[0] - in_.azimuths[first.views[0]];
     Path path{first.views, {}, 1};
     for (std::size_t k = 0; k < path.views.size(); ++k) {
-      path.frames.push_back({in_.descriptor(path.views[k]),
-                             in_.use_orientation ? std::optional<double>(first.azimuths[k])
-                                                 : std::nullopt});
+      QueryFrame& frame = path.frames.emplace_back(in_.frame(path.views[k]));
+      if (in_.use_orientation) frame.azimuth = first.azimuths[k];
     }
     return Extend(std::move(path), latest_view);
   }
@@ -442,9 +451,8 @@ class ActiveQuery {
     const double azimuth =
         NormaliseAzimuth(in_.azimuths[next] + offset_ + noise_[path.frames.size()]);
     path.views.push_back(next);
-    path.frames.push_back({in_.descriptor(next), in_.use_orientation
-                                                     ? std::optional<double>(azimuth)
-                                                     : std::nullopt});
+    QueryFrame& frame = path.frames.emplace_back(in_.frame(next));
+    if (in_.use_orientation) frame.azimuth = azimuth;
     return path;
   }
 
@@ -486,6 +494,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         frames[k].descriptor = {options.variants[t.variant], image.queries[d]};
         frames[k].azimuth =
             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
+        frames[k].noise_sigma = QueryNoise(image, d, options);
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
@@ -498,9 +507,10 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
                                   is_known ? expected : 0, models[t.variant].full_index,
                                   azimuths, nullptr, trial_seed, n, options.active_step,
                                   options.active_policy, options.use_orientation, options.index};
-          active.descriptor = [&](int view) -> Descriptor {
-            return {options.variants[t.variant],
-                    described[target.images[view]][t.variant].queries[d]};
+          active.frame = [&](int view) {
+            const DescribedImage& image = described[target.images[view]][t.variant];
+            return QueryFrame{{options.variants[t.variant], image.queries[d]}, std::nullopt,
+                              QueryNoise(image, d, options)};
           };
           update = ActiveQuery(*engines[m], active).Run(latest_view);
         } else {
@@ -569,21 +579,24 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
   // image once for all variants.
   static const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
   std::vector<cv::Mat> distorted(distortions.size());
+  std::vector<double> noise(distortions.size());
   for (std::size_t d = 0; d < distortions.size(); ++d) {
-    if (!distortions[d].steps.empty() && distortions[d] != protocol_blur) {
-      distorted[d] = ApplyDistortion(view, distortions[d], ImageNoiseSeed(seed, position));
-    }
+    distorted[d] = distortions[d].steps.empty()
+                       ? view
+                       : ApplyDistortion(view, distortions[d], ImageNoiseSeed(seed, position));
+    noise[d] = EstimateNoiseSigma(distorted[d]);
   }
   std::vector<DescribedImage> described;
   for (DescriptorVariant variant : variants) {
     const ViewDescription description = DescribeView(view, variant, seed);
     DescribedImage& d = described.emplace_back();
     d.view = {description.descriptor, image.azimuth, image.elevation, description.typical_distance};
+    d.query_noise = noise;
     for (std::size_t q = 0; q < distortions.size(); ++q) {
       if (distortions[q].steps.empty()) {
         d.queries.push_back(description.descriptor);
       } else if (distortions[q] == protocol_blur) {
-        d.queries.push_back(description.distorted[0]);
+        d.queries.push_back(description.distorted[0]);  // the same image as distorted[q]
       } else {
         d.queries.push_back(ExtractCedd(distorted[q], variant).values);
       }
@@ -703,6 +716,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   const Clock::time_point descriptor_start = Clock::now();
   DescribedImages described(known.size());
   std::vector<std::vector<std::vector<DescriptorValues>>> queries(captures.size());
+  std::vector<std::vector<double>> query_noise(captures.size());  // [frame][distortion]
   RunStage(known.size() + captures.size(), report.threads, "descriptors", options,
            [&](std::size_t i) {
              if (i < known.size()) {
@@ -720,6 +734,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                for (std::size_t v = 0; v < options.variants.size(); ++v) {
                  frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
                }
+               query_noise[i - known.size()].push_back(EstimateNoiseSigma(query));
              }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);
@@ -745,6 +760,9 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
         const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
         query[k].descriptor = {options.variants[v], queries[f][v][d]};
         query[k].azimuth = options.use_orientation ? captures[f].azimuth : std::nullopt;
+        query[k].noise_sigma = options.use_noise_reading
+                                   ? std::optional<double>(query_noise[f][d])
+                                   : std::nullopt;
       }
       for (std::size_t m = 0; m < methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[v])) continue;

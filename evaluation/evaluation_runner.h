@@ -78,6 +78,9 @@ struct EvaluationOptions {
   // false: the query frames carry no azimuth, as from a device without an orientation sensor
   // (QueryFrame); every method then runs on the descriptors alone (`--orientation ignore`).
   bool use_orientation = true;
+  // false: the query frames carry no noise reading, as from a device that does not measure
+  // frame quality (`--noise-reading ignore`); the calibrated rule then makes no noise allowance.
+  bool use_noise_reading = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
   // Active vision (`orbit eval --active`, issue 12): 0 for the protocol's random views; else
   // each query takes the protocol's first two views, then each next view this many degrees
@@ -107,6 +110,7 @@ struct QueryVerdict {
   // (degrees, 0..180) and the estimate's spread; NaN otherwise.
   double pose_error = std::numeric_limits<double>::quiet_NaN();
   double pose_spread = std::numeric_limits<double>::quiet_NaN();
+  double noise_sigma = std::numeric_limits<double>::quiet_NaN();  // FrameUpdate's; NaN: none
 };
 
 // Counts for one method, variant, distortion and n.
@@ -181,6 +185,9 @@ struct DescribedImage {
   // ApplyDistortion(image, spec, ImageNoiseSeed(seed, position)). df's is the view's own CEDD,
   // mb's DescribeView's motion-blurred copy (the same image, not computed twice).
   std::vector<DescriptorValues> queries;
+  // The noise each query image reads (EstimateNoiseSigma, core/noise_estimate.h), in the same
+  // order: what a device sends as Frame.quality.noise_sigma.
+  std::vector<double> query_noise;
 };
 
 // Step 1 for one image: reads it once and describes it in each of `variants` (the results in

@@ -148,7 +148,7 @@ LineFigure RecognitionCurves(const EvaluationReport& report) {
 
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
   out << "method,variant,distortion,n,known,hit,decision,unknown_statistic,unknown_p_value,"
-         "confidence,pose_error,pose_spread\n";
+         "confidence,pose_error,pose_spread,noise_sigma\n";
   char numbers[160];
   for (const EvaluationCell& cell : report.cells) {
     for (const QueryVerdict& v : cell.verdicts) {
@@ -157,7 +157,12 @@ void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
       out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion << ','
           << cell.n << ',' << v.known << ',' << v.hit << ',' << DecisionName(v.decision) << ','
           << numbers << ',' << (std::isnan(v.pose_error) ? "" : Degrees(v.pose_error)) << ','
-          << (std::isnan(v.pose_spread) ? "" : Degrees(v.pose_spread)) << '\n';
+          << (std::isnan(v.pose_spread) ? "" : Degrees(v.pose_spread)) << ',';
+      if (!std::isnan(v.noise_sigma)) {
+        std::snprintf(numbers, sizeof numbers, "%.3f", v.noise_sigma);
+        out << numbers;
+      }
+      out << '\n';
     }
   }
   if (!out) throw std::runtime_error("cannot write the verdicts");

@@ -6,6 +6,8 @@
 
 #include "api/conversion.h"
 #include "core/cedd.h"
+#include "core/noise_allowance.h"
+#include "core/noise_estimate.h"
 #include "core/view_description.h"
 #include "server/error_status.h"
 #include "server/image_decoding.h"
@@ -77,6 +79,15 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
     if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
   }
   out->azimuth = frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
+  out->noise_sigma.reset();
+  if (frame.has_quality()) {
+    const double sigma = frame.quality().noise_sigma();
+    if (!(sigma >= 0 && sigma <= kMaxNoiseSigma)) {
+      return InvalidArgument("frame.quality.noise_sigma must be in [0, " +
+                             std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels");
+    }
+    out->noise_sigma = sigma;
+  }
   out->descriptor.variant = variant;
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
   if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");
@@ -89,6 +100,9 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
   }
   try {
     out->descriptor = ExtractCedd(image.decoded.pixels, variant, image.roi);
+    // A device that sends pixels is measured here, as the client library measures its own.
+    if (!out->noise_sigma) out->noise_sigma = EstimateNoiseSigma(
+          image.roi ? image.decoded.pixels(*image.roi) : image.decoded.pixels);
   } catch (const std::exception& e) {
     return StatusFromException(e);
   }

@@ -175,7 +175,9 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
     // with the tracked box or the true boxes, before and after the product's nearest-view
     // blend, and which of the two rejected candidates is listed first is a coin toss.
     EXPECT_EQ(wrong, 0) << "object " << object;
-    if (object == 3) EXPECT_GE(right, 16);
+    if (object == 3) {
+      EXPECT_GE(right, 16);
+    }
   }
 
   // A log that stops before the video ends is refused before anything is sent.

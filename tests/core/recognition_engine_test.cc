@@ -349,6 +349,10 @@ TEST(RecognitionEngineTest, BadFramesAreRejectedAndLeaveTheSessionUnchanged) {
   QueryFrame out_of_range{{DescriptorVariant::kCeddLire, CoilView(1, 5)}, 0};
   out_of_range.descriptor.values[17] = 8;
   EXPECT_THROW(engine->Observe(index, out_of_range), std::invalid_argument);
+  for (const double sigma : {-0.5, 256.0, double(NAN)}) {
+    QueryFrame bad_noise{{DescriptorVariant::kCeddLire, CoilView(1, 5)}, 0, sigma};
+    EXPECT_THROW(engine->Observe(index, bad_noise), std::invalid_argument) << sigma;
+  }
   EXPECT_THROW(engine->Observe(nullptr, Frames(1, {5}, 0)[0]), std::invalid_argument);
   EXPECT_THROW(engine->ObserveSequence(index, {}), std::invalid_argument);
   const FrameUpdate first = engine->Observe(index, Frames(1, {5}, 0)[0]);

@@ -16,6 +16,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/noise_estimate.h"
 #include "core/view_description.h"
 #include "server/image_budget.h"
 #include "tests/support/test_data.h"
@@ -90,6 +91,32 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
   ASSERT_TRUE(ToQueryFrame(frame, DescriptorVariant::kCeddFull, kLimits, &query).ok());
   EXPECT_EQ(query.descriptor.values,
             ExtractCedd(image(cv::Rect(10, 20, 60, 50)), DescriptorVariant::kCeddFull).values);
+  // ... and its noise measured there, for the calibrated rule's allowance.
+  ASSERT_TRUE(query.noise_sigma.has_value());
+  EXPECT_EQ(*query.noise_sigma, EstimateNoiseSigma(image(cv::Rect(10, 20, 60, 50))));
+}
+
+TEST(RequestReadingTest, TheDevicesNoiseReadingReachesTheEngine) {
+  v1::Frame frame;
+  frame.set_cedd(Cedd(3));
+  QueryFrame query;
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_FALSE(query.noise_sigma.has_value());  // not measured: no allowance
+  frame.mutable_quality()->set_noise_sigma(24.5);
+  frame.mutable_quality()->set_sharpness(80);
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_EQ(query.noise_sigma, 24.5);
+  // The device's reading wins over the server's own measurement of an image.
+  frame.clear_cedd();
+  frame.set_image(Png(CoilImage()));
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_EQ(query.noise_sigma, 24.5);
+  // A reading from the previous frame does not linger.
+  frame.clear_quality();
+  frame.clear_image();
+  frame.set_cedd(Cedd(3));
+  ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
+  EXPECT_FALSE(query.noise_sigma.has_value());
 }
 
 TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
@@ -111,6 +138,12 @@ TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   frame.set_elevation_deg(INFINITY);
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.elevation_deg must be a finite number");
   frame.clear_elevation_deg();
+  for (const double sigma : {-1.0, 255.5, kNaN}) {
+    frame.mutable_quality()->set_noise_sigma(sigma);
+    ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                  "frame.quality.noise_sigma must be in [0, 255] grey levels");
+  }
+  frame.clear_quality();
   frame.clear_cedd();
   frame.set_image("not an image");
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),

@@ -1,0 +1,25 @@
+#include "core/noise_allowance.h"
+
+#include <algorithm>
+
+namespace orbit {
+
+double NoiseAllowance(double noise_sigma) {
+  return kNoiseAllowancePerGreyLevel *
+         std::clamp(noise_sigma - kCleanNoiseSigma, 0.0, kNoiseAllowanceSpan);
+}
+
+std::optional<double> MeanNoiseSigma(std::span<const std::optional<double>> readings) {
+  double sum = 0;
+  int count = 0;
+  for (const std::optional<double>& reading : readings) {
+    if (reading) {
+      sum += *reading;
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+}  // namespace orbit
