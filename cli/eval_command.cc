@@ -47,7 +47,7 @@ struct EvalOptions {
   int trials = EvaluationOptions{}.trials;
   std::uint64_t seed = EvaluationOptions{}.seed;
   std::string orientation = EvaluationOptions{}.use_orientation ? "use" : "ignore";
-  std::string noise_reading = EvaluationOptions{}.use_noise_reading ? "use" : "ignore";
+  std::string quality_reading = EvaluationOptions{}.use_quality_reading ? "use" : "ignore";
   std::string objects;
   std::string unknown_objects;
   std::string index = "exact";
@@ -94,7 +94,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.trials = o.trials;
   options.seed = o.seed;
   options.use_orientation = o.orientation == "use";
-  options.use_noise_reading = o.noise_reading == "use";
+  options.use_quality_reading = o.quality_reading == "use";
   options.index.search = o.index == "kdtree" ? SearchMode::kKdTree : SearchMode::kExact;
   options.index.kd_trees = o.kd_trees;
   options.index.kd_checks = o.kd_checks;
@@ -254,10 +254,10 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                       "descriptors alone)")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
-  command->add_option("--noise-reading", o->noise_reading,
-                      "use: query frames carry their measured noise (Frame.quality.noise_sigma), "
-                      "as from the client library, and the calibrated rule allows noisy windows "
-                      "more (core/noise_allowance.h); ignore: they carry none")
+  command->add_option("--quality-reading", o->quality_reading,
+                      "use: query frames carry their measured noise and blur (Frame.quality), as "
+                      "from the client library, and the calibrated rule allows noisy and blurred "
+                      "windows more (core/quality_allowance.h); ignore: they carry none")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
   command->add_option("--objects", o->objects,

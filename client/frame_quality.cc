@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/blur_estimate.h"
 #include "core/noise_estimate.h"
 
 namespace orbit {
@@ -27,7 +28,7 @@ FrameQuality MeasureFrameQuality(const cv::Mat& image, std::optional<cv::Rect> r
   cv::Laplacian(grey, laplacian, CV_32F);
   cv::Scalar mean, deviation;
   cv::meanStdDev(laplacian, mean, deviation);
-  return {deviation[0] * deviation[0], EstimateNoiseSigma(pixels)};
+  return {deviation[0] * deviation[0], EstimateNoiseSigma(pixels), EstimateBlur(pixels)};
 }
 
 double MinUsableSharpness(const std::vector<FrameQuality>& qualities,
@@ -48,6 +49,7 @@ v1::FrameQuality ToProtoFrameQuality(const FrameQuality& quality) {
   v1::FrameQuality proto;
   proto.set_sharpness(quality.sharpness);
   proto.set_noise_sigma(quality.noise_sigma);
+  proto.set_blur(quality.blur);
   return proto;
 }
 

@@ -25,6 +25,7 @@ namespace orbit {
 struct FrameQuality {
   double sharpness = 0;    // variance of the Laplacian of the grey region, grey levels squared
   double noise_sigma = 0;  // estimated noise deviation, grey levels
+  double blur = 0;         // 0 sharp .. 1 blurred (core/blur_estimate.h)
 };
 
 // The quality of `image` (8-bit, 1, 3 or 4 channels), of `region` inside it when given.

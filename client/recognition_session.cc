@@ -110,8 +110,8 @@ std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double
                                       std::optional<cv::Rect> region,
                                       std::optional<std::int64_t> timestamp_us,
                                       std::optional<FrameQuality> quality) {
-  // Measured here when the caller did not: the server's accept / unknown rule allows noisy
-  // frames what noise adds (core/noise_allowance.h) only when it knows their noise.
+  // Measured here when the caller did not: the server's accept / unknown rule allows noisy and
+  // blurred frames what noise and blur add (core/quality_allowance.h) only when it knows them.
   if (!quality) quality = MeasureFrameQuality(image, region);
   return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us,
                         quality);

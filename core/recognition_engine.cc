@@ -11,7 +11,7 @@
 #include "core/baseline_engines.h"
 #include "core/confidence.h"
 #include "core/hough_voter.h"
-#include "core/noise_allowance.h"
+#include "core/quality_allowance.h"
 #include "core/orientation_hmm.h"
 #include "core/pose_estimate.h"
 #include "core/rejection.h"
@@ -126,6 +126,9 @@ void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFram
   if (frame.noise_sigma && !(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma)) {
     throw std::invalid_argument("frame noise sigma must be in [0, 255]");
   }
+  if (frame.blur && !(*frame.blur >= 0 && *frame.blur <= 1)) {
+    throw std::invalid_argument("frame blur must be in [0, 1]");
+  }
 }
 
 void RecognitionEngine::Push(const QueryFrame& frame) {
@@ -230,14 +233,19 @@ FrameUpdate RecognitionEngine::Answer() {
     update.unknown_statistic = UnknownStatistic(winner_rows, nullptr);
   }
   update.confidence = Confidence(update.unknown_statistic, static_cast<int>(window_.size()));
-  std::vector<std::optional<double>> noise;
-  for (const QueryFrame& frame : window_) noise.push_back(frame.noise_sigma);
-  update.noise_sigma = MeanNoiseSigma(noise);
+  std::vector<std::optional<double>> noise, blur;
+  for (const QueryFrame& frame : window_) {
+    noise.push_back(frame.noise_sigma);
+    blur.push_back(frame.blur);
+  }
+  update.noise_sigma = MeanReading(noise);
+  update.blur = MeanReading(blur);
   const bool calibrated = calibration_ != nullptr && calibration_->calibrated();
   const int frames = static_cast<int>(window_.size());
   if (calibrated) {
-    // The calibrated rule judges U less what the window's noise alone adds to it.
-    const double allowance = update.noise_sigma ? NoiseAllowance(*update.noise_sigma) : 0.0;
+    // The calibrated rule judges U less what the window's noise and blur alone add to it.
+    const double allowance = (update.noise_sigma ? NoiseAllowance(*update.noise_sigma) : 0.0) +
+                             (update.blur ? BlurAllowance(*update.blur) : 0.0);
     const double judged = update.unknown_statistic - allowance;
     update.unknown_p_value = calibration_->FalseAcceptRate(judged, frames);
     if (options_.rejection == RejectionRule::kCalibrated) {

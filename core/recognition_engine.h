@@ -140,12 +140,14 @@ int RankedDepth(const EngineOptions& options);
 // engines assume nothing about it: the HMM lets the object turn to any sector, VCI puts no
 // orientation cost on a path and completes a list with the view most similar to the frame.
 // `noise_sigma`: the frame's estimated noise deviation in grey levels (core/noise_estimate.h),
-// when the device measured it; the calibrated accept / unknown rule allows noisy windows more
-// (core/noise_allowance.h). No engine's ranking reads it.
+// and `blur`, its blur in [0, 1] (core/blur_estimate.h), when the device measured them; the
+// calibrated accept / unknown rule allows noisy and blurred windows more
+// (core/quality_allowance.h). No engine's ranking reads them.
 struct QueryFrame {
   Descriptor descriptor;
   std::optional<double> azimuth;
-  std::optional<double> noise_sigma;
+  std::optional<double> noise_sigma{};  // initialised: {descriptor, azimuth} needs no more
+  std::optional<double> blur{};
 };
 
 // AzimuthChange(from, to) when both frames have an azimuth, else nullopt.
@@ -185,9 +187,10 @@ struct FrameUpdate {
   // allowance is taken off U (the calibration's p-value; 1 when there is no calibration).
   double unknown_statistic = 0;
   double unknown_p_value = 1;
-  // The mean noise reading of the window's frames that carry one (MeanNoiseSigma,
-  // core/noise_allowance.h); none when no frame does or the index is empty.
+  // The mean noise and blur readings of the window's frames that carry one (MeanReading,
+  // core/quality_allowance.h); none when no frame does or the index is empty.
   std::optional<double> noise_sigma;
+  std::optional<double> blur;
   // How likely the top-1 object is the one in front of the camera, in [0, 1]
   // (core/confidence.h); 0 for an empty index.
   double confidence = 0;

@@ -18,6 +18,7 @@
 #include "client/image_file.h"
 #include "core/angles.h"
 #include "core/cedd.h"
+#include "core/blur_estimate.h"
 #include "core/noise_estimate.h"
 #include "core/rejection_calibration.h"
 #include "core/seeded_random.h"
@@ -261,6 +262,7 @@ void Judge(const FrameUpdate& update, ObjectId expected, std::optional<double> t
   verdict.unknown_p_value = update.unknown_p_value;
   verdict.confidence = update.confidence;
   if (update.noise_sigma) verdict.noise_sigma = *update.noise_sigma;
+  if (update.blur) verdict.blur = *update.blur;
   if (verdict.hit && true_azimuth && update.pose) {
     verdict.pose_error = std::abs(AzimuthChange(*true_azimuth, update.pose->azimuth));
     verdict.pose_spread = update.pose->spread;
@@ -375,11 +377,14 @@ struct ActiveQueryInput {
   ViewIndexOptions index;
 };
 
-// The noise reading a query frame carries: none with options.use_noise_reading off.
-std::optional<double> QueryNoise(const DescribedImage& image, std::size_t distortion,
-                                 const EvaluationOptions& options) {
-  if (!options.use_noise_reading) return std::nullopt;
-  return image.query_noise[distortion];
+// `frame` with the readings its device sends; none with options.use_quality_reading off.
+QueryFrame WithReadings(QueryFrame frame, const QueryReadings& readings,
+                        const EvaluationOptions& options) {
+  if (options.use_quality_reading) {
+    frame.noise_sigma = readings.noise_sigma;
+    frame.blur = readings.blur;
+  }
+  return frame;
 }
 
 // How good `update` is for the truth, for ActivePolicy::kBestOfBoth: 2 a right top-1 accepted,
@@ -491,10 +496,10 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
     for (std::size_t d = 0; d < grid.distortions; ++d) {
       for (std::size_t k = 0; k < frames.size(); ++k) {
         const DescribedImage& image = described[target.images[query.views[k]]][t.variant];
-        frames[k].descriptor = {options.variants[t.variant], image.queries[d]};
-        frames[k].azimuth =
-            options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt;
-        frames[k].noise_sigma = QueryNoise(image, d, options);
+        frames[k] = WithReadings(
+            {{options.variants[t.variant], image.queries[d]},
+             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt},
+            image.query_readings[d], options);
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
@@ -509,8 +514,8 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
                                   options.active_policy, options.use_orientation, options.index};
           active.frame = [&](int view) {
             const DescribedImage& image = described[target.images[view]][t.variant];
-            return QueryFrame{{options.variants[t.variant], image.queries[d]}, std::nullopt,
-                              QueryNoise(image, d, options)};
+            return WithReadings({{options.variants[t.variant], image.queries[d]}, std::nullopt},
+                                image.query_readings[d], options);
           };
           update = ActiveQuery(*engines[m], active).Run(latest_view);
         } else {
@@ -565,6 +570,10 @@ std::vector<std::string> DefaultMethods() {
   return methods;
 }
 
+QueryReadings QueryReadingsOf(const cv::Mat& image) {
+  return {EstimateNoiseSigma(image), EstimateBlur(image)};
+}
+
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
 }
@@ -579,19 +588,19 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
   // image once for all variants.
   static const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
   std::vector<cv::Mat> distorted(distortions.size());
-  std::vector<double> noise(distortions.size());
+  std::vector<QueryReadings> readings(distortions.size());
   for (std::size_t d = 0; d < distortions.size(); ++d) {
     distorted[d] = distortions[d].steps.empty()
                        ? view
                        : ApplyDistortion(view, distortions[d], ImageNoiseSeed(seed, position));
-    noise[d] = EstimateNoiseSigma(distorted[d]);
+    readings[d] = QueryReadingsOf(distorted[d]);
   }
   std::vector<DescribedImage> described;
   for (DescriptorVariant variant : variants) {
     const ViewDescription description = DescribeView(view, variant, seed);
     DescribedImage& d = described.emplace_back();
     d.view = {description.descriptor, image.azimuth, image.elevation, description.typical_distance};
-    d.query_noise = noise;
+    d.query_readings = readings;
     for (std::size_t q = 0; q < distortions.size(); ++q) {
       if (distortions[q].steps.empty()) {
         d.queries.push_back(description.descriptor);
@@ -716,7 +725,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   const Clock::time_point descriptor_start = Clock::now();
   DescribedImages described(known.size());
   std::vector<std::vector<std::vector<DescriptorValues>>> queries(captures.size());
-  std::vector<std::vector<double>> query_noise(captures.size());  // [frame][distortion]
+  std::vector<std::vector<QueryReadings>> readings(captures.size());  // [frame][distortion]
   RunStage(known.size() + captures.size(), report.threads, "descriptors", options,
            [&](std::size_t i) {
              if (i < known.size()) {
@@ -734,7 +743,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                for (std::size_t v = 0; v < options.variants.size(); ++v) {
                  frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
                }
-               query_noise[i - known.size()].push_back(EstimateNoiseSigma(query));
+               readings[i - known.size()].push_back(QueryReadingsOf(query));
              }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);
@@ -758,11 +767,9 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
     for (std::size_t d = 0; d < distortions; ++d) {
       for (int k = 0; k < n; ++k) {
         const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
-        query[k].descriptor = {options.variants[v], queries[f][v][d]};
-        query[k].azimuth = options.use_orientation ? captures[f].azimuth : std::nullopt;
-        query[k].noise_sigma = options.use_noise_reading
-                                   ? std::optional<double>(query_noise[f][d])
-                                   : std::nullopt;
+        query[k] = WithReadings({{options.variants[v], queries[f][v][d]},
+                                 options.use_orientation ? captures[f].azimuth : std::nullopt},
+                                readings[f][d], options);
       }
       for (std::size_t m = 0; m < methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[v])) continue;

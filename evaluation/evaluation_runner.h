@@ -78,9 +78,10 @@ struct EvaluationOptions {
   // false: the query frames carry no azimuth, as from a device without an orientation sensor
   // (QueryFrame); every method then runs on the descriptors alone (`--orientation ignore`).
   bool use_orientation = true;
-  // false: the query frames carry no noise reading, as from a device that does not measure
-  // frame quality (`--noise-reading ignore`); the calibrated rule then makes no noise allowance.
-  bool use_noise_reading = true;
+  // false: the query frames carry no quality readings (noise, blur), as from a device that
+  // does not measure them (`--quality-reading ignore`); the calibrated rule then makes no
+  // allowance for degraded frames (core/quality_allowance.h).
+  bool use_quality_reading = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
   // Active vision (`orbit eval --active`, issue 12): 0 for the protocol's random views; else
   // each query takes the protocol's first two views, then each next view this many degrees
@@ -111,6 +112,7 @@ struct QueryVerdict {
   double pose_error = std::numeric_limits<double>::quiet_NaN();
   double pose_spread = std::numeric_limits<double>::quiet_NaN();
   double noise_sigma = std::numeric_limits<double>::quiet_NaN();  // FrameUpdate's; NaN: none
+  double blur = std::numeric_limits<double>::quiet_NaN();         // FrameUpdate's; NaN: none
 };
 
 // Counts for one method, variant, distortion and n.
@@ -177,6 +179,14 @@ struct EvaluationReport {
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
 
 // One image as the evaluation uses it, in one descriptor variant (step 1).
+// What a device measures of a query frame and sends as Frame.quality: its noise
+// (EstimateNoiseSigma, core/noise_estimate.h) and blur (EstimateBlur, core/blur_estimate.h).
+struct QueryReadings {
+  double noise_sigma = 0;
+  double blur = 0;
+};
+QueryReadings QueryReadingsOf(const cv::Mat& image);
+
 struct DescribedImage {
   // The model view it contributes: described exactly as every enrollment path describes it
   // (DescribeView with the options' seed as base), at the image's azimuth and elevation.
@@ -185,9 +195,8 @@ struct DescribedImage {
   // ApplyDistortion(image, spec, ImageNoiseSeed(seed, position)). df's is the view's own CEDD,
   // mb's DescribeView's motion-blurred copy (the same image, not computed twice).
   std::vector<DescriptorValues> queries;
-  // The noise each query image reads (EstimateNoiseSigma, core/noise_estimate.h), in the same
-  // order: what a device sends as Frame.quality.noise_sigma.
-  std::vector<double> query_noise;
+  // What each query image reads, in the same order (QueryReadingsOf).
+  std::vector<QueryReadings> query_readings;
 };
 
 // Step 1 for one image: reads it once and describes it in each of `variants` (the results in

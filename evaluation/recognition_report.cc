@@ -148,7 +148,7 @@ LineFigure RecognitionCurves(const EvaluationReport& report) {
 
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
   out << "method,variant,distortion,n,known,hit,decision,unknown_statistic,unknown_p_value,"
-         "confidence,pose_error,pose_spread,noise_sigma\n";
+         "confidence,pose_error,pose_spread,noise_sigma,blur\n";
   char numbers[160];
   for (const EvaluationCell& cell : report.cells) {
     for (const QueryVerdict& v : cell.verdicts) {
@@ -160,6 +160,11 @@ void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
           << (std::isnan(v.pose_spread) ? "" : Degrees(v.pose_spread)) << ',';
       if (!std::isnan(v.noise_sigma)) {
         std::snprintf(numbers, sizeof numbers, "%.3f", v.noise_sigma);
+        out << numbers;
+      }
+      out << ',';
+      if (!std::isnan(v.blur)) {
+        std::snprintf(numbers, sizeof numbers, "%.3f", v.blur);
         out << numbers;
       }
       out << '\n';

@@ -6,7 +6,8 @@
 
 #include "api/conversion.h"
 #include "core/cedd.h"
-#include "core/noise_allowance.h"
+#include "core/quality_allowance.h"
+#include "core/blur_estimate.h"
 #include "core/noise_estimate.h"
 #include "core/view_description.h"
 #include "server/error_status.h"
@@ -80,13 +81,16 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
   }
   out->azimuth = frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
   out->noise_sigma.reset();
+  out->blur.reset();
   if (frame.has_quality()) {
-    const double sigma = frame.quality().noise_sigma();
+    const double sigma = frame.quality().noise_sigma(), blur = frame.quality().blur();
     if (!(sigma >= 0 && sigma <= kMaxNoiseSigma)) {
       return InvalidArgument("frame.quality.noise_sigma must be in [0, " +
                              std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels");
     }
+    if (!(blur >= 0 && blur <= 1)) return InvalidArgument("frame.quality.blur must be in [0, 1]");
     out->noise_sigma = sigma;
+    out->blur = blur;
   }
   out->descriptor.variant = variant;
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
@@ -101,8 +105,11 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
   try {
     out->descriptor = ExtractCedd(image.decoded.pixels, variant, image.roi);
     // A device that sends pixels is measured here, as the client library measures its own.
-    if (!out->noise_sigma) out->noise_sigma = EstimateNoiseSigma(
-          image.roi ? image.decoded.pixels(*image.roi) : image.decoded.pixels);
+    if (!frame.has_quality()) {
+      const cv::Mat region = image.roi ? image.decoded.pixels(*image.roi) : image.decoded.pixels;
+      out->noise_sigma = EstimateNoiseSigma(region);
+      out->blur = EstimateBlur(region);
+    }
   } catch (const std::exception& e) {
     return StatusFromException(e);
   }

@@ -29,9 +29,9 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 // decoded (server/image_budget.h; RESOURCE_EXHAUSTED above it), then decoded (waiting for one of
 // the process's decode slots, held until the descriptor is computed) and its CEDD (of `region`
 // when set, which must lie inside it) computed in the server's variant. The azimuth must be
-// finite; quality.noise_sigma, when quality is set, in [0, 255] (the calibrated rule's noise
-// allowance reads it, core/noise_allowance.h). An image frame without quality has its noise
-// measured here, on the region.
+// finite; quality.noise_sigma, when quality is set, in [0, 255] and quality.blur in [0, 1] (the
+// calibrated rule's allowance reads them, core/quality_allowance.h). An image frame without
+// quality has both measured here, on the region.
 grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
                           const ServerLimits& limits, QueryFrame* out);
 

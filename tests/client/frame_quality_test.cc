@@ -21,6 +21,10 @@ TEST(FrameQualityTest, BlurLowersSharpnessAndNoiseRaisesTheNoiseEstimate) {
   // black background.
   EXPECT_GT(noisy.noise_sigma, 12);
   EXPECT_LT(noisy.noise_sigma, 26);
+  // Blur reads on the same scale for every scene (core/blur_estimate.h); noise reads as sharp.
+  EXPECT_LT(sharp.blur, 0.5);
+  EXPECT_GT(blurred.blur, 0.6);
+  EXPECT_LT(noisy.blur, sharp.blur);
 
   // A region is measured alone: a flat grey frame around the object changes nothing.
   cv::Mat framed(300, 400, CV_8UC3, cv::Scalar(90, 90, 90));
@@ -28,6 +32,7 @@ TEST(FrameQualityTest, BlurLowersSharpnessAndNoiseRaisesTheNoiseEstimate) {
   const FrameQuality region = MeasureFrameQuality(framed, cv::Rect(50, 60, 128, 128));
   EXPECT_DOUBLE_EQ(region.sharpness, sharp.sharpness);
   EXPECT_DOUBLE_EQ(region.noise_sigma, sharp.noise_sigma);
+  EXPECT_DOUBLE_EQ(region.blur, sharp.blur);
   EXPECT_THROW(MeasureFrameQuality(framed, cv::Rect(350, 0, 100, 10)), std::invalid_argument);
   EXPECT_THROW(MeasureFrameQuality(cv::Mat()), std::invalid_argument);
 }

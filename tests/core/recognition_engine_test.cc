@@ -353,6 +353,10 @@ TEST(RecognitionEngineTest, BadFramesAreRejectedAndLeaveTheSessionUnchanged) {
     QueryFrame bad_noise{{DescriptorVariant::kCeddLire, CoilView(1, 5)}, 0, sigma};
     EXPECT_THROW(engine->Observe(index, bad_noise), std::invalid_argument) << sigma;
   }
+  for (const double blur : {-0.01, 1.01, double(NAN)}) {
+    QueryFrame bad_blur{{DescriptorVariant::kCeddLire, CoilView(1, 5)}, 0, std::nullopt, blur};
+    EXPECT_THROW(engine->Observe(index, bad_blur), std::invalid_argument) << blur;
+  }
   EXPECT_THROW(engine->Observe(nullptr, Frames(1, {5}, 0)[0]), std::invalid_argument);
   EXPECT_THROW(engine->ObserveSequence(index, {}), std::invalid_argument);
   const FrameUpdate first = engine->Observe(index, Frames(1, {5}, 0)[0]);
@@ -460,7 +464,9 @@ TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
       ASSERT_TRUE(own.contains(object) && eis.contains(object)) << name << " object " << object;
       EXPECT_NEAR(blended.ranking[i].score, 0.7 * own[object] + 0.3 * eis[object], 1e-6)
           << name << " object " << object;
-      if (i > 0) EXPECT_GE(blended.ranking[i - 1].score, blended.ranking[i].score) << name;
+      if (i > 0) {
+        EXPECT_GE(blended.ranking[i - 1].score, blended.ranking[i].score) << name;
+      }
     }
     EXPECT_EQ(blended.ranking[0].object, 4) << name;
   }

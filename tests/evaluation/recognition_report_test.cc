@@ -18,7 +18,8 @@ QueryVerdict Known(bool hit, Decision decision, double p, double confidence, dou
   v.decision = decision;
   v.unknown_p_value = p;
   v.confidence = confidence;
-  v.noise_sigma = 24.5;  // the window's mean noise reading
+  v.noise_sigma = 24.5;  // the window's mean readings
+  v.blur = 0.625;
   if (hit) {
     v.pose_error = pose_error;
     v.pose_spread = 0;
@@ -117,9 +118,9 @@ TEST(RecognitionReportTest, WritesOneCsvLinePerQuery) {
   std::string line;
   std::getline(lines, line);
   EXPECT_EQ(line, "method,variant,distortion,n,known,hit,decision,unknown_statistic,"
-                  "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma");
+                  "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur");
   std::getline(lines, line);
-  EXPECT_EQ(line, "product,cedd-robust,df,8,1,1,ACCEPT,0,0.01,0.95,10.0,0.0,24.500");
+  EXPECT_EQ(line, "product,cedd-robust,df,8,1,1,ACCEPT,0,0.01,0.95,10.0,0.0,24.500,0.625");
   int count = 1;
   std::string last;
   while (std::getline(lines, line)) {
@@ -127,8 +128,8 @@ TEST(RecognitionReportTest, WritesOneCsvLinePerQuery) {
     last = line;
   }
   EXPECT_EQ(count, 6);
-  // An unknown query: no pose, no noise reading.
-  EXPECT_EQ(last, "product,cedd-robust,df,8,0,0,ACCEPT,0,0.02,0.88,,,");
+  // An unknown query: no pose, no readings.
+  EXPECT_EQ(last, "product,cedd-robust,df,8,0,0,ACCEPT,0,0.02,0.88,,,,");
 }
 
 }  // namespace

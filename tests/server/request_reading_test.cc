@@ -16,6 +16,7 @@
 
 #include "client/image_file.h"
 #include "core/cedd.h"
+#include "core/blur_estimate.h"
 #include "core/noise_estimate.h"
 #include "core/view_description.h"
 #include "server/image_budget.h"
@@ -91,32 +92,39 @@ TEST(RequestReadingTest, FrameWithCeddOrImage) {
   ASSERT_TRUE(ToQueryFrame(frame, DescriptorVariant::kCeddFull, kLimits, &query).ok());
   EXPECT_EQ(query.descriptor.values,
             ExtractCedd(image(cv::Rect(10, 20, 60, 50)), DescriptorVariant::kCeddFull).values);
-  // ... and its noise measured there, for the calibrated rule's allowance.
+  // ... and its noise and blur measured there, for the calibrated rule's allowance.
   ASSERT_TRUE(query.noise_sigma.has_value());
   EXPECT_EQ(*query.noise_sigma, EstimateNoiseSigma(image(cv::Rect(10, 20, 60, 50))));
+  ASSERT_TRUE(query.blur.has_value());
+  EXPECT_EQ(*query.blur, EstimateBlur(image(cv::Rect(10, 20, 60, 50))));
 }
 
-TEST(RequestReadingTest, TheDevicesNoiseReadingReachesTheEngine) {
+TEST(RequestReadingTest, TheDevicesQualityReadingsReachTheEngine) {
   v1::Frame frame;
   frame.set_cedd(Cedd(3));
   QueryFrame query;
   ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
   EXPECT_FALSE(query.noise_sigma.has_value());  // not measured: no allowance
+  EXPECT_FALSE(query.blur.has_value());
   frame.mutable_quality()->set_noise_sigma(24.5);
   frame.mutable_quality()->set_sharpness(80);
+  frame.mutable_quality()->set_blur(0.75);
   ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
   EXPECT_EQ(query.noise_sigma, 24.5);
-  // The device's reading wins over the server's own measurement of an image.
+  EXPECT_EQ(query.blur, 0.75);
+  // The device's readings win over the server's own measurement of an image.
   frame.clear_cedd();
   frame.set_image(Png(CoilImage()));
   ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
   EXPECT_EQ(query.noise_sigma, 24.5);
+  EXPECT_EQ(query.blur, 0.75);
   // A reading from the previous frame does not linger.
   frame.clear_quality();
   frame.clear_image();
   frame.set_cedd(Cedd(3));
   ASSERT_TRUE(ToQueryFrame(frame, kLire, kLimits, &query).ok());
   EXPECT_FALSE(query.noise_sigma.has_value());
+  EXPECT_FALSE(query.blur.has_value());
 }
 
 TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
@@ -142,6 +150,12 @@ TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
     frame.mutable_quality()->set_noise_sigma(sigma);
     ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
                   "frame.quality.noise_sigma must be in [0, 255] grey levels");
+  }
+  frame.mutable_quality()->set_noise_sigma(3);
+  for (const double blur : {-0.5, 1.5, kNaN}) {
+    frame.mutable_quality()->set_blur(blur);
+    ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                  "frame.quality.blur must be in [0, 1]");
   }
   frame.clear_quality();
   frame.clear_cedd();

@@ -1,19 +1,20 @@
-// The noise allowance of the calibrated accept / unknown rule (issue 12): how much the unknown
-// statistic U (core/unknown_statistic.h) of an unknown object's window rises when its frames
-// are noisy, taken off U so that the rule's target false-accept rate holds for noisy windows
-// as it does for clean ones.
+// The quality allowance of the calibrated accept / unknown rule (issue 12): how much the
+// unknown statistic U (core/unknown_statistic.h) of an unknown object's window rises when its
+// frames are noisy or blurred, taken off U so that the rule's target false-accept rate holds
+// for degraded windows as it does for clean ones.
 //
 // Why: the rule's threshold is a quantile of a null of clean windows
 // (core/rejection_calibration.h) and the server cannot draw noisy ones (it holds descriptors,
 // not images). Noise moves every
 // frame away from every view, so U rises for unknown and known objects alike (for known ones
 // about three times as fast) and a single threshold rejects most noisy known objects
-// (docs/results/recognition.md, "Noisy frames"). The device measures each frame's noise
-// (Frame.quality, client/frame_quality.h); the rule then accepts
+// (docs/results/recognition.md, "Noisy and blurred frames"). The device measures each frame's
+// noise and blur (Frame.quality, client/frame_quality.h); the rule then accepts
 //
-//   U - NoiseAllowance(mean noise sigma of the window's frames that carry one) <= threshold
+//   U - NoiseAllowance(mean noise sigma) - BlurAllowance(mean blur) <= threshold
 //
-// and judges a window without any noise reading as before.
+// (means over the window's frames that carry a reading) and judges a window without readings
+// as before.
 //
 //   NoiseAllowance(s) = kNoiseAllowancePerGreyLevel
 //                       * clamp(s - kCleanNoiseSigma, 0, kNoiseAllowanceSpan)
@@ -42,7 +43,23 @@ inline constexpr double kNoiseAllowanceSpan = 40;             // grey levels abo
 // The formula above. REQUIRES: noise_sigma in [0, kMaxNoiseSigma].
 double NoiseAllowance(double noise_sigma);
 
+// The same for blur (core/blur_estimate.h, in [0, 1]): motion or focus blur moves a frame away
+// from every view too, and the device can read it from the frame alone.
+//
+//   BlurAllowance(b) = kBlurAllowancePerUnit * max(0, b - kSharpFrameBlur)
+//
+// fitted the same way, over a sweep of motion blur (5..25 px at changing angles; the null's 15%
+// quantile rises 0.40 per unit at n = 1 and 0.58 at n = 8 above 0.5, where sharp COIL-100
+// frames end). Noise reads as sharpness and blur hides noise, so at most one of the two
+// allowances is large for a frame. A smooth, textureless object reads somewhat blurred even
+// when sharp, and is allowed a little.
+inline constexpr double kSharpFrameBlur = 0.5;       // what sharp frames read, at most
+inline constexpr double kBlurAllowancePerUnit = 0.5;  // U per unit of blur above it
+
+// The formula above. REQUIRES: blur in [0, 1].
+double BlurAllowance(double blur);
+
 // The mean of the readings that are present; nullopt when none is.
-std::optional<double> MeanNoiseSigma(std::span<const std::optional<double>> readings);
+std::optional<double> MeanReading(std::span<const std::optional<double>> readings);
 
 }  // namespace orbit

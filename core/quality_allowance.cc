@@ -1,4 +1,4 @@
-#include "core/noise_allowance.h"
+#include "core/quality_allowance.h"
 
 #include <algorithm>
 
@@ -9,7 +9,11 @@ double NoiseAllowance(double noise_sigma) {
          std::clamp(noise_sigma - kCleanNoiseSigma, 0.0, kNoiseAllowanceSpan);
 }
 
-std::optional<double> MeanNoiseSigma(std::span<const std::optional<double>> readings) {
+double BlurAllowance(double blur) {
+  return kBlurAllowancePerUnit * std::max(0.0, blur - kSharpFrameBlur);
+}
+
+std::optional<double> MeanReading(std::span<const std::optional<double>> readings) {
   double sum = 0;
   int count = 0;
   for (const std::optional<double>& reading : readings) {
