@@ -18,8 +18,6 @@
 #include "client/image_file.h"
 #include "core/angles.h"
 #include "core/cedd.h"
-#include "core/blur_estimate.h"
-#include "core/noise_estimate.h"
 #include "core/rejection_calibration.h"
 #include "core/seeded_random.h"
 #include "core/parallel_for.h"
@@ -378,11 +376,11 @@ struct ActiveQueryInput {
 };
 
 // `frame` with the readings its device sends; none with options.use_quality_reading off.
-QueryFrame WithReadings(QueryFrame frame, const QueryReadings& readings,
+QueryFrame WithReadings(QueryFrame frame, const FrameQuality& quality,
                         const EvaluationOptions& options) {
   if (options.use_quality_reading) {
-    frame.noise_sigma = readings.noise_sigma;
-    frame.blur = readings.blur;
+    frame.noise_sigma = quality.noise_sigma;
+    frame.blur = quality.blur;
   }
   return frame;
 }
@@ -499,7 +497,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
         frames[k] = WithReadings(
             {{options.variants[t.variant], image.queries[d]},
              options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt},
-            image.query_readings[d], options);
+            image.query_quality[d], options);
       }
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
@@ -515,7 +513,7 @@ std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const Described
           active.frame = [&](int view) {
             const DescribedImage& image = described[target.images[view]][t.variant];
             return WithReadings({{options.variants[t.variant], image.queries[d]}, std::nullopt},
-                                image.query_readings[d], options);
+                                image.query_quality[d], options);
           };
           update = ActiveQuery(*engines[m], active).Run(latest_view);
         } else {
@@ -570,10 +568,6 @@ std::vector<std::string> DefaultMethods() {
   return methods;
 }
 
-QueryReadings QueryReadingsOf(const cv::Mat& image) {
-  return {EstimateNoiseSigma(image), EstimateBlur(image)};
-}
-
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
 }
@@ -588,19 +582,19 @@ std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t
   // image once for all variants.
   static const DistortionSpec protocol_blur = ParseDistortionSpec("mb");
   std::vector<cv::Mat> distorted(distortions.size());
-  std::vector<QueryReadings> readings(distortions.size());
+  std::vector<FrameQuality> quality(distortions.size());
   for (std::size_t d = 0; d < distortions.size(); ++d) {
     distorted[d] = distortions[d].steps.empty()
                        ? view
                        : ApplyDistortion(view, distortions[d], ImageNoiseSeed(seed, position));
-    readings[d] = QueryReadingsOf(distorted[d]);
+    quality[d] = MeasureFrameQuality(distorted[d]);
   }
   std::vector<DescribedImage> described;
   for (DescriptorVariant variant : variants) {
     const ViewDescription description = DescribeView(view, variant, seed);
     DescribedImage& d = described.emplace_back();
     d.view = {description.descriptor, image.azimuth, image.elevation, description.typical_distance};
-    d.query_readings = readings;
+    d.query_quality = quality;
     for (std::size_t q = 0; q < distortions.size(); ++q) {
       if (distortions[q].steps.empty()) {
         d.queries.push_back(description.descriptor);
@@ -725,7 +719,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   const Clock::time_point descriptor_start = Clock::now();
   DescribedImages described(known.size());
   std::vector<std::vector<std::vector<DescriptorValues>>> queries(captures.size());
-  std::vector<std::vector<QueryReadings>> readings(captures.size());  // [frame][distortion]
+  std::vector<std::vector<FrameQuality>> quality(captures.size());  // [frame][distortion]
   RunStage(known.size() + captures.size(), report.threads, "descriptors", options,
            [&](std::size_t i) {
              if (i < known.size()) {
@@ -743,7 +737,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                for (std::size_t v = 0; v < options.variants.size(); ++v) {
                  frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
                }
-               readings[i - known.size()].push_back(QueryReadingsOf(query));
+               quality[i - known.size()].push_back(MeasureFrameQuality(query));
              }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);
@@ -769,7 +763,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
         const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
         query[k] = WithReadings({{options.variants[v], queries[f][v][d]},
                                  options.use_orientation ? captures[f].azimuth : std::nullopt},
-                                readings[f][d], options);
+                                quality[f][d], options);
       }
       for (std::size_t m = 0; m < methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[v])) continue;

@@ -31,6 +31,7 @@
 #include <string_view>
 #include <vector>
 
+#include "client/frame_quality.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_spec.h"
 #include "core/descriptor.h"
@@ -179,14 +180,6 @@ struct EvaluationReport {
 std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image);
 
 // One image as the evaluation uses it, in one descriptor variant (step 1).
-// What a device measures of a query frame and sends as Frame.quality: its noise
-// (EstimateNoiseSigma, core/noise_estimate.h) and blur (EstimateBlur, core/blur_estimate.h).
-struct QueryReadings {
-  double noise_sigma = 0;
-  double blur = 0;
-};
-QueryReadings QueryReadingsOf(const cv::Mat& image);
-
 struct DescribedImage {
   // The model view it contributes: described exactly as every enrollment path describes it
   // (DescribeView with the options' seed as base), at the image's azimuth and elevation.
@@ -195,8 +188,9 @@ struct DescribedImage {
   // ApplyDistortion(image, spec, ImageNoiseSeed(seed, position)). df's is the view's own CEDD,
   // mb's DescribeView's motion-blurred copy (the same image, not computed twice).
   std::vector<DescriptorValues> queries;
-  // What each query image reads, in the same order (QueryReadingsOf).
-  std::vector<QueryReadings> query_readings;
+  // What the client library measures of each query image and sends as Frame.quality
+  // (MeasureFrameQuality, client/frame_quality.h), in the same order.
+  std::vector<FrameQuality> query_quality;
 };
 
 // Step 1 for one image: reads it once and describes it in each of `variants` (the results in
