@@ -4,11 +4,11 @@
 // for degraded windows as it does for clean ones.
 //
 // Why: the rule's threshold is a quantile of a null of clean windows
-// (core/rejection_calibration.h) and the server cannot draw noisy ones (it holds descriptors,
-// not images). Noise moves every
-// frame away from every view, so U rises for unknown and known objects alike (for known ones
-// about three times as fast) and a single threshold rejects most noisy known objects
-// (docs/results/recognition.md, "Noisy and blurred frames"). The device measures each frame's
+// (core/rejection_calibration.h) and the server cannot draw degraded ones (it holds
+// descriptors, not images). Noise moves every frame away from every view, so U rises for
+// unknown and known objects alike (for known ones about three times as fast) and a single
+// threshold rejects most noisy known objects (docs/results/recognition.md, "Noisy and blurred
+// frames"); blur does the same, less strongly. The device measures each frame's
 // noise and blur (Frame.quality, client/frame_quality.h); the rule then accepts
 //
 //   U - NoiseAllowance(mean noise sigma) - BlurAllowance(mean blur) <= threshold
@@ -53,7 +53,7 @@ double NoiseAllowance(double noise_sigma);
 // frames end). Noise reads as sharpness and blur hides noise, so at most one of the two
 // allowances is large for a frame. A smooth, textureless object reads somewhat blurred even
 // when sharp, and is allowed a little.
-inline constexpr double kSharpFrameBlur = 0.5;       // what sharp frames read, at most
+inline constexpr double kSharpFrameBlur = 0.5;        // what sharp frames read, at most
 inline constexpr double kBlurAllowancePerUnit = 0.5;  // U per unit of blur above it
 
 // The formula above. REQUIRES: blur in [0, 1].
