@@ -28,7 +28,7 @@ FrameQuality MeasureFrameQuality(const cv::Mat& image, std::optional<cv::Rect> r
   cv::Laplacian(grey, laplacian, CV_32F);
   cv::Scalar mean, deviation;
   cv::meanStdDev(laplacian, mean, deviation);
-  return {deviation[0] * deviation[0], EstimateNoiseSigma(pixels), EstimateBlur(pixels)};
+  return {deviation[0] * deviation[0], EstimateNoiseSigma(pixels), EstimateBlur(grey)};
 }
 
 double MinUsableSharpness(const std::vector<FrameQuality>& qualities,
