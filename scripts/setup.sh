@@ -11,6 +11,7 @@ packages=(
   libcli11-dev nlohmann-json3-dev libsqlite3-dev libpq-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
+  libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   python3-grpcio python3-protobuf
   postgresql-15  # the tests' PostgreSQL server (tests/support/postgres_test_cluster.h)
