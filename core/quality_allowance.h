@@ -52,9 +52,9 @@ double NoiseAllowance(double noise_sigma);
 //
 // fitted the same way, over a sweep of motion blur (5..25 px at changing angles; the null's 15%
 // quantile rises 0.40 per unit at n = 1 and 0.58 at n = 8 above 0.5, where sharp COIL-100
-// frames end; the 17% quantile 0.35 and 0.60). Noise reads as sharpness and blur hides noise, so at most one of the two
-// allowances is large for a frame. A smooth, textureless object reads somewhat blurred even
-// when sharp, and is allowed a little.
+// frames end; the 17% quantile 0.35 and 0.60). Noise reads as sharpness and blur hides noise,
+// so at most one of the two allowances is large for a frame. A smooth, textureless object
+// reads somewhat blurred even when sharp, and is allowed a little.
 inline constexpr double kSharpFrameBlur = 0.5;        // what sharp frames read, at most
 inline constexpr double kBlurAllowancePerUnit = 0.5;  // U per unit of blur above it
 

@@ -98,10 +98,11 @@ struct EngineOptions {
   // kCalibrated's target, in (0, 1): the share of unknown objects' windows accepted when
   // unknown objects resemble the known ones as much as the known ones resemble each other,
   // look-alike pairs included. 0.17: the lowest rate at which every n = 8 goal of issue 12
-  // holds on the tuning split of COIL-100 (every tenth object unknown) in two independent draws
-  // of trials (0.16-0.18 in one, 0.17-0.2 in the other); there 2-3% of the unknown objects'
-  // queries are accepted at n = 8, and 18-30% where two of ten unknown objects have a
-  // look-alike among the known ones (docs/results/recognition.md, "Why 0.17 by default").
+  // holds on the tuning split of COIL-100 (every tenth object unknown) in both of two
+  // independent draws of trials (0.16-0.18 in one, 0.17-0.2 in the other); there 2-3% of the
+  // unknown objects' queries are accepted at n = 8, and 18-30% where two of ten unknown objects
+  // have a look-alike among the known ones (docs/results/recognition.md, "Why 0.17 by
+  // default").
   double false_accept_rate = 0.17;
   int top_k = 5;                    // objects in each update's ranking (>= 1)
   // The answer's score blends the engine's own with the window's nearest-view similarity,
