@@ -55,10 +55,11 @@ double NoiseAllowance(double noise_sigma);
 // frames end; the 17% quantile 0.35 and 0.60). Noise reads as sharpness and blur hides noise,
 // so at most one of the two allowances is large for a frame. A smooth, textureless object
 // reads somewhat blurred even when sharp, and is allowed a little.
+inline constexpr double kMaxBlur = 1;                 // EstimateBlur's range is [0, kMaxBlur]
 inline constexpr double kSharpFrameBlur = 0.5;        // what sharp frames read, at most
 inline constexpr double kBlurAllowancePerUnit = 0.5;  // U per unit of blur above it
 
-// The formula above. REQUIRES: blur in [0, 1].
+// The formula above. REQUIRES: blur in [0, kMaxBlur].
 double BlurAllowance(double blur);
 
 // The mean of the readings that are present; nullopt when none is.

@@ -124,10 +124,12 @@ void RecognitionEngine::Validate(const ViewIndexSnapshot* index, const QueryFram
     throw std::invalid_argument("frame azimuth is not finite");
   }
   if (frame.noise_sigma && !(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma)) {
-    throw std::invalid_argument("frame noise sigma must be in [0, 255]");
+    throw std::invalid_argument("frame noise sigma must be in [0, " +
+                                std::to_string(static_cast<int>(kMaxNoiseSigma)) + "]");
   }
-  if (frame.blur && !(*frame.blur >= 0 && *frame.blur <= 1)) {
-    throw std::invalid_argument("frame blur must be in [0, 1]");
+  if (frame.blur && !(*frame.blur >= 0 && *frame.blur <= kMaxBlur)) {
+    throw std::invalid_argument("frame blur must be in [0, " +
+                                std::to_string(static_cast<int>(kMaxBlur)) + "]");
   }
 }
 

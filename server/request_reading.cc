@@ -88,7 +88,10 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
       return InvalidArgument("frame.quality.noise_sigma must be in [0, " +
                              std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels");
     }
-    if (!(blur >= 0 && blur <= 1)) return InvalidArgument("frame.quality.blur must be in [0, 1]");
+    if (!(blur >= 0 && blur <= kMaxBlur)) {
+      return InvalidArgument("frame.quality.blur must be in [0, " +
+                             std::to_string(static_cast<int>(kMaxBlur)) + "]");
+    }
     out->noise_sigma = sigma;
     out->blur = blur;
   }
