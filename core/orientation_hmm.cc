@@ -140,12 +140,13 @@ namespace {
 
 // In place, values[i * n + o] = TC(S_i, o_t) becomes b_i(o_t) up to a per-frame constant:
 // the similarity floored at 1e-12 of the object's sum over its states, or 1 for every state when
-// that sum is 0 (b uniform; unseen[o] = 1 then, else 0). best[o] is the object's highest
-// emission, or 0 when it is unseen (its similarity on any path). `sum` is scratch of n floats.
+// that sum is 0 (b uniform: the object is unseen in the frame). best[o] is the object's highest
+// emission, or 0 when it is unseen (its similarity on any path), so best[o] > 0 exactly when the
+// object is seen. `sum` is scratch of n floats. Called with n = 1 on one object's values, it
+// gives what it gives that object among many.
 ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int states,
-                                                 float* __restrict sum,
-                                                 std::uint8_t* __restrict unseen,
-                                                 float* __restrict best, std::size_t n) {
+                                                 float* __restrict sum, float* __restrict best,
+                                                 std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) sum[o] = 0.0f;
   for (int i = 0; i < states; ++i) {
     const float* row = &values[static_cast<std::size_t>(i) * n];
@@ -160,7 +161,19 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
       best[o] = sum[o] > 0.0f ? std::max(best[o], row[o]) : 0.0f;
     }
   }
-  for (std::size_t o = 0; o < n; ++o) unseen[o] = sum[o] > 0.0f ? 0 : 1;
+}
+
+// An object's best emission in a frame, as the window keeps it for the bounds (Assess): in units
+// of 2^-15, rounded up, so that a sum of them is never below the sum of the emissions, and exact
+// in integers. 16 bits hold up to 2: a Tanimoto coefficient in float is at most 1 and a few ulps.
+constexpr float kBoundUnitsPerOne = 32768.0f;
+
+// units[o] = ceil(best[o] * 2^15): exact, as scaling by a power of two is.
+ORBIT_AVX2_CLONES void BoundUnits(const float* __restrict best, std::uint16_t* __restrict units,
+                                  std::size_t n) {
+  for (std::size_t o = 0; o < n; ++o) {
+    units[o] = static_cast<std::uint16_t>(std::ceil(best[o] * kBoundUnitsPerOne));
+  }
 }
 
 // In place, values[k] = values[k]^(2^squarings) (EngineOptions::hmm_sharpness). At the 32nd
@@ -178,15 +191,6 @@ ORBIT_AVX2_CLONES void Sharpen(float* __restrict values, std::size_t count, int 
     float v = values[k] < smallest ? 0.0f : values[k];
     for (int s = 0; s < squarings; ++s) v *= v;
     values[k] = v;
-  }
-}
-
-// out[o * rows + r] = in[r * columns + o]: a frame's [state][object] similarities stored object
-// by object, so that decoding a few objects reads a few cache lines per frame.
-void Transpose(const float* __restrict in, std::size_t rows, std::size_t columns,
-               float* __restrict out) {
-  for (std::size_t o = 0; o < columns; ++o) {
-    for (std::size_t r = 0; r < rows; ++r) out[o * rows + r] = in[r * columns + o];
   }
 }
 
@@ -229,15 +233,21 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
 
 // The engine. Per frame (Append) it computes TC(S_i, o) for every state of every object at once
 // (SectorSimilarityTable) and the emissions from them, and the sparse transitions from the
-// previous frame; these stay with the frame while it is in the window. Per answer (Assess) it
-// decodes the Viterbi paths of the objects that can rank over the window at once (BatchViterbi),
-// in linear space: dividing b_i(o_t) = TC_i / sum_j TC_j by its per-frame constant changes no
-// path's rank, so the raw similarities serve as emissions (with the same 1e-12 floor relative
-// to the sum) and no logarithm is taken per state. A frame keeps only its emissions: the
-// similarity of a state on an object's path is read back from them (TC = the emission, 0 for an object unseen in the
-// frame; a floored TC reads 1e-12 of the sum too high, at most 8e-12), which halves what a
-// session holds and streams through the caches per frame (8 frames x 8000 states x 4 bytes at
-// 1000 objects).
+// previous frame. Per answer (Assess) it decodes the Viterbi paths of the objects that can rank
+// over the window at once (BatchViterbi), in linear space: dividing b_i(o_t) = TC_i / sum_j TC_j
+// by its per-frame constant changes no path's rank, so the raw similarities serve as emissions
+// (with the same 1e-12 floor relative to the sum) and no logarithm is taken per state. The
+// similarity of a state on an object's path is read back from its emission (TC = the emission,
+// 0 for an object unseen in the frame; a floored TC reads 1e-12 of the sum too high, at most
+// 8e-12).
+//
+// What a frame keeps while it is in the window: every object's best emission in 16 bits (the
+// bound that chooses what to decode), and the emissions of the few objects decoded lately ("kept"
+// objects), not all 8000 states' (32 KB a frame, 256 KB a session at 1000 objects). A session's
+// working set is then about 40 KB, so hundreds of sessions stay in the shared cache where
+// whole windows would stream from memory on every frame (docs/results/load.md, "A window of
+// bounds"). An object decoded for the first time gets its emissions for the older frames from
+// its own sector sums (SectorSimilarityTable::ComputeObject: the same values to the last bit).
 class OrientationHmm final : public RecognitionEngine {
  public:
   explicit OrientationHmm(const EngineOptions& options)
@@ -249,9 +259,22 @@ class OrientationHmm final : public RecognitionEngine {
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
-    if (!table_) table_ = SectorSimilarityTable::Of(index, states_);
+    if (!table_) {
+      table_ = SectorSimilarityTable::Of(index, states_);
+      ForgetKept();
+    }
     WindowFrame stored = std::move(spare_);
-    Score(*table_, frame.descriptor.values, stored);
+    const std::span<const float> emissions =
+        Score(*table_, frame.descriptor.values, states_, stored.best);
+    // The kept objects' emissions, from the frame's [state][object] scratch.
+    const std::size_t states = static_cast<std::size_t>(states_);
+    const std::size_t objects = table_->object_count();
+    stored.kept.resize(kept_.size() * states);
+    for (std::size_t slot = 0; slot < kept_.size(); ++slot) {
+      for (std::size_t i = 0; i < states; ++i) {
+        stored.kept[slot * states + i] = emissions[i * objects + kept_[slot]];
+      }
+    }
     if (previous_) {
       const std::optional<double> turn = MeasuredTurn(*previous_, frame);
       stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : unknown_turn_;
@@ -267,11 +290,13 @@ class OrientationHmm final : public RecognitionEngine {
     frames_.clear();
     previous_.reset();
     table_.reset();
+    ForgetKept();
   }
 
-  // Objects kept move their columns to their new positions; objects added are scored against
+  // Objects kept move their bounds to their new positions; objects added are scored against
   // the kept frames with a table of their own; removed ones are dropped. Each object's
   // similarities and emissions depend on that object alone, so the state equals a re-append.
+  // The kept objects' emissions are dropped: the next answer reads the ones it decodes back.
   void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot& after,
               const SnapshotChange& change, std::span<const QueryFrame> window) override {
     const std::size_t before_objects = table_->object_count();
@@ -282,19 +307,15 @@ class OrientationHmm final : public RecognitionEngine {
     for (const ObjectSlot& slot : change.added) added_objects.push_back(slot.object);
     const SectorSimilarityTable added(added_objects, states_);
 
-    // Each frame's arrays are rearranged in place, a block per run of kept objects, and the
-    // added objects, scored now against the kept frames, copied in: an enrollment costs a
-    // session the new object's similarities and a move of the objects after a deleted one,
-    // not a copy of its whole window.
-    const std::size_t states = static_cast<std::size_t>(states_);
-    WindowFrame scored;
+    // Each frame's bounds are rearranged in place, a block per run of kept objects, and the
+    // added objects', scored now against the kept frames, copied in: an enrollment costs a
+    // session the new object's similarities, not a copy of its whole window.
+    std::vector<std::uint16_t> added_best;
     for (std::size_t t = 0; t < frames_.size(); ++t) {
-      WindowFrame& frame = frames_[t];
-      if (!added_objects.empty()) Score(added, window[t].descriptor.values, scored);
-      MoveRuns(change.runs, before_objects, objects, states, scored.emission, frame.emission);
-      MoveRuns(change.runs, before_objects, objects, 1, scored.unseen, frame.unseen);
-      MoveRuns(change.runs, before_objects, objects, 1, scored.best, frame.best);
+      if (!added_objects.empty()) Score(added, window[t].descriptor.values, states_, added_best);
+      MoveRuns(change.runs, before_objects, objects, 1, added_best, frames_[t].best);
     }
+    ForgetKept();
   }
 
   // Only the objects that can reach the ranking are decoded. An object's score averages the
@@ -307,14 +328,16 @@ class OrientationHmm final : public RecognitionEngine {
     const std::size_t frames = window.size();
     const std::size_t objects = table_->object_count();
     if (objects == 0) return {};
-    // Sums in double, frame by frame, as the scores are: a path's sum is then never above its
-    // object's bound (every term is at most the frame's best, and rounding is monotone).
-    std::vector<double> bound(objects, 0.0);
+    // In the bounds' integer units (exact): a path's sum of similarities is never above its
+    // object's bound, as every term is at most the frame's best and the units round up. The
+    // scratch is the thread's, warm in its cache whichever session it serves.
+    thread_local std::vector<std::uint32_t> bound, order;
+    bound.assign(objects, 0);
     for (std::size_t t = 0; t < frames; ++t) {
-      const float* best = frames_[t].best.data();
+      const std::uint16_t* best = frames_[t].best.data();
       for (std::size_t o = 0; o < objects; ++o) bound[o] += best[o];
     }
-    std::vector<std::uint32_t> order(objects);
+    order.resize(objects);
     std::iota(order.begin(), order.end(), 0u);
     const auto higher_bound = [&](std::uint32_t a, std::uint32_t b) {
       return bound[a] > bound[b] || (bound[a] == bound[b] && a < b);
@@ -330,18 +353,20 @@ class OrientationHmm final : public RecognitionEngine {
     for (;;) {
       std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(decoded) - 1,
                        order.end(), higher_bound);
-      Decode(std::span(order).first(decoded), frames, sums);
+      Decode(index, window, std::span(order).first(decoded), sums);
       if (decoded == objects) break;
       std::vector<double> top(sums);
       std::nth_element(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(shown) - 1,
                        top.end(), std::greater<>());
       const double least_shown = top[shown - 1];
-      const double next_bound =
+      const double next_bound =  // exact: units / 2^15
           bound[*std::min_element(order.begin() + static_cast<std::ptrdiff_t>(decoded),
-                                  order.end(), higher_bound)];
+                                  order.end(), higher_bound)] /
+          static_cast<double>(kBoundUnitsPerOne);
       if (next_bound < least_shown) break;
       decoded = std::min(objects, 2 * decoded);
     }
+    if (kept_.size() > std::max(kKeptObjects, decoded)) KeepOnly(std::span(order).first(decoded));
     std::vector<Assessment> assessments(decoded);
     for (std::size_t j = 0; j < decoded; ++j) {
       assessments[j].object = index.objects()[order[j]].object;
@@ -370,36 +395,127 @@ class OrientationHmm final : public RecognitionEngine {
   }
 
  private:
+  // Kept objects beyond this many (and beyond the last answer's decoded ones) are dropped, all
+  // but the last answer's. A kept object costs `states` values per frame; an object decoded
+  // again after being dropped costs its sector sums' products with the older frames (about
+  // 0.1 us a frame).
+  static constexpr std::size_t kKeptObjects = 128;
+
   // What the engine keeps of a frame while it is in the window.
   struct WindowFrame {
-    std::vector<float> emission;       // [object * states + state]: EmissionsFromSimilarities()
-                                       // (Decode sharpens copies)
-    std::vector<std::uint8_t> unseen;  // [object]: 1 when every state's TC is 0
-    std::vector<float> best;           // [object]: its highest emission, 0 when unseen
-    SparseTransitions step;         // from the previous frame (empty for the first)
+    std::vector<std::uint16_t> best;  // [object]: its highest emission in BoundUnits(), 0 when
+                                      // unseen (every TC 0), > 0 when seen
+    std::vector<float> kept;  // [slot * states + state]: the emissions of kept_[slot]
+    SparseTransitions step;   // from the previous frame (empty for the first)
   };
+
+  // The emissions of one frame for every object of `table`, [state * objects + object] in the
+  // thread's scratch (valid until the thread's next Score), and best[object] (BoundUnits). The
+  // scratch is the
+  // thread's, not the session's: a server thread serving many sessions in turn finds it in its
+  // cache, where a session's own (32 KB at 1000 objects) would be a cold miss per line.
+  static std::span<const float> Score(const SectorSimilarityTable& table,
+                                      const DescriptorValues& descriptor, int states,
+                                      std::vector<std::uint16_t>& best) {
+    thread_local std::vector<float> by_state, sum, best_emission;
+    const std::size_t objects = table.object_count();
+    by_state.resize(objects * static_cast<std::size_t>(states));
+    sum.resize(objects);
+    best_emission.resize(objects);
+    best.resize(objects);
+    table.Compute(descriptor, by_state);
+    EmissionsFromSimilarities(by_state.data(), states, sum.data(), best_emission.data(), objects);
+    BoundUnits(best_emission.data(), best.data(), objects);
+    return by_state;
+  }
+
+  void ForgetKept() {
+    kept_.clear();
+    slot_.assign(table_ ? table_->object_count() : 0, -1);
+    for (WindowFrame& frame : frames_) frame.kept.clear();
+  }
+
+  // Makes the objects at `positions` kept, with their emissions in every window frame, read
+  // back object by object from their sector sums, or from the whole frame's table when more
+  // than an eighth of the objects are new to it (a frame that many objects match equally, or
+  // the first answer after a model change), which then costs less. Objects already kept stay.
+  void Keep(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
+            std::span<const std::uint32_t> positions) {
+    std::vector<std::uint32_t> added;
+    for (const std::uint32_t position : positions) {
+      if (slot_[position] >= 0) continue;
+      slot_[position] = static_cast<std::int32_t>(kept_.size());
+      kept_.push_back(position);
+      added.push_back(position);
+    }
+    if (added.empty()) return;
+    const std::size_t states = static_cast<std::size_t>(states_);
+    const std::size_t objects = table_->object_count();
+    const bool whole_frames = added.size() * 8 > objects;
+    std::vector<float> emissions(states);
+    std::vector<std::uint16_t> bests;
+    float sum = 0, best = 0;
+    for (std::size_t t = 0; t < frames_.size(); ++t) {
+      std::vector<float>& kept = frames_[t].kept;
+      if (whole_frames) {
+        const std::span<const float> all =
+            Score(*table_, window[t].descriptor.values, states_, bests);
+        for (const std::uint32_t position : added) {
+          for (std::size_t i = 0; i < states; ++i) kept.push_back(all[i * objects + position]);
+        }
+        continue;
+      }
+      for (const std::uint32_t position : added) {
+        const SectorViews& sectors = index.objects()[position].object->Sectors(states_);
+        SectorSimilarityTable::ComputeObject(window[t].descriptor.values, sectors, emissions);
+        EmissionsFromSimilarities(emissions.data(), states_, &sum, &best, 1);
+        kept.insert(kept.end(), emissions.begin(), emissions.end());
+      }
+    }
+  }
+
+  // Keeps the objects at `positions` only, in this order.
+  void KeepOnly(std::span<const std::uint32_t> positions) {
+    const std::size_t states = static_cast<std::size_t>(states_);
+    std::vector<float> kept;
+    for (WindowFrame& frame : frames_) {
+      kept.clear();
+      for (const std::uint32_t position : positions) {
+        const auto from = frame.kept.begin() + slot_[position] * static_cast<std::ptrdiff_t>(states);
+        kept.insert(kept.end(), from, from + static_cast<std::ptrdiff_t>(states));
+      }
+      frame.kept.swap(kept);
+    }
+    for (const std::uint32_t position : kept_) slot_[position] = -1;
+    kept_.assign(positions.begin(), positions.end());
+    for (std::size_t slot = 0; slot < kept_.size(); ++slot) {
+      slot_[kept_[slot]] = static_cast<std::int32_t>(slot);
+    }
+  }
 
   // Decodes the objects at `positions` (lane j for positions[j]) over the window and sets
   // sums[j] to the sum of TC along object j's path; lane_ maps positions to lanes for Complete.
-  void Decode(std::span<const std::uint32_t> positions, std::size_t frames,
-              std::vector<double>& sums) {
+  void Decode(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
+              std::span<const std::uint32_t> positions, std::vector<double>& sums) {
+    Keep(index, window, positions);
+    const std::size_t frames = frames_.size();
     const std::size_t lanes = positions.size();
     lane_.assign(table_->object_count(), -1);
     for (std::size_t j = 0; j < lanes; ++j) lane_[positions[j]] = static_cast<std::int32_t>(j);
     // The decoded objects' emissions, gathered into BatchViterbi's [state][lane] layout and
-    // sharpened as they are copied (the window keeps the similarities themselves). An object's
-    // states are adjacent in a window frame, so a lane costs one cache line per frame.
+    // sharpened as they are copied (the window keeps the similarities themselves). A kept
+    // object's states are adjacent in a window frame.
     const std::size_t states = static_cast<std::size_t>(states_);
     const int sharpness = options().hmm_sharpness;
     gathered_.resize(frames);
     std::vector<const float*> emissions;
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
-      const float* emission = frames_[t].emission.data();
+      const float* kept = frames_[t].kept.data();
       std::vector<float>& lanes_of_frame = gathered_[t];
       lanes_of_frame.resize(states * lanes);
       for (std::size_t j = 0; j < lanes; ++j) {
-        const float* object_states = emission + positions[j] * states;
+        const float* object_states = kept + static_cast<std::size_t>(slot_[positions[j]]) * states;
         for (std::size_t i = 0; i < states; ++i) lanes_of_frame[i * lanes + j] = object_states[i];
       }
       Sharpen(lanes_of_frame.data(), lanes_of_frame.size(), sharpness);
@@ -410,33 +526,12 @@ class OrientationHmm final : public RecognitionEngine {
     sums.assign(lanes, 0.0);
     for (std::size_t j = 0; j < lanes; ++j) {
       const std::span<const std::uint16_t> path = viterbi_.path(j);
+      const std::size_t slot = static_cast<std::size_t>(slot_[positions[j]]);
       for (std::size_t t = 0; t < frames; ++t) {
-        // The TC of the path's state, from the window's own (unsharpened) array.
-        if (!frames_[t].unseen[positions[j]]) {
-          sums[j] += frames_[t].emission[positions[j] * states + path[t]];
-        }
+        // The TC of the path's state, from the kept (unsharpened) emissions; 0 when unseen.
+        if (frames_[t].best[positions[j]] > 0) sums[j] += frames_[t].kept[slot * states + path[t]];
       }
     }
-  }
-
-  // The similarities and emissions of one frame for the objects of `table`: computed state by
-  // state (the table's layout) in scratch, then stored object by object. The scratch is the
-  // thread's, not the session's: a server thread serving many sessions in turn finds it in its
-  // cache, where a session's own (36 KB at 1000 objects) would be a cold miss per line.
-  void Score(const SectorSimilarityTable& table, const DescriptorValues& descriptor,
-             WindowFrame& frame) {
-    thread_local std::vector<float> by_state, sum;
-    const std::size_t objects = table.object_count();
-    const std::size_t states = static_cast<std::size_t>(states_);
-    by_state.resize(objects * states);
-    sum.resize(objects);
-    frame.emission.resize(objects * states);
-    frame.unseen.resize(objects);
-    frame.best.resize(objects);
-    table.Compute(descriptor, by_state);
-    EmissionsFromSimilarities(by_state.data(), states_, sum.data(), frame.unseen.data(),
-                              frame.best.data(), objects);
-    Transpose(by_state.data(), states, objects, frame.emission.data());
   }
 
   const int states_;
@@ -446,8 +541,10 @@ class OrientationHmm final : public RecognitionEngine {
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
   std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn
-  std::vector<std::int32_t> lane_;                 // [object position]: its lane in viterbi_, or -1
-  std::vector<std::vector<float>> gathered_;       // scratch: the decoded objects' emissions
+  std::vector<std::uint32_t> kept_;     // [slot]: the position of a kept object
+  std::vector<std::int32_t> slot_;      // [object position]: its slot in kept_, or -1
+  std::vector<std::int32_t> lane_;      // [object position]: its lane in viterbi_, or -1
+  std::vector<std::vector<float>> gathered_;  // scratch: the decoded objects' emissions
   WindowFrame spare_;  // the last frame dropped: its buffers are reused by the next Append
 };
 

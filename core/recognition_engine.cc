@@ -212,8 +212,8 @@ FrameUpdate RecognitionEngine::Answer() {
     const double weight = options_.nearest_view_weight;
     for (auto it = assessments.begin(); it != ranked; ++it) {
       double nearest = 0;
-      for (const std::span<const float> row : rows_->For(window_, *it->object).rows) {
-        nearest += *std::max_element(row.begin(), row.end());
+      for (const NearestView& view : rows_->For(window_, *it->object).nearest) {
+        nearest += view.similarity;
       }
       nearest /= static_cast<double>(window_.size());
       it->score = (1 - weight) * it->score + weight * nearest;

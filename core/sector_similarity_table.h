@@ -25,6 +25,7 @@
 #include <vector>
 
 #include "core/descriptor.h"
+#include "core/indexed_object.h"
 #include "core/view_index.h"
 
 namespace orbit {
@@ -49,6 +50,14 @@ class SectorSimilarityTable {
   // similarity[state * object_count() + object] = TC(S, query) with Tanimoto()'s conventions
   // for zero vectors, rounded to float. `similarity` must hold states() * object_count() values.
   void Compute(const DescriptorValues& query, std::span<float> similarity) const;
+
+  // similarity[i] = TC(S_i, query) for the sectors of one object, to the last bit what Compute
+  // gives for that object in any table holding it: an HMM session reads back the few objects it
+  // decodes this way instead of keeping every object's similarities for every frame. Computed
+  // from the object's own sums (IndexedObject::Sectors), so it needs no table. Throws
+  // std::invalid_argument when `similarity` holds fewer than sectors.count values.
+  static void ComputeObject(const DescriptorValues& query, const SectorViews& sectors,
+                            std::span<float> similarity);
 
  private:
   std::size_t objects_ = 0;

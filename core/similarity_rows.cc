@@ -1,5 +1,6 @@
 #include "core/similarity_rows.h"
 
+#include <algorithm>
 #include <cstdint>
 
 #include "core/cpu_dispatch.h"
@@ -53,18 +54,30 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
 }
 
 void SimilarityRows::Forget(std::span<const IndexedObject* const> objects) {
-  for (auto& rows : frames_) {
-    for (const IndexedObject* object : objects) rows.erase(object);
+  for (std::vector<Row>& rows : frames_) {
+    std::erase_if(rows, [&](const Row& row) {
+      return std::find(objects.begin(), objects.end(), row.object) != objects.end();
+    });
   }
 }
 
 ObjectRows SimilarityRows::For(std::span<const QueryFrame> window, const IndexedObject& object) {
-  ObjectRows rows{&object, {}};
+  ObjectRows rows{&object, {}, {}};
   rows.rows.reserve(window.size());
+  rows.nearest.reserve(window.size());
   for (std::size_t k = 0; k < window.size(); ++k) {
-    auto [at, added] = frames_[k].try_emplace(&object);
-    if (added) at->second = SimilarityRow(window[k].descriptor.values, object);
-    rows.rows.emplace_back(at->second);
+    std::vector<Row>& frame = frames_[k];
+    auto at = std::find_if(frame.begin(), frame.end(),
+                           [&](const Row& row) { return row.object == &object; });
+    if (at == frame.end()) {
+      Row row{&object, {}, SimilarityRow(window[k].descriptor.values, object)};
+      const auto highest = std::max_element(row.values.begin(), row.values.end());
+      row.nearest = {static_cast<int>(highest - row.values.begin()), *highest};
+      frame.push_back(std::move(row));  // moving a Row keeps its values where they are
+      at = frame.end() - 1;
+    }
+    rows.rows.emplace_back(at->values);
+    rows.nearest.push_back(at->nearest);
   }
   return rows;
 }

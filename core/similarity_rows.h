@@ -14,7 +14,6 @@
 
 #include <deque>
 #include <span>
-#include <unordered_map>
 #include <vector>
 
 #include "core/indexed_object.h"
@@ -27,10 +26,18 @@ namespace orbit {
 // the object is indexed).
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object);
 
+// The view of a row with the highest TC (the first of equals, as std::max_element finds it),
+// and that TC: what the nearest-view blend and the unknown statistic read of most rows.
+struct NearestView {
+  int view = -1;
+  float similarity = 0;
+};
+
 // One object's rows for a window: rows[k][v] = TC(window frame k, view v).
 struct ObjectRows {
   const IndexedObject* object = nullptr;
   std::vector<std::span<const float>> rows;  // one per window frame, oldest first
+  std::vector<NearestView> nearest;          // [k]: rows[k]'s, found when it was computed
 };
 
 class SimilarityRows {
@@ -43,12 +50,21 @@ class SimilarityRows {
   void Forget(std::span<const IndexedObject* const> objects);
 
   // The rows of `object` for `window` (the frames pushed so far, oldest first), computing the
-  // missing ones. The spans stay valid until the next call that changes the cache.
+  // missing ones. The spans stay valid while their frame and object stay in the cache.
   // REQUIRES: window.size() equals the frames pushed and not dropped.
   ObjectRows For(std::span<const QueryFrame> window, const IndexedObject& object);
 
  private:
-  std::deque<std::unordered_map<const IndexedObject*, std::vector<float>>> frames_;
+  struct Row {
+    const IndexedObject* object = nullptr;
+    NearestView nearest;
+    std::vector<float> values;
+  };
+  // [frame]: the rows computed for it, found by a linear search: a frame holds the rows of the
+  // few objects its session's answers looked at closely while it was in the window, and a short
+  // contiguous array is faster to search than a hash map is to probe when the session's memory
+  // is out of cache (hundreds of sessions on one core).
+  std::deque<std::vector<Row>> frames_;
 };
 
 }  // namespace orbit

@@ -1,6 +1,5 @@
 #include "core/unknown_statistic.h"
 
-#include <algorithm>
 #include <stdexcept>
 
 namespace orbit {
@@ -16,13 +15,12 @@ double UnknownStatisticOf(double d1_sum, double d2_sum, double typical_sum) {
 double UnknownStatistic(const ObjectRows& winner, const ObjectRows* runner_up) {
   const std::vector<ModelView>& views = winner.object->model().views;
   double d1_sum = 0, d2_sum = 0, typical_sum = 0;
-  for (std::size_t k = 0; k < winner.rows.size(); ++k) {
-    const std::span<const float> row = winner.rows[k];
-    const std::size_t best = static_cast<std::size_t>(std::max_element(row.begin(), row.end()) - row.begin());
-    d1_sum += 1 - row[best];
-    typical_sum += views[best].typical_distance;
-    if (runner_up != nullptr && !runner_up->rows[k].empty()) {
-      d2_sum += 1 - *std::max_element(runner_up->rows[k].begin(), runner_up->rows[k].end());
+  for (std::size_t k = 0; k < winner.nearest.size(); ++k) {
+    const NearestView& best = winner.nearest[k];
+    d1_sum += 1 - best.similarity;
+    typical_sum += views[static_cast<std::size_t>(best.view)].typical_distance;
+    if (runner_up != nullptr) {
+      d2_sum += 1 - runner_up->nearest[k].similarity;
     } else {
       d2_sum += 1.0;
     }

@@ -53,6 +53,25 @@ TEST(SimilarityRowsTest, RowsHoldEachFramesTanimotoWithEachView) {
   // kDisjoint against kHalf: 16 / (16 + 32 - 16) = 1/2.
   EXPECT_EQ(std::vector<float>(got.rows[1].begin(), got.rows[1].end()),
             (std::vector<float>{0.0f, 0.5f, 1.0f}));
+  // Each row's nearest view, as the blend and the unknown statistic read it.
+  ASSERT_EQ(got.nearest.size(), 2u);
+  EXPECT_EQ(got.nearest[0].view, 0);
+  EXPECT_EQ(got.nearest[0].similarity, 1.0f);
+  EXPECT_EQ(got.nearest[1].view, 2);
+  EXPECT_EQ(got.nearest[1].similarity, 1.0f);
+}
+
+// Of equally near views the first is the nearest: the unknown statistic reads its typical
+// distance, so which one must not depend on how the row was stored.
+TEST(SimilarityRowsTest, TheNearestOfEqualViewsIsTheFirst) {
+  const IndexedObject object(Model(1, {kDisjoint, kHalf, kHalf}));
+  SimilarityRows rows;
+  const std::vector<QueryFrame> window{Frame(kQuery)};
+  rows.PushFrame();
+  const ObjectRows got = rows.For(window, object);
+  ASSERT_EQ(got.nearest.size(), 1u);
+  EXPECT_EQ(got.nearest[0].view, 1);
+  EXPECT_EQ(got.nearest[0].similarity, 0.5f);
 }
 
 // The row is Tanimoto() view by view, rounded to float, on real descriptors and on the empty one
