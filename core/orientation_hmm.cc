@@ -176,6 +176,46 @@ ORBIT_AVX2_CLONES void BoundUnits(const float* __restrict best, std::uint16_t* _
   }
 }
 
+// bound[o] += units[o], or -= with `subtract`: a window's bounds follow its frames in
+// integers, exactly, as frames enter and leave.
+ORBIT_AVX2_CLONES void AddBounds(const std::uint16_t* __restrict units, bool subtract,
+                                 std::uint32_t* __restrict bound, std::size_t n) {
+  if (subtract) {
+    for (std::size_t o = 0; o < n; ++o) bound[o] -= units[o];
+  } else {
+    for (std::size_t o = 0; o < n; ++o) bound[o] += units[o];
+  }
+}
+
+// Sets top[0 .. count) to the positions of the `count` highest bounds, ties to the lower
+// position, so that top[count - 1] is the lowest of them. A few (the usual case) are kept
+// sorted as one pass meets them, which costs a comparison per object that rarely succeeds;
+// many are selected with std::nth_element.
+void HighestBounds(std::span<const std::uint32_t> bound, std::size_t count,
+                   std::vector<std::uint32_t>& top) {
+  // Higher key, higher rank: the bound, then the lower position.
+  const auto key = [&](std::uint32_t o) {
+    return static_cast<std::uint64_t>(bound[o]) << 32 | (0xFFFFFFFFu - o);
+  };
+  top.clear();
+  if (count > 64) {
+    top.resize(bound.size());
+    std::iota(top.begin(), top.end(), 0u);
+    std::nth_element(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(count) - 1, top.end(),
+                     [&](std::uint32_t a, std::uint32_t b) { return key(a) > key(b); });
+    top.resize(count);
+    return;
+  }
+  for (std::uint32_t o = 0; o < bound.size(); ++o) {
+    const std::uint64_t k = key(o);
+    if (top.size() == count && k <= key(top.back())) continue;
+    if (top.size() == count) top.pop_back();
+    auto at = top.end();
+    while (at != top.begin() && key(*(at - 1)) < k) --at;
+    top.insert(at, o);
+  }
+}
+
 // In place, values[k] = values[k]^(2^squarings) (EngineOptions::hmm_sharpness). At the 32nd
 // power a similarity under about 0.065 underflows to 0: an object that matches a frame that
 // poorly in every state gets an arbitrary path through it and reads 0 there, which changes
@@ -280,14 +320,18 @@ class OrientationHmm final : public RecognitionEngine {
       stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : unknown_turn_;
     }
     previous_ = frame;
+    bound_.resize(objects, 0);
+    AddBounds(stored.best.data(), false, bound_.data(), objects);
     frames_.push_back(std::move(stored));
   }
   void DropOldest() override {
+    AddBounds(frames_.front().best.data(), true, bound_.data(), bound_.size());
     spare_ = std::move(frames_.front());  // its buffers serve the next frame
     frames_.pop_front();
   }
   void Clear() override {
     frames_.clear();
+    bound_.clear();
     previous_.reset();
     table_.reset();
     ForgetKept();
@@ -315,6 +359,10 @@ class OrientationHmm final : public RecognitionEngine {
       if (!added_objects.empty()) Score(added, window[t].descriptor.values, states_, added_best);
       MoveRuns(change.runs, before_objects, objects, 1, added_best, frames_[t].best);
     }
+    bound_.assign(objects, 0);
+    for (const WindowFrame& frame : frames_) {
+      AddBounds(frame.best.data(), false, bound_.data(), objects);
+    }
     ForgetKept();
   }
 
@@ -328,48 +376,34 @@ class OrientationHmm final : public RecognitionEngine {
     const std::size_t frames = window.size();
     const std::size_t objects = table_->object_count();
     if (objects == 0) return {};
-    // In the bounds' integer units (exact): a path's sum of similarities is never above its
-    // object's bound, as every term is at most the frame's best and the units round up. The
-    // scratch is the thread's, warm in its cache whichever session it serves.
-    thread_local std::vector<std::uint32_t> bound, order;
-    bound.assign(objects, 0);
-    for (std::size_t t = 0; t < frames; ++t) {
-      const std::uint16_t* best = frames_[t].best.data();
-      for (std::size_t o = 0; o < objects; ++o) bound[o] += best[o];
-    }
-    order.resize(objects);
-    std::iota(order.begin(), order.end(), 0u);
-    const auto higher_bound = [&](std::uint32_t a, std::uint32_t b) {
-      return bound[a] > bound[b] || (bound[a] == bound[b] && a < b);
-    };
+    // bound_ is in integer units (exact): a path's sum of similarities is never above its
+    // object's bound, as every term is at most the frame's best and the units round up.
     const std::size_t shown =
         std::min<std::size_t>(objects, static_cast<std::size_t>(RankedDepth(options())));
     // A first guess a little above the shown objects, doubled while an object left out could
     // still rank: every object decoded costs a cache line per frame when the session's window
     // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 7% fewer
-    // frames/s, docs/results/load.md).
+    // frames/s, docs/results/load.md). top[decoded] is the best object left out.
     std::size_t decoded = std::min(objects, std::max<std::size_t>(shown + 3, 8));
+    thread_local std::vector<std::uint32_t> top;  // the thread's: warm whichever session it serves
     std::vector<double> sums;
     for (;;) {
-      std::nth_element(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(decoded) - 1,
-                       order.end(), higher_bound);
-      Decode(index, window, std::span(order).first(decoded), sums);
+      HighestBounds(bound_, std::min(objects, decoded + 1), top);
+      Decode(index, window, std::span(top).first(decoded), sums);
       if (decoded == objects) break;
-      std::vector<double> top(sums);
-      std::nth_element(top.begin(), top.begin() + static_cast<std::ptrdiff_t>(shown) - 1,
-                       top.end(), std::greater<>());
-      const double least_shown = top[shown - 1];
-      const double next_bound =  // exact: units / 2^15
-          bound[*std::min_element(order.begin() + static_cast<std::ptrdiff_t>(decoded),
-                                  order.end(), higher_bound)] /
-          static_cast<double>(kBoundUnitsPerOne);
+      std::vector<double> highest(sums);
+      std::nth_element(highest.begin(), highest.begin() + static_cast<std::ptrdiff_t>(shown) - 1,
+                       highest.end(), std::greater<>());
+      const double least_shown = highest[shown - 1];
+      // Exact: units / 2^15.
+      const double next_bound = bound_[top[decoded]] / static_cast<double>(kBoundUnitsPerOne);
       if (next_bound < least_shown) break;
       decoded = std::min(objects, 2 * decoded);
     }
-    if (kept_.size() > std::max(kKeptObjects, decoded)) KeepOnly(std::span(order).first(decoded));
+    if (kept_.size() > std::max(kKeptObjects, decoded)) KeepOnly(std::span(top).first(decoded));
     std::vector<Assessment> assessments(decoded);
     for (std::size_t j = 0; j < decoded; ++j) {
-      assessments[j].object = index.objects()[order[j]].object;
+      assessments[j].object = index.objects()[top[j]].object;
       assessments[j].score = sums[j] / static_cast<double>(frames);
     }
     return assessments;
@@ -378,8 +412,11 @@ class OrientationHmm final : public RecognitionEngine {
   // The matched view of each frame is the most similar view of the path's sector there.
   void Complete(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
                 const ObjectRows& rows, Assessment& assessment) override {
+    const auto lane = std::find(lanes_.begin(), lanes_.end(),
+                                static_cast<std::uint32_t>(index.PositionOf(assessment.object->id())));
+    if (lane == lanes_.end()) throw std::logic_error("HMM: an object the last answer did not decode");
     const std::span<const std::uint16_t> path =
-        viterbi_.path(static_cast<std::size_t>(lane_.at(index.PositionOf(assessment.object->id()))));
+        viterbi_.path(static_cast<std::size_t>(lane - lanes_.begin()));
     const SectorViews& sectors = assessment.object->Sectors(states_);
     const auto& views = assessment.object->model().views;
     assessment.matched.clear();
@@ -494,14 +531,13 @@ class OrientationHmm final : public RecognitionEngine {
   }
 
   // Decodes the objects at `positions` (lane j for positions[j]) over the window and sets
-  // sums[j] to the sum of TC along object j's path; lane_ maps positions to lanes for Complete.
+  // sums[j] to the sum of TC along object j's path; lanes_ keeps the positions for Complete.
   void Decode(const ViewIndexSnapshot& index, std::span<const QueryFrame> window,
               std::span<const std::uint32_t> positions, std::vector<double>& sums) {
     Keep(index, window, positions);
     const std::size_t frames = frames_.size();
     const std::size_t lanes = positions.size();
-    lane_.assign(table_->object_count(), -1);
-    for (std::size_t j = 0; j < lanes; ++j) lane_[positions[j]] = static_cast<std::int32_t>(j);
+    lanes_.assign(positions.begin(), positions.end());
     // The decoded objects' emissions, gathered into BatchViterbi's [state][lane] layout and
     // sharpened as they are copied (the window keeps the similarities themselves). A kept
     // object's states are adjacent in a window frame.
@@ -541,9 +577,10 @@ class OrientationHmm final : public RecognitionEngine {
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
   std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn
+  std::vector<std::uint32_t> bound_;    // [object]: the sum of its best over the window frames
   std::vector<std::uint32_t> kept_;     // [slot]: the position of a kept object
   std::vector<std::int32_t> slot_;      // [object position]: its slot in kept_, or -1
-  std::vector<std::int32_t> lane_;      // [object position]: its lane in viterbi_, or -1
+  std::vector<std::uint32_t> lanes_;    // [lane of viterbi_]: the object position decoded there
   std::vector<std::vector<float>> gathered_;  // scratch: the decoded objects' emissions
   WindowFrame spare_;  // the last frame dropped: its buffers are reused by the next Append
 };
