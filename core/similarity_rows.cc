@@ -9,40 +9,34 @@ namespace orbit {
 
 namespace {
 
-// qc[v] = q . c_v for `count` descriptors: Tanimoto()'s exact integer products, in AVX2 where
-// the CPU has it. (c . c is the object's, IndexedObject::squared_norms; q . q the frame's.)
-// Summed in 16 bits, exactly: descriptor values are at most 7 (checked on every frame and
-// view), so a dot product is at most 144 x 49 = 7056; 16-bit lanes do twice the work of 32-bit
-// ones per instruction.
+// qc[v] += q * bin[v] for `count` views: one bin's share of Tanimoto()'s exact integer products
+// q . c_v, in AVX2 where the CPU has it. (c . c is the object's, IndexedObject::squared_norms;
+// q . q the frame's.) Summed in 16 bits, exactly: descriptor values are at most 7 (checked on
+// every frame and view), so a dot product is at most 144 x 49 = 7056; 16-bit lanes do twice the
+// work of 32-bit ones per instruction.
 static_assert(kDescriptorSize * 7 * 7 <= 0xFFFF);
-ORBIT_AVX2_CLONES void Dots(const std::uint8_t* __restrict q,
-                            const std::uint8_t* const* __restrict descriptors, std::size_t count,
-                            std::int32_t* __restrict qc) {
+ORBIT_AVX2_CLONES void AddScaledBin(const std::uint8_t* __restrict bin, std::uint16_t q,
+                                    std::uint16_t* __restrict qc, std::size_t count) {
   for (std::size_t v = 0; v < count; ++v) {
-    const std::uint8_t* __restrict c = descriptors[v];
-    std::uint16_t dot = 0;
-    for (int i = 0; i < kDescriptorSize; ++i) {
-      dot = static_cast<std::uint16_t>(dot + static_cast<std::uint16_t>(q[i] * c[i]));
-    }
-    qc[v] = dot;
+    qc[v] = static_cast<std::uint16_t>(qc[v] + static_cast<std::uint16_t>(q * bin[v]));
   }
 }
 
 }  // namespace
 
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object) {
-  const std::vector<ModelView>& views = object.model().views;
   const std::vector<std::int32_t>& cc = object.squared_norms();
-  const std::size_t count = views.size();
-  // The thread's scratch: a session's answer computes a few of these rows per frame.
-  thread_local std::vector<const std::uint8_t*> descriptors;
-  thread_local std::vector<std::int32_t> qc;
-  descriptors.resize(count);
-  qc.resize(count);
-  for (std::size_t v = 0; v < count; ++v) descriptors[v] = views[v].descriptor.data();
-  Dots(frame.data(), descriptors.data(), count, qc.data());
+  const std::size_t count = cc.size();
+  // The thread's scratch: a session's answer computes a few of these rows per frame. The
+  // products bin by bin (IndexedObject::view_bins), over the frame's non-zero bins only.
+  thread_local std::vector<std::uint16_t> qc;
+  qc.assign(count, 0);
   std::int32_t qq = 0;
-  for (const std::uint8_t value : frame) qq += value * value;
+  for (std::size_t d = 0; d < kDescriptorSize; ++d) {
+    if (frame[d] == 0) continue;
+    qq += frame[d] * frame[d];
+    AddScaledBin(&object.view_bins()[d * count], frame[d], qc.data(), count);
+  }
   // As Tanimoto(): 1 for two zero vectors, else q.c / (q.q + c.c - q.c), rounded once.
   std::vector<float> row(count);
   for (std::size_t v = 0; v < count; ++v) {
