@@ -118,6 +118,7 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
   std::stable_sort(by_azimuth_.begin(), by_azimuth_.end(), [this](int a, int b) {
     return model_.views[a].azimuth < model_.views[b].azimuth;
   });
+  for (const int v : by_azimuth_) sorted_azimuths_.push_back(model_.views[v].azimuth);
 }
 
 std::pair<int, int> IndexedObject::NeighbourViews(double azimuth) const {

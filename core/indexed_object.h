@@ -59,6 +59,9 @@ class IndexedObject {
 
   // Indices of model().views in increasing azimuth order (ties: lower index first).
   const std::vector<int>& views_by_azimuth() const { return by_azimuth_; }
+  // Their azimuths, in that order ([0, 360), ascending): side by side, for the pose estimate's
+  // sweep on every frame, instead of one model view (and cache line) each.
+  const std::vector<double>& sorted_azimuths() const { return sorted_azimuths_; }
 
   // c.c of each view's descriptor, in model().views order: the half of a Tanimoto coefficient
   // that does not depend on the frame (core/similarity_rows.h).
@@ -87,6 +90,7 @@ class IndexedObject {
  private:
   ObjectModel model_;
   std::vector<int> by_azimuth_;
+  std::vector<double> sorted_azimuths_;
   std::vector<std::int32_t> squared_norms_;
   std::vector<std::uint8_t> view_bins_;
   mutable std::mutex sectors_mutex_;

@@ -138,12 +138,17 @@ ViterbiPath Viterbi(std::span<const double> initial,
 
 namespace {
 
+// An unseen object's emissions as a window keeps them (below): the emission is |-1| = 1 in
+// every state (b uniform) and its similarity on any path max(-1, 0) = 0, so that decoding reads
+// both from the kept values alone.
+constexpr float kUnseenEmission = -1.0f;
+
 // In place, values[i * n + o] = TC(S_i, o_t) becomes b_i(o_t) up to a per-frame constant:
-// the similarity floored at 1e-12 of the object's sum over its states, or 1 for every state when
-// that sum is 0 (b uniform: the object is unseen in the frame). best[o] is the object's highest
-// emission, or 0 when it is unseen (its similarity on any path), so best[o] > 0 exactly when the
-// object is seen. `sum` is scratch of n floats. Called with n = 1 on one object's values, it
-// gives what it gives that object among many.
+// the similarity floored at 1e-12 of the object's sum over its states (> 0), or
+// kUnseenEmission for every state when that sum is 0 (the object is unseen in the frame).
+// best[o] is the object's highest emission, or 0 when it is unseen (its similarity on any
+// path), so best[o] > 0 exactly when the object is seen. `sum` is scratch of n floats. Called
+// with n = 1 on one object's values, it gives what it gives that object among many.
 ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int states,
                                                  float* __restrict sum, float* __restrict best,
                                                  std::size_t n) {
@@ -157,7 +162,7 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
     float* row = &values[static_cast<std::size_t>(i) * n];
     for (std::size_t o = 0; o < n; ++o) {
       const float floor = static_cast<float>(kEmissionFloor) * sum[o];
-      row[o] = sum[o] > 0.0f ? std::max(row[o], floor) : 1.0f;
+      row[o] = sum[o] > 0.0f ? std::max(row[o], floor) : kUnseenEmission;
       best[o] = sum[o] > 0.0f ? std::max(best[o], row[o]) : 0.0f;
     }
   }
@@ -540,22 +545,25 @@ class OrientationHmm final : public RecognitionEngine {
     lanes_.assign(positions.begin(), positions.end());
     // The decoded objects' emissions, gathered into BatchViterbi's [state][lane] layout and
     // sharpened as they are copied (the window keeps the similarities themselves). A kept
-    // object's states are adjacent in a window frame.
+    // object's states are adjacent in a window frame. The scratch is the thread's: warm in its
+    // cache whichever session it serves.
     const std::size_t states = static_cast<std::size_t>(states_);
     const int sharpness = options().hmm_sharpness;
-    gathered_.resize(frames);
+    thread_local std::vector<float> gathered;  // [frame][state][lane]
+    gathered.resize(frames * states * lanes);
     std::vector<const float*> emissions;
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
       const float* kept = frames_[t].kept.data();
-      std::vector<float>& lanes_of_frame = gathered_[t];
-      lanes_of_frame.resize(states * lanes);
+      float* lanes_of_frame = &gathered[t * states * lanes];
       for (std::size_t j = 0; j < lanes; ++j) {
         const float* object_states = kept + static_cast<std::size_t>(slot_[positions[j]]) * states;
-        for (std::size_t i = 0; i < states; ++i) lanes_of_frame[i * lanes + j] = object_states[i];
+        for (std::size_t i = 0; i < states; ++i) {
+          lanes_of_frame[i * lanes + j] = std::abs(object_states[i]);  // kUnseenEmission: 1
+        }
       }
-      Sharpen(lanes_of_frame.data(), lanes_of_frame.size(), sharpness);
-      emissions.push_back(lanes_of_frame.data());
+      Sharpen(lanes_of_frame, states * lanes, sharpness);
+      emissions.push_back(lanes_of_frame);
       if (t > 0) steps.push_back(&frames_[t].step);
     }
     viterbi_.Decode(emissions, steps, lanes);
@@ -565,7 +573,7 @@ class OrientationHmm final : public RecognitionEngine {
       const std::size_t slot = static_cast<std::size_t>(slot_[positions[j]]);
       for (std::size_t t = 0; t < frames; ++t) {
         // The TC of the path's state, from the kept (unsharpened) emissions; 0 when unseen.
-        if (frames_[t].best[positions[j]] > 0) sums[j] += frames_[t].kept[slot * states + path[t]];
+        sums[j] += std::max(frames_[t].kept[slot * states + path[t]], 0.0f);
       }
     }
   }
@@ -581,7 +589,6 @@ class OrientationHmm final : public RecognitionEngine {
   std::vector<std::uint32_t> kept_;     // [slot]: the position of a kept object
   std::vector<std::int32_t> slot_;      // [object position]: its slot in kept_, or -1
   std::vector<std::uint32_t> lanes_;    // [lane of viterbi_]: the object position decoded there
-  std::vector<std::vector<float>> gathered_;  // scratch: the decoded objects' emissions
   WindowFrame spare_;  // the last frame dropped: its buffers are reused by the next Append
 };
 

@@ -58,11 +58,8 @@ std::vector<int> NearestAfterTurn(const std::vector<double>& azimuths, double tu
 
 PoseEstimate EstimatePose(std::span<const QueryFrame> window, const ObjectRows& rows) {
   const IndexedObject& object = *rows.object;
-  const std::vector<ModelView>& views = object.model().views;
   const std::vector<int>& order = object.views_by_azimuth();
-  std::vector<double> azimuths;
-  azimuths.reserve(order.size());
-  for (const int v : order) azimuths.push_back(NormaliseAzimuth(views[v].azimuth));
+  const std::vector<double>& azimuths = object.sorted_azimuths();
   const QueryFrame& latest = window.back();
   // score[i]: the mean TC when the view at position i of `order` faces the latest frame.
   std::vector<double> score(order.size(), 0);

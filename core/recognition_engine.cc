@@ -227,6 +227,7 @@ FrameUpdate RecognitionEngine::Answer() {
   // Recognition: accept or unknown, by the options' rule.
   Assessment& winner = assessments.front();
   const ObjectRows winner_rows = rows_->For(window_, *winner.object);
+  Prefetch(winner_rows);
   Complete(*index_, window_, winner_rows, winner);
   if (ordered > 1) {
     const ObjectRows runner_up_rows = rows_->For(window_, *assessments[1].object);

@@ -47,6 +47,13 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
   return row;
 }
 
+void Prefetch(const ObjectRows& rows) {
+  constexpr std::size_t kLineFloats = 64 / sizeof(float);
+  for (const std::span<const float> row : rows.rows) {
+    for (std::size_t v = 0; v < row.size(); v += kLineFloats) __builtin_prefetch(&row[v]);
+  }
+}
+
 void SimilarityRows::Forget(std::span<const IndexedObject* const> objects) {
   for (std::vector<Row>& rows : frames_) {
     std::erase_if(rows, [&](const Row& row) {

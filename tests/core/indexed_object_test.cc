@@ -52,6 +52,7 @@ TEST(IndexedObjectTest, AzimuthsAreNormalisedAndOrdered) {
   EXPECT_EQ(object.model().views[0].azimuth, 10);
   EXPECT_EQ(object.model().views[1].azimuth, 270);
   EXPECT_EQ(object.views_by_azimuth(), (std::vector<int>{0, 2, 1}));
+  EXPECT_EQ(object.sorted_azimuths(), (std::vector<double>{10, 180, 270}));
 }
 
 TEST(IndexedObjectTest, AModelWithoutViewsOrWithABadViewIsRefused) {
