@@ -87,7 +87,7 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
     throw std::invalid_argument("Viterbi needs one transition step between consecutive frames");
   }
   for (const SparseTransitions* step : steps) {
-    if (step->into.size() != states) {
+    if (step->states() != states) {
       throw std::invalid_argument("Viterbi: transition size differs from states");
     }
   }
@@ -95,39 +95,44 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
     paths_.clear();
     return;
   }
-  score_.resize(states * objects);
-  next_.resize(states * objects);
-  best_.resize(objects);
-  arg_.resize(objects);
-  back_.resize(frames_ * states * objects);
-  top_.resize(objects);
+  // The scratch is the thread's, not the decoder's: a server thread serving many sessions in
+  // turn finds it in its cache, where each session's own would be cold.
+  thread_local std::vector<float> score, next, best, top;
+  thread_local std::vector<std::int32_t> arg;
+  thread_local std::vector<std::uint16_t> back_pointers;
+  score.resize(states * objects);
+  next.resize(states * objects);
+  best.resize(objects);
+  arg.resize(objects);
+  back_pointers.resize(frames_ * states * objects);
+  top.resize(objects);
 
   for (std::size_t t = 0; t < frames_; ++t) {
     const float* emission = emissions[t];
-    std::fill(top_.begin(), top_.end(), 0.0f);
+    std::fill(top.begin(), top.end(), 0.0f);
     if (t == 0) {
       for (std::size_t i = 0; i < states; ++i) {
-        Start(initial_[i], &emission[i * objects], &next_[i * objects], top_.data(), objects);
+        Start(initial_[i], &emission[i * objects], &next[i * objects], top.data(), objects);
       }
     } else {
-      std::uint16_t* back = &back_[t * states * objects];
+      std::uint16_t* back = &back_pointers[t * states * objects];
       for (std::size_t j = 0; j < states; ++j) {
-        const auto& into = steps[t - 1]->into[j];
+        const std::span<const std::pair<int, float>> into = steps[t - 1]->into(j);
         if (into.empty()) {
-          std::fill(best_.begin(), best_.end(), 0.0f);
-          std::fill(arg_.begin(), arg_.end(), 0);
+          std::fill(best.begin(), best.end(), 0.0f);
+          std::fill(arg.begin(), arg.end(), 0);
         }
         for (std::size_t k = 0; k < into.size(); ++k) {
           const auto [i, a] = into[k];
-          (k == 0 ? Enter : Relax)(&score_[i * objects], a, i, best_.data(), arg_.data(), objects);
+          (k == 0 ? Enter : Relax)(&score[i * objects], a, i, best.data(), arg.data(), objects);
         }
-        Emit(best_.data(), arg_.data(), &emission[j * objects], &next_[j * objects],
-             &back[j * objects], top_.data(), objects);
+        Emit(best.data(), arg.data(), &emission[j * objects], &next[j * objects],
+             &back[j * objects], top.data(), objects);
       }
     }
-    Reciprocal(top_.data(), objects);
-    for (std::size_t i = 0; i < states; ++i) Rescale(&next_[i * objects], top_.data(), objects);
-    score_.swap(next_);
+    Reciprocal(top.data(), objects);
+    for (std::size_t i = 0; i < states; ++i) Rescale(&next[i * objects], top.data(), objects);
+    score.swap(next);
   }
 
   // Backtrack each object from its best final state (lowest index among equals).
@@ -135,12 +140,12 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
   for (std::size_t o = 0; o < objects; ++o) {
     std::size_t last = 0;
     for (std::size_t i = 1; i < states; ++i) {
-      if (score_[i * objects + o] > score_[last * objects + o]) last = i;
+      if (score[i * objects + o] > score[last * objects + o]) last = i;
     }
     std::uint16_t* path = &paths_[o * frames_];
     path[frames_ - 1] = static_cast<std::uint16_t>(last);
     for (std::size_t t = frames_ - 1; t > 0; --t) {
-      path[t - 1] = back_[(t * states + path[t]) * objects + o];
+      path[t - 1] = back_pointers[(t * states + path[t]) * objects + o];
     }
   }
 }

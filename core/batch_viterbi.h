@@ -19,9 +19,16 @@
 
 namespace orbit {
 
-// One frame step's transitions, sparse: into[j] lists (i, a_ij) for every a_ij > 0, i ascending.
+// One frame step's transitions, sparse: into(j) lists (i, a_ij) for every a_ij > 0, i
+// ascending. Kept in two flat arrays (a window holds one step per frame, read on every answer).
 struct SparseTransitions {
-  std::vector<std::vector<std::pair<int, float>>> into;
+  std::vector<std::uint32_t> first;  // [states + 1]: into(j) is entries[first[j], first[j + 1])
+  std::vector<std::pair<int, float>> entries;
+
+  std::size_t states() const { return first.empty() ? 0 : first.size() - 1; }
+  std::span<const std::pair<int, float>> into(std::size_t j) const {
+    return {entries.data() + first[j], first[j + 1] - first[j]};
+  }
 };
 
 class BatchViterbi {
@@ -45,10 +52,6 @@ class BatchViterbi {
  private:
   std::vector<float> initial_;
   std::size_t frames_ = 0;
-  // Scratch, reused across calls: scores [state][object], back pointers [frame][state][object].
-  std::vector<float> score_, next_, best_, top_;
-  std::vector<std::int32_t> arg_;
-  std::vector<std::uint16_t> back_;
   std::vector<std::uint16_t> paths_;  // [object][frame]
 };
 

@@ -53,26 +53,36 @@ std::vector<std::vector<double>> TransitionMatrix(std::span<const Arc> sectors, 
   return a;
 }
 
-SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta) {
-  const auto a = TransitionMatrix(sectors, delta);
-  SparseTransitions step;
-  step.into.resize(sectors.size());
+void MakeSparseTransitions(std::span<const Arc> sectors, double delta, SparseTransitions& step) {
+  step.first.assign(1, 0);
+  step.entries.clear();
+  // TransitionMatrix()'s values, column by column, without the dense matrix.
   for (std::size_t j = 0; j < sectors.size(); ++j) {
+    if (!(sectors[j].width > 0)) throw std::invalid_argument("an HMM sector has no width");
+    const Arc shifted{sectors[j].start - WrapDegrees(delta), sectors[j].width};  // L_j
     for (std::size_t i = 0; i < sectors.size(); ++i) {
-      if (a[i][j] > 0) step.into[j].emplace_back(static_cast<int>(i), static_cast<float>(a[i][j]));
+      const double a = ArcOverlap(shifted, sectors[i]) / shifted.width;
+      if (a > 0) step.entries.emplace_back(static_cast<int>(i), static_cast<float>(a));
     }
+    step.first.push_back(static_cast<std::uint32_t>(step.entries.size()));
   }
+}
+
+SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta) {
+  SparseTransitions step;
+  MakeSparseTransitions(sectors, delta, step);
   return step;
 }
 
 SparseTransitions UnknownTurnTransitions(std::span<const Arc> sectors) {
   const std::vector<double> initial = InitialProbabilities(sectors);
   SparseTransitions step;
-  step.into.resize(sectors.size());
+  step.first.assign(1, 0);
   for (std::size_t j = 0; j < sectors.size(); ++j) {
     for (std::size_t i = 0; i < sectors.size(); ++i) {
-      step.into[j].emplace_back(static_cast<int>(i), static_cast<float>(initial[j]));
+      step.entries.emplace_back(static_cast<int>(i), static_cast<float>(initial[j]));
     }
+    step.first.push_back(static_cast<std::uint32_t>(step.entries.size()));
   }
   return step;
 }
@@ -322,7 +332,11 @@ class OrientationHmm final : public RecognitionEngine {
     }
     if (previous_) {
       const std::optional<double> turn = MeasuredTurn(*previous_, frame);
-      stored.step = turn ? MakeSparseTransitions(sectors_, *turn) : unknown_turn_;
+      if (turn) {
+        MakeSparseTransitions(sectors_, *turn, stored.step);  // in the reused frame's buffers
+      } else {
+        stored.step = unknown_turn_;
+      }
     }
     previous_ = frame;
     bound_.resize(objects, 0);

@@ -43,8 +43,10 @@ std::vector<double> InitialProbabilities(std::span<const Arc> sectors);
 // Throws std::invalid_argument when a sector is empty or invalid (ArcOverlap's rules).
 std::vector<std::vector<double>> TransitionMatrix(std::span<const Arc> sectors, double delta);
 
-// The same transitions kept sparse, for BatchViterbi: into[j] lists (i, a_ij) for a_ij > 0.
+// The same transitions kept sparse, for BatchViterbi: into(j) lists (i, a_ij) for a_ij > 0.
 SparseTransitions MakeSparseTransitions(std::span<const Arc> sectors, double delta);
+// The same, into `step`'s buffers (an HMM session reuses a departed frame's).
+void MakeSparseTransitions(std::span<const Arc> sectors, double delta, SparseTransitions& step);
 
 // The transitions when the turn between two frames is not known (a frame without azimuth):
 // from any sector to sector j with its initial probability, a_ij = pi_j, so the path may jump
