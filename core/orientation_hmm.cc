@@ -298,10 +298,10 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
 //
 // What a frame keeps while it is in the window: every object's best emission in 16 bits (the
 // bound that chooses what to decode), and the emissions of the few objects decoded lately ("kept"
-// objects), not all 8000 states' (32 KB a frame, 256 KB a session at 1000 objects). A session's
-// working set is then about 40 KB, so hundreds of sessions stay in the shared cache where
-// whole windows would stream from memory on every frame (docs/results/load.md, "A window of
-// bounds"). An object decoded for the first time gets its emissions for the older frames from
+// objects), not all 8000 states' (32 KB a frame, 256 KB a session at 1000 objects). A session
+// then holds about 30 KB at 1000 objects, so that many more sessions' windows stay in the
+// shared cache, where whole windows streamed from memory on every frame (docs/results/load.md,
+// "A window of bounds"). An object decoded for the first time gets its emissions for the older frames from
 // its own sector sums (SectorSimilarityTable::ComputeObject: the same values to the last bit).
 class OrientationHmm final : public RecognitionEngine {
  public:
