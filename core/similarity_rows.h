@@ -68,8 +68,8 @@ class SimilarityRows {
   };
   // [frame]: the rows computed for it, found by a linear search: a frame holds the rows of the
   // few objects its session's answers looked at closely while it was in the window, and a short
-  // contiguous array is faster to search than a hash map is to probe when the session's memory
-  // is out of cache (hundreds of sessions on one core).
+  // contiguous array touches fewer cache lines than a hash map's buckets and nodes, which counts
+  // when the session's memory is out of cache (hundreds of sessions on one core).
   std::deque<std::vector<Row>> frames_;
 };
 

@@ -30,8 +30,8 @@ ObjectModel Model(std::vector<DescriptorValues> descriptors, std::vector<double>
 
 // Three views: bin d of view v sits at view_bins()[d * 3 + v]; c.c per view.
 TEST(IndexedObjectTest, ViewBinsHoldEachBinOfEveryViewSideBySide) {
-  const IndexedObject object(Model({Bins({{0, 1}, {143, 7}}), Bins({{0, 2}, {5, 3}}), Bins({{5, 4}})},
-                                   {0, 120, 240}));
+  const IndexedObject object(
+      Model({Bins({{0, 1}, {143, 7}}), Bins({{0, 2}, {5, 3}}), Bins({{5, 4}})}, {0, 120, 240}));
   const std::vector<std::uint8_t>& bins = object.view_bins();
   ASSERT_EQ(bins.size(), 144u * 3);
   EXPECT_EQ((std::vector<std::uint8_t>(bins.begin(), bins.begin() + 3)),
@@ -48,7 +48,8 @@ TEST(IndexedObjectTest, ViewBinsHoldEachBinOfEveryViewSideBySide) {
 }
 
 TEST(IndexedObjectTest, AzimuthsAreNormalisedAndOrdered) {
-  const IndexedObject object(Model({Bins({{0, 1}}), Bins({{1, 1}}), Bins({{2, 1}})}, {370, -90, 180}));
+  const IndexedObject object(
+      Model({Bins({{0, 1}}), Bins({{1, 1}}), Bins({{2, 1}})}, {370, -90, 180}));
   EXPECT_EQ(object.model().views[0].azimuth, 10);
   EXPECT_EQ(object.model().views[1].azimuth, 270);
   EXPECT_EQ(object.views_by_azimuth(), (std::vector<int>{0, 2, 1}));
