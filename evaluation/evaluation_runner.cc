@@ -24,6 +24,10 @@
 #include "core/product_pipeline.h"
 #include "core/view_description.h"
 
+// gperftools' malloc_extension_c.h, when tcmalloc is linked (HeapBytesInUse).
+extern "C" int MallocExtension_GetNumericProperty(const char* property, std::size_t* value)
+    __attribute__((weak));
+
 namespace orbit {
 namespace {
 
@@ -33,9 +37,17 @@ double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Bytes the allocator has handed out and not taken back (glibc's mallinfo2: arena and mmapped
-// blocks). Its growth across a single-threaded step is the heap memory that step kept.
+// Bytes the allocator has handed out and not taken back. Its growth across a single-threaded
+// step is the heap memory that step kept. `orbit` links tcmalloc (cmake/OrbitDeps.cmake,
+// ORBIT_TCMALLOC), whose heap glibc's mallinfo2 does not see: ask tcmalloc when it is linked
+// (its C interface, declared weak so that a program without it links too), else glibc (arena
+// and mmapped blocks).
 std::size_t HeapBytesInUse() {
+  std::size_t allocated = 0;
+  if (MallocExtension_GetNumericProperty != nullptr &&
+      MallocExtension_GetNumericProperty("generic.current_allocated_bytes", &allocated) != 0) {
+    return allocated;
+  }
   const struct mallinfo2 info = ::mallinfo2();
   return info.uordblks + info.hblkhd;
 }
