@@ -231,6 +231,17 @@ void HighestBounds(std::span<const std::uint32_t> bound, std::size_t count,
   }
 }
 
+// kept += all[i * objects + o] for each object o of `positions`, state by state: their emissions,
+// object by object, from a frame's [state][object] array.
+void AppendEmissions(std::span<const float> all, std::size_t objects, int states,
+                     std::span<const std::uint32_t> positions, std::vector<float>& kept) {
+  for (const std::uint32_t position : positions) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(states); ++i) {
+      kept.push_back(all[i * objects + position]);
+    }
+  }
+}
+
 // In place, values[k] = values[k]^(2^squarings) (EngineOptions::hmm_sharpness). At the 32nd
 // power a similarity under about 0.065 underflows to 0: an object that matches a frame that
 // poorly in every state gets an arbitrary path through it and reads 0 there, which changes
@@ -322,15 +333,9 @@ class OrientationHmm final : public RecognitionEngine {
     WindowFrame stored = std::move(spare_);
     const std::span<const float> emissions =
         Score(*table_, frame.descriptor.values, states_, stored.best);
-    // The kept objects' emissions, from the frame's [state][object] scratch.
-    const std::size_t states = static_cast<std::size_t>(states_);
     const std::size_t objects = table_->object_count();
-    stored.kept.resize(kept_.size() * states);
-    for (std::size_t slot = 0; slot < kept_.size(); ++slot) {
-      for (std::size_t i = 0; i < states; ++i) {
-        stored.kept[slot * states + i] = emissions[i * objects + kept_[slot]];
-      }
-    }
+    stored.kept.clear();
+    AppendEmissions(emissions, objects, states_, kept_, stored.kept);
     if (previous_) {
       const std::optional<double> turn = MeasuredTurn(*previous_, frame);
       if (turn) {
@@ -513,20 +518,21 @@ class OrientationHmm final : public RecognitionEngine {
     const bool whole_frames = added.size() * 8 > objects;
     std::vector<float> emissions(states);
     std::vector<std::uint16_t> bests;
+    std::vector<const SectorViews*> sectors;
+    for (const std::uint32_t position : added) {
+      if (!whole_frames) sectors.push_back(&index.objects()[position].object->Sectors(states_));
+    }
     float sum = 0, best = 0;
     for (std::size_t t = 0; t < frames_.size(); ++t) {
       std::vector<float>& kept = frames_[t].kept;
       if (whole_frames) {
-        const std::span<const float> all =
-            Score(*table_, window[t].descriptor.values, states_, bests);
-        for (const std::uint32_t position : added) {
-          for (std::size_t i = 0; i < states; ++i) kept.push_back(all[i * objects + position]);
-        }
+        AppendEmissions(Score(*table_, window[t].descriptor.values, states_, bests), objects,
+                        states_, added, kept);
         continue;
       }
-      for (const std::uint32_t position : added) {
-        const SectorViews& sectors = index.objects()[position].object->Sectors(states_);
-        SectorSimilarityTable::ComputeObject(window[t].descriptor.values, sectors, emissions);
+      for (const SectorViews* object_sectors : sectors) {
+        SectorSimilarityTable::ComputeObject(window[t].descriptor.values, *object_sectors,
+                                             emissions);
         EmissionsFromSimilarities(emissions.data(), states_, &sum, &best, 1);
         kept.insert(kept.end(), emissions.begin(), emissions.end());
       }

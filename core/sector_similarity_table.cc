@@ -36,9 +36,18 @@ ORBIT_AVX2_CLONES void TanimotoFromSums(const std::int32_t* __restrict acc,
   }
 }
 
-}  // namespace
-
-namespace {
+// A state's constants as the table stores them and ComputeObject uses them, written once so that
+// the two give the same floats: 1 / its views, its mean's S.S, and whether its sums could
+// overflow 16 bits (then it is computed from its mean).
+float InverseCount(const SectorViews& sectors, std::size_t i) {
+  return 1.0f / static_cast<float>(sectors.views[i].size());
+}
+float SquaredNorm(const SectorViews& sectors, std::size_t i) {
+  return static_cast<float>(sectors.squared_norm[i]);
+}
+bool IsWide(const SectorViews& sectors, std::size_t i) {
+  return sectors.views[i].size() > kMaxViewsForExactSums;
+}
 
 std::vector<const IndexedObject*> ObjectsOf(const ViewIndexSnapshot& index) {
   std::vector<const IndexedObject*> objects;
@@ -78,12 +87,11 @@ SectorSimilarityTable::SectorSimilarityTable(std::span<const IndexedObject* cons
   std::vector<const ViewSum*> sums(count, nullptr);
   for (std::size_t o = 0; o < objects_; ++o) {
     const SectorViews& sectors = objects[o]->Sectors(states_);
-    for (int i = 0; i < states_; ++i) {
-      const std::size_t s = static_cast<std::size_t>(i) * objects_ + o;
-      const std::vector<int>& members = sectors.views[i];
-      inverse_counts_[s] = 1.0f / static_cast<float>(members.size());
-      squared_norms_[s] = static_cast<float>(sectors.squared_norm[i]);
-      if (members.size() > kMaxViewsForExactSums) {
+    for (std::size_t i = 0; i < static_cast<std::size_t>(states_); ++i) {
+      const std::size_t s = i * objects_ + o;
+      inverse_counts_[s] = InverseCount(sectors, i);
+      squared_norms_[s] = SquaredNorm(sectors, i);
+      if (IsWide(sectors, i)) {
         wide_states_.emplace_back(s, &sectors.descriptor[i]);
       } else {
         sums[s] = &sectors.sum[i];
@@ -153,13 +161,13 @@ void SectorSimilarityTable::ComputeObject(const DescriptorValues& query,
     std::int32_t dot = 0;
     for (std::size_t k = 0; k < used; ++k) dot += query[bins[k]] * sum[bins[k]];
     acc[i] = dot;
-    inverse_counts[i] = 1.0f / static_cast<float>(sectors.views[i].size());
-    squared_norms[i] = static_cast<float>(sectors.squared_norm[i]);
+    inverse_counts[i] = InverseCount(sectors, i);
+    squared_norms[i] = SquaredNorm(sectors, i);
   }
   TanimotoFromSums(acc.data(), inverse_counts.data(), squared_norms.data(),
                    static_cast<float>(query_norm), similarity.data(), count);
   for (std::size_t i = 0; i < count; ++i) {
-    if (sectors.views[i].size() > kMaxViewsForExactSums) {
+    if (IsWide(sectors, i)) {
       similarity[i] = static_cast<float>(Tanimoto(query, sectors.descriptor[i]));
     }
   }
