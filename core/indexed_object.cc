@@ -106,13 +106,9 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
     for (const std::uint8_t value : view.descriptor) norm += value * value;
     squared_norms_.push_back(norm);
   }
-  const std::size_t views = model_.views.size();
-  view_bins_.resize(kDescriptorSize * views);
-  for (std::size_t v = 0; v < views; ++v) {
-    for (std::size_t d = 0; d < kDescriptorSize; ++d) {
-      view_bins_[d * views + v] = model_.views[v].descriptor[d];
-    }
-  }
+  std::vector<DescriptorValues> descriptors;
+  for (const ModelView& view : model_.views) descriptors.push_back(view.descriptor);
+  view_bins_ = ViewBins(descriptors);
   by_azimuth_.resize(model_.views.size());
   std::iota(by_azimuth_.begin(), by_azimuth_.end(), 0);
   std::stable_sort(by_azimuth_.begin(), by_azimuth_.end(), [this](int a, int b) {

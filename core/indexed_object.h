@@ -17,6 +17,7 @@
 
 #include "core/descriptor.h"
 #include "core/object_model.h"
+#include "core/view_bins.h"
 
 namespace orbit {
 
@@ -67,12 +68,9 @@ class IndexedObject {
   // that does not depend on the frame (core/similarity_rows.h).
   const std::vector<std::int32_t>& squared_norms() const { return squared_norms_; }
 
-  // The views' descriptors bin by bin: view_bins()[d * view_count() + v] =
-  // model().views[v].descriptor[d]. A frame's row of Tanimoto coefficients
-  // (core/similarity_rows.h) reads only the bins the frame has, about 21 of 144 in a COIL-100
-  // CEDD and 2 cache lines each at 72 views, instead of every view's whole descriptor: where
-  // hundreds of sessions look at different objects, those reads come from memory.
-  const std::vector<std::uint8_t>& view_bins() const { return view_bins_; }
+  // The views' descriptors bin by bin, 4 bits a value (core/view_bins.h): what a frame's row
+  // of Tanimoto coefficients (core/similarity_rows.h) reads.
+  const ViewBins& view_bins() const { return view_bins_; }
 
   // The views on either side of `azimuth` (degrees, any value): `first` is the view at or
   // counter-clockwise-before it (largest azimuth <= it, circularly) and `second` the view at or
@@ -92,7 +90,7 @@ class IndexedObject {
   std::vector<int> by_azimuth_;
   std::vector<double> sorted_azimuths_;
   std::vector<std::int32_t> squared_norms_;
-  std::vector<std::uint8_t> view_bins_;
+  ViewBins view_bins_;
   mutable std::mutex sectors_mutex_;
   mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_;
 };

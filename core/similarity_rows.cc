@@ -3,39 +3,22 @@
 #include <algorithm>
 #include <cstdint>
 
-#include "core/cpu_dispatch.h"
-
 namespace orbit {
-
-namespace {
-
-// qc[v] += q * bin[v] for `count` views: one bin's share of Tanimoto()'s exact integer products
-// q . c_v, in AVX2 where the CPU has it. (c . c is the object's, IndexedObject::squared_norms;
-// q . q the frame's.) Summed in 16 bits, exactly: descriptor values are at most 7 (checked on
-// every frame and view), so a dot product is at most 144 x 49 = 7056; 16-bit lanes do twice the
-// work of 32-bit ones per instruction.
-static_assert(kDescriptorSize * 7 * 7 <= 0xFFFF);
-ORBIT_AVX2_CLONES void AddScaledBin(const std::uint8_t* __restrict bin, std::uint16_t q,
-                                    std::uint16_t* __restrict qc, std::size_t count) {
-  for (std::size_t v = 0; v < count; ++v) {
-    qc[v] = static_cast<std::uint16_t>(qc[v] + static_cast<std::uint16_t>(q * bin[v]));
-  }
-}
-
-}  // namespace
 
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object) {
   const std::vector<std::int32_t>& cc = object.squared_norms();
   const std::size_t count = cc.size();
   // The thread's scratch: a session's answer computes a few of these rows per frame. The
-  // products bin by bin (IndexedObject::view_bins), over the frame's non-zero bins only.
+  // products bin by bin (IndexedObject::view_bins), over the frame's non-zero bins only,
+  // summed in 16 bits, exactly: values are at most 7, so q . c_v is at most 144 x 49 = 7056.
+  static_assert(kDescriptorSize * 7 * 7 <= 0xFFFF);
   thread_local std::vector<std::uint16_t> qc;
-  qc.assign(count, 0);
+  qc.assign(object.view_bins().padded_count(), 0);
   std::int32_t qq = 0;
   for (std::size_t d = 0; d < kDescriptorSize; ++d) {
     if (frame[d] == 0) continue;
     qq += frame[d] * frame[d];
-    AddScaledBin(&object.view_bins()[d * count], frame[d], qc.data(), count);
+    object.view_bins().AddProducts(d, frame[d], qc);
   }
   // As Tanimoto(): 1 for two zero vectors, else q.c / (q.q + c.c - q.c), rounded once.
   std::vector<float> row(count);

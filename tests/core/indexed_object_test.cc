@@ -28,20 +28,21 @@ ObjectModel Model(std::vector<DescriptorValues> descriptors, std::vector<double>
   return model;
 }
 
-// Three views: bin d of view v sits at view_bins()[d * 3 + v]; c.c per view.
-TEST(IndexedObjectTest, ViewBinsHoldEachBinOfEveryViewSideBySide) {
+// Three views: each bin of every view as the descriptors give it; c.c per view.
+TEST(IndexedObjectTest, ViewBinsHoldEachBinOfEveryView) {
   const IndexedObject object(
       Model({Bins({{0, 1}, {143, 7}}), Bins({{0, 2}, {5, 3}}), Bins({{5, 4}})}, {0, 120, 240}));
-  const std::vector<std::uint8_t>& bins = object.view_bins();
-  ASSERT_EQ(bins.size(), 144u * 3);
-  EXPECT_EQ((std::vector<std::uint8_t>(bins.begin(), bins.begin() + 3)),
-            (std::vector<std::uint8_t>{1, 2, 0}));  // bin 0
-  EXPECT_EQ((std::vector<std::uint8_t>(bins.begin() + 15, bins.begin() + 18)),
-            (std::vector<std::uint8_t>{0, 3, 4}));  // bin 5
-  EXPECT_EQ((std::vector<std::uint8_t>(bins.end() - 3, bins.end())),
-            (std::vector<std::uint8_t>{7, 0, 0}));  // bin 143
+  const ViewBins& bins = object.view_bins();
+  ASSERT_EQ(bins.view_count(), 3u);
+  EXPECT_EQ(bins.Value(0, 0), 1);
+  EXPECT_EQ(bins.Value(0, 1), 2);
+  EXPECT_EQ(bins.Value(5, 1), 3);
+  EXPECT_EQ(bins.Value(5, 2), 4);
+  EXPECT_EQ(bins.Value(143, 0), 7);
   int non_zero = 0;
-  for (const std::uint8_t value : bins) non_zero += value != 0;
+  for (std::size_t d = 0; d < kDescriptorSize; ++d) {
+    for (std::size_t v = 0; v < 3; ++v) non_zero += bins.Value(d, v) != 0;
+  }
   EXPECT_EQ(non_zero, 5);
   // 1 + 49, 4 + 9, 16.
   EXPECT_EQ(object.squared_norms(), (std::vector<std::int32_t>{50, 13, 16}));
