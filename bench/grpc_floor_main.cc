@@ -1,7 +1,7 @@
 // build/orbit_grpc_floor: what gRPC and the kernel alone let a server reach on this machine, for
 // the closed-loop goals of docs/results/load.md ("The floor under the server").
 //
-//   orbit_grpc_floor [--listen ADDR] [--work-us US] [--touch-kb KB]
+//   orbit_grpc_floor [--listen ADDR] [--work-us US] [--touch-kb KB] [--session-kb KB]
 //
 // A stand-in for `orbit serve` that `orbit loadtest` can drive: it answers Models.ServerInfo
 // (variant cedd-lire, no frame-rate limit) and Recognition.Session, where each frame gets an
@@ -9,6 +9,11 @@
 // exactly as the real server runs it (the frame is handled in the read's reaction). The work
 // reads a buffer of TOUCH_KB kilobytes a cache line at a time (0: it only spins), so that a run
 // can stand for an engine of a given cost with or without a working set that evicts gRPC's.
+// With SESSION_KB, each session also owns that many kilobytes, which every one of its frames
+// reads a cache line at a time in a scattered order (as an engine reads its session's window)
+// before the busy work: where 8 sessions' memory stays in cache and 256 sessions' does not,
+// this is what reading it costs per frame, and so what any engine whose frames read that much
+// memory of their own loses from 8 to 256 sessions on this machine.
 // Nothing else: no model set, no validation, no rate limits. What it reaches at the engine's
 // cost is the most any server on this API and transport could reach on the same machine.
 #include <atomic>
@@ -36,6 +41,7 @@ struct FloorOptions {
   std::string listen = "127.0.0.1:50551";
   int work_us = 0;
   int touch_kb = 0;
+  int session_kb = 0;
 };
 
 // The stand-in engine: busy for `work_us`, reading `buffer` a cache line at a time from where
@@ -69,7 +75,10 @@ class BusyWork {
 
 class FloorSession final : public grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate> {
  public:
-  explicit FloorSession(BusyWork& work) : work_(work) { StartRead(&request_); }
+  FloorSession(BusyWork& work, int session_kb)
+      : work_(work), own_(static_cast<std::size_t>(session_kb) * 1024, 1) {
+    StartRead(&request_);
+  }
 
   void OnReadDone(bool ok) override {
     if (!ok) {
@@ -81,6 +90,7 @@ class FloorSession final : public grpc::ServerBidiReactor<v1::SessionRequest, v1
       return;
     }
     const Clock::time_point start = Clock::now();
+    sink_ += ReadOwn();
     sink_ += work_.Run();
     update_.Clear();
     update_.set_frame_index(frames_++);
@@ -101,7 +111,20 @@ class FloorSession final : public grpc::ServerBidiReactor<v1::SessionRequest, v1
   void OnDone() override { delete this; }
 
  private:
+  // Every line of the session's memory once, 97 lines apart (mod its line count), so that the
+  // hardware's stream prefetcher does not hide the misses but the reads stay independent.
+  std::uint64_t ReadOwn() const {
+    const std::size_t lines = own_.size() / 64;
+    const std::size_t stride = lines % 97 == 0 ? 1 : 97;  // visits every line once
+    std::uint64_t sum = 0;
+    for (std::size_t i = 0, line = 0; i < lines; ++i, line = (line + stride) % lines) {
+      sum += own_[line * 64];
+    }
+    return sum;
+  }
+
   BusyWork& work_;
+  const std::vector<std::uint8_t> own_;
   v1::SessionRequest request_;
   v1::SessionUpdate update_;
   std::int64_t frames_ = 0;
@@ -110,14 +133,15 @@ class FloorSession final : public grpc::ServerBidiReactor<v1::SessionRequest, v1
 
 class FloorRecognition final : public v1::Recognition::CallbackService {
  public:
-  explicit FloorRecognition(BusyWork& work) : work_(work) {}
+  FloorRecognition(BusyWork& work, int session_kb) : work_(work), session_kb_(session_kb) {}
   grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* Session(
       grpc::CallbackServerContext*) override {
-    return new FloorSession(work_);
+    return new FloorSession(work_, session_kb_);
   }
 
  private:
   BusyWork& work_;
+  const int session_kb_;
 };
 
 class FloorModels final : public v1::Models::CallbackService {
@@ -138,7 +162,7 @@ class FloorModels final : public v1::Models::CallbackService {
 
 constexpr const char* kUsage =
     "usage: orbit_grpc_floor [--listen ADDR (127.0.0.1:50551)] [--work-us US (>= 0, 0)] "
-    "[--touch-kb KB (>= 0, 0)]\n";
+    "[--touch-kb KB (>= 0, 0)] [--session-kb KB (>= 0, 0)]\n";
 
 int Usage(const std::string& why) {
   std::cerr << "orbit_grpc_floor: " << why << "\n" << kUsage;
@@ -164,17 +188,19 @@ int main(int argc, char** argv) {
     const std::string value = argv[++i];
     if (flag == "--listen") {
       options.listen = value;
-    } else if (flag == "--work-us" || flag == "--touch-kb") {
+    } else if (flag == "--work-us" || flag == "--touch-kb" || flag == "--session-kb") {
       const int v = std::atoi(value.c_str());
       if (v < 0 || (v == 0 && value != "0")) return Usage(flag + " must be an integer >= 0");
-      (flag == "--work-us" ? options.work_us : options.touch_kb) = v;
+      (flag == "--work-us"    ? options.work_us
+       : flag == "--touch-kb" ? options.touch_kb
+                              : options.session_kb) = v;
     } else {
       return Usage("unknown flag " + flag);
     }
   }
 
   BusyWork work(options.work_us, options.touch_kb);
-  FloorRecognition recognition(work);
+  FloorRecognition recognition(work, options.session_kb);
   FloorModels models;
   grpc::ServerBuilder builder;
   int port = 0;
@@ -187,7 +213,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::cerr << "orbit_grpc_floor: listening on " << options.listen << ", " << options.work_us
-            << " us of work per frame over " << options.touch_kb << " KB\n";
+            << " us of work per frame over " << options.touch_kb << " KB, "
+            << options.session_kb << " KB of its own per session\n";
   std::signal(SIGINT, [](int) { stop = true; });
   std::signal(SIGTERM, [](int) { stop = true; });
   while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));
