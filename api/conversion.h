@@ -9,11 +9,11 @@
 #include <string>
 #include <string_view>
 
-#include "core/descriptor.h"
-#include "core/object_model.h"
-#include "core/enrollment_feedback.h"
-#include "core/recognition_engine.h"
-#include "core/view_index.h"
+#include "core/descriptor/descriptor.h"
+#include "core/index/object_model.h"
+#include "core/decision/enrollment_feedback.h"
+#include "core/engines/recognition_engine.h"
+#include "core/index/view_index.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
 
@@ -27,7 +27,7 @@ DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant);
 // "cedd-lire", "cedd-full", "unspecified" or "unknown (N)": for messages.
 std::string ProtoVariantName(v1::DescriptorVariant variant);
 
-// A `cedd` field: exactly 144 bytes, each 0..7 (core/descriptor.h's check). Throws
+// A `cedd` field: exactly 144 bytes, each 0..7 (core/descriptor/descriptor.h's check). Throws
 // std::invalid_argument naming `field`, e.g. "frame.cedd value 9 at index 17 is outside 0..7".
 DescriptorValues DescriptorFromWire(const std::string& bytes, std::string_view field);
 

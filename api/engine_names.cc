@@ -4,8 +4,8 @@
 #include <cctype>
 #include <stdexcept>
 
-#include "core/product_pipeline.h"
-#include "core/recognition_engine.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
 
 namespace orbit {
 

@@ -3,7 +3,7 @@
 //
 // The names are those of proto/orbit/v1/recognition.proto's Engine values, lower-cased, without
 // "ENGINE_" and with '-' for '_': vci, hmm, vci-hmm, vci-bm, vci-w0, eis, siis, eiis. Every one
-// but vci-hmm is the name of one engine of core/recognition_engine.h (CreateEngine); vci-hmm runs
+// but vci-hmm is the name of one engine of core/engines/recognition_engine.h (CreateEngine); vci-hmm runs
 // vci and hmm side by side (server/session_engine.h). tests/api/engine_names_test.cc checks that
 // the proto's engines and core's agree.
 #pragma once
@@ -25,11 +25,11 @@ std::vector<std::string> SessionEngineNames();
 // The engine called `name`. Throws std::invalid_argument listing the names for any other text.
 v1::Engine ParseSessionEngine(std::string_view name);
 
-// The session engine that runs the product pipeline's engine (core/product_pipeline.h): the
+// The session engine that runs the product pipeline's engine (core/engines/product_pipeline.h): the
 // default of a session that asks for none.
 v1::Engine ProductSessionEngine();
 
-// The engines of core/recognition_engine.h that `engine` runs: one name, two for ENGINE_VCI_HMM,
+// The engines of core/engines/recognition_engine.h that `engine` runs: one name, two for ENGINE_VCI_HMM,
 // none for ENGINE_UNSPECIFIED or an unknown value.
 std::vector<std::string_view> CoreEngineNames(v1::Engine engine);
 

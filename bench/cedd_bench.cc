@@ -3,7 +3,7 @@
 //
 // Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
 // The product's budgets (issue 11): product-describe/640x480, the device side of the product
-// pipeline on one frame (core/product_pipeline.h: cedd-robust), at most 6x bgr2gray/640x480;
+// pipeline on one frame (core/engines/product_pipeline.h: cedd-robust), at most 6x bgr2gray/640x480;
 // product-enroll-view/128x128, what enrolling one view costs (descriptor, its distorted copies
 // and typical distance: DescribeView), under 10 ms.
 // Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray|noise-estimate|product-'
@@ -20,10 +20,10 @@
 
 #include "bench/bench_data.h"
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/noise_estimate.h"
-#include "core/product_pipeline.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/descriptor/noise_estimate.h"
+#include "core/engines/product_pipeline.h"
+#include "core/descriptor/view_description.h"
 
 namespace orbit {
 namespace {
@@ -51,7 +51,7 @@ void BM_Bgr2Gray(benchmark::State& state, int width, int height) {
   }
 }
 
-// The noise estimate a robust pipeline reads on every frame (core/noise_estimate.h).
+// The noise estimate a robust pipeline reads on every frame (core/descriptor/noise_estimate.h).
 void BM_NoiseEstimate(benchmark::State& state, int width, int height) {
   const cv::Mat frame = Frame(width, height);
   for (auto _ : state) benchmark::DoNotOptimize(EstimateNoiseSigma(frame));

@@ -26,7 +26,7 @@
 #include "client/image_file.h"
 #include "client/recognition_session.h"
 #include "bench/bench_data.h"
-#include "core/cedd.h"
+#include "core/descriptor/cedd.h"
 #include "server/orbit_server.h"
 
 namespace orbit {

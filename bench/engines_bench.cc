@@ -41,12 +41,12 @@
 
 #include "bench/bench_data.h"
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/product_pipeline.h"
-#include "core/recognition_engine.h"
-#include "core/rejection_calibration.h"
-#include "core/sector_similarity_table.h"
-#include "core/view_index.h"
+#include "core/descriptor/cedd.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
+#include "core/decision/rejection_calibration.h"
+#include "core/engines/sector_similarity_table.h"
+#include "core/index/view_index.h"
 
 namespace orbit {
 namespace {
@@ -165,7 +165,7 @@ void BM_RejectionCalibration(benchmark::State& state, int objects) {
 }
 
 // The engine called `name` with its default options, or for "product" the product pipeline's
-// engine with its options (core/product_pipeline.h).
+// engine with its options (core/engines/product_pipeline.h).
 std::unique_ptr<RecognitionEngine> BenchEngine(const std::string& name) {
   return name == kProductMethod ? CreateEngine(Product().engine, Product().options)
                                 : CreateEngine(name);

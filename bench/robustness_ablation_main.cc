@@ -1,4 +1,4 @@
-// build/orbit_robustness_ablation: what each step of the canonical frame (core/canonical_frame.h)
+// build/orbit_robustness_ablation: what each step of the canonical frame (core/descriptor/canonical_frame.h)
 // contributes to recognising degraded frames, one step switched on or off at a time
 // (docs/results/robustness.md, "Ablation").
 //
@@ -23,11 +23,11 @@
 #include <opencv2/core.hpp>
 
 #include "client/image_file.h"
-#include "core/canonical_frame.h"
-#include "core/cedd.h"
-#include "core/parallel_for.h"
-#include "core/seeded_random.h"
-#include "core/similarity.h"
+#include "core/descriptor/canonical_frame.h"
+#include "core/descriptor/cedd.h"
+#include "core/base/parallel_for.h"
+#include "core/base/seeded_random.h"
+#include "core/descriptor/similarity.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_spec.h"
 

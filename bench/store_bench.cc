@@ -14,7 +14,7 @@
 #include <random>
 #include <string>
 
-#include "core/view_index.h"
+#include "core/index/view_index.h"
 #include "storage/sqlite_model_store.h"
 #include "storage/view_index_loading.h"
 

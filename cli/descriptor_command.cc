@@ -6,7 +6,7 @@
 
 #include "cli/commands.h"
 #include "client/image_file.h"
-#include "core/cedd.h"
+#include "core/descriptor/cedd.h"
 
 namespace orbit::cli {
 namespace {

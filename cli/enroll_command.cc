@@ -14,7 +14,7 @@
 #include "cli/network_options.h"
 #include "client/capture_views.h"
 #include "client/enroller.h"
-#include "core/parallel_for.h"
+#include "core/base/parallel_for.h"
 
 namespace orbit::cli {
 namespace {

@@ -257,7 +257,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--quality-reading", o->quality_reading,
                       "use: query frames carry their measured noise and blur (Frame.quality), as "
                       "from the client library, and the calibrated rule allows noisy and blurred "
-                      "windows more (core/quality_allowance.h); ignore: they carry none")
+                      "windows more (core/decision/quality_allowance.h); ignore: they carry none")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
   command->add_option("--objects", o->objects,

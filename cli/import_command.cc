@@ -21,10 +21,10 @@
 #include "evaluation/dataset.h"
 #include "client/image_file.h"
 #include "cli/progress_bar.h"
-#include "core/enrollment_feedback.h"
-#include "core/parallel_for.h"
-#include "core/product_pipeline.h"
-#include "core/view_description.h"
+#include "core/decision/enrollment_feedback.h"
+#include "core/base/parallel_for.h"
+#include "core/engines/product_pipeline.h"
+#include "core/descriptor/view_description.h"
 #include "storage/model_validation.h"
 #include "storage/sqlite_model_store.h"
 #include "storage/view_index_loading.h"
@@ -45,7 +45,7 @@ struct ImportOptions {
 };
 
 // The model views of one object (its images are positions in `images`), each image described as
-// every enrollment path describes it (core/view_description.h: CEDD and typical distance, `seed`
+// every enrollment path describes it (core/descriptor/view_description.h: CEDD and typical distance, `seed`
 // the base of the seed rule), on `threads` threads. The numbers depend on the images alone,
 // whatever the thread count.
 std::vector<ModelView> ComputeViews(const std::vector<DatasetImage>& images,

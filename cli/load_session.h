@@ -31,7 +31,7 @@
 #include "cli/latency_histogram.h"
 #include "cli/load_report.h"
 #include "client/connection.h"
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 
 namespace orbit {

@@ -35,8 +35,8 @@
 #include "client/models_client.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
-#include "core/cedd.h"
-#include "core/parallel_for.h"
+#include "core/descriptor/cedd.h"
+#include "core/base/parallel_for.h"
 #include "evaluation/dataset.h"
 
 namespace orbit::cli {

@@ -10,7 +10,7 @@
 
 #include "api/engine_names.h"
 #include "cli/commands.h"
-#include "core/product_pipeline.h"
+#include "core/engines/product_pipeline.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {

@@ -4,7 +4,7 @@
 
 #include "api/conversion.h"
 #include "api/engine_names.h"
-#include "core/recognition_engine.h"
+#include "core/engines/recognition_engine.h"
 
 namespace orbit::cli {
 

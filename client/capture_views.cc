@@ -5,7 +5,7 @@
 #include <map>
 #include <stdexcept>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 
 namespace orbit {
 

@@ -5,7 +5,7 @@
 #include "api/conversion.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
-#include "core/parallel_for.h"
+#include "core/base/parallel_for.h"
 
 namespace orbit {
 

@@ -3,7 +3,7 @@
 //
 // Everything heavy happens on the device: each view's CEDD (in the server's descriptor variant)
 // and its typical distance Ttyp, described exactly as the server, `orbit import` and the
-// evaluation describe a view (core/view_description.h, DescribeView; SPEC.md, "Recognition"),
+// evaluation describe a view (core/descriptor/view_description.h, DescribeView; SPEC.md, "Recognition"),
 // so the server receives 144 bytes and one number per view and never an image. The object is committed atomically when the stream ends:
 // on any error nothing is stored.
 //
@@ -24,20 +24,20 @@
 #include "client/capture_views.h"
 #include "client/connection.h"
 #include "client/enrollment_image.h"
-#include "core/descriptor.h"
-#include "core/view_description.h"
+#include "core/descriptor/descriptor.h"
+#include "core/descriptor/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 
 namespace orbit {
 
 // The view the server stores for `image`: DescribeView of the region (or whole image), with
-// `base_seed` in the seed rule of core/view_description.h, and the image's azimuth and elevation.
+// `base_seed` in the seed rule of core/descriptor/view_description.h, and the image's azimuth and elevation.
 // Throws std::invalid_argument for an empty image or a region outside it, and as DescribeView.
 v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
                      std::uint64_t base_seed = kDefaultViewNoiseSeed);
 
 struct EnrollerOptions {
-  // Base of the noise seed rule (core/view_description.h); the default stores what the server
+  // Base of the noise seed rule (core/descriptor/view_description.h); the default stores what the server
   // would compute from the same images.
   std::uint64_t seed = kDefaultViewNoiseSeed;
   unsigned threads = 1;  // threads computing the views

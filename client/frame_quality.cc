@@ -5,8 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "core/blur_estimate.h"
-#include "core/noise_estimate.h"
+#include "core/descriptor/blur_estimate.h"
+#include "core/descriptor/noise_estimate.h"
 
 namespace orbit {
 

@@ -6,7 +6,7 @@
 //   detail the Laplacian responds to, so a blurred frame reads several times lower than a sharp
 //   one of the same scene. It depends on the scene's texture, so it is compared between frames
 //   of one capture, never against a fixed number.
-// - noise_sigma: core/noise_estimate.h, in grey levels.
+// - noise_sigma: core/descriptor/noise_estimate.h, in grey levels.
 //
 // Enrollment keeps, for each azimuth step, the sharpest usable frame; recognition sends every
 // frame with its quality (Frame.quality, proto/orbit/v1/recognition.proto) for engines to weight.
@@ -25,7 +25,7 @@ namespace orbit {
 struct FrameQuality {
   double sharpness = 0;    // variance of the Laplacian of the grey region, grey levels squared
   double noise_sigma = 0;  // estimated noise deviation, grey levels
-  double blur = 0;         // 0 sharp .. 1 blurred (core/blur_estimate.h)
+  double blur = 0;         // 0 sharp .. 1 blurred (core/descriptor/blur_estimate.h)
 };
 
 // The quality of `image` (8-bit, 1, 3 or 4 channels), of `region` inside it when given.

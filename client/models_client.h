@@ -14,7 +14,7 @@
 
 #include "api/conversion.h"
 #include "client/connection.h"
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 #include "orbit/v1/models.grpc.pb.h"
 
 namespace orbit {

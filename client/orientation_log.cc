@@ -6,7 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 
 namespace orbit {
 namespace {

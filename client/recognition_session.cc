@@ -6,8 +6,8 @@
 
 #include "client/models_client.h"
 #include "client/rpc_error.h"
-#include "core/cedd.h"
-#include "core/recognition_engine.h"
+#include "core/descriptor/cedd.h"
+#include "core/engines/recognition_engine.h"
 
 namespace orbit {
 namespace {
@@ -111,7 +111,7 @@ std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double
                                       std::optional<std::int64_t> timestamp_us,
                                       std::optional<FrameQuality> quality) {
   // Measured here when the caller did not: the server's accept / unknown rule allows noisy and
-  // blurred frames what noise and blur add (core/quality_allowance.h) only when it knows them.
+  // blurred frames what noise and blur add (core/decision/quality_allowance.h) only when it knows them.
   if (!quality) quality = MeasureFrameQuality(image, region);
   return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us,
                         quality);

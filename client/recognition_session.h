@@ -3,7 +3,7 @@
 // orientation sensor read - and receives, for every frame and in order, an update with the
 // ranked candidates, the decision and the suggested move.
 //
-// The CEDD of each image is computed here, on the device (core/cedd.h), in the server's
+// The CEDD of each image is computed here, on the device (core/descriptor/cedd.h), in the server's
 // descriptor variant (asked with ServerInfo when the session opens), so only 144 bytes and an
 // azimuth travel per frame.
 //
@@ -45,7 +45,7 @@
 
 #include "client/connection.h"
 #include "client/frame_quality.h"
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 

@@ -1,4 +1,4 @@
-# The third-party libraries of the device library (orbit_client and the orbit_core, orbit_api and
+# The third-party libraries of the device library (orbit_client and the core/ layers, orbit_api and
 # orbit_proto it links), as imported targets. Used by the build (cmake/OrbitDeps.cmake) and by
 # the installed package (OrbitClientConfig.cmake), so that both find them the same way.
 #

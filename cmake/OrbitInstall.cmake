@@ -1,7 +1,10 @@
-# `cmake --install build --prefix P` installs the device library as a C++ package (issue 14):
-#   P/lib/liborbit_client.a and the libraries it links (orbit_api, orbit_core, orbit_proto),
-#   P/include/{client,core,api}/*.h and P/include/orbit/v1/*.pb.h (headers keep the paths they
-#   are included by: "client/enroller.h"),
+# `cmake --install build --prefix P` installs the device library as a C++ package:
+#   P/lib/liborbit_client.a and the libraries it links (orbit_api, orbit_proto and the core/
+#   layers below them),
+#   P/include/: the public API only, that is the headers of client/ and every header of this tree
+#   they include, directly or through others (so "client/enroller.h" and "core/descriptor/
+#   descriptor.h", never a server's or an engine's internals), at the paths they are included by;
+#   P/include/orbit/v1/*.pb.h, the generated API,
 #   P/lib/cmake/OrbitClient/: find_package(OrbitClient) gives the target Orbit::orbit_client,
 #   P/lib/pkgconfig/orbit-client.pc: pkg-config --cflags --libs orbit-client.
 # The third-party libraries are Debian's, found again by the package
@@ -10,10 +13,14 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(orbit_client_libraries orbit_client orbit_api orbit_core orbit_proto)
+set(orbit_client_libraries orbit_client orbit_api orbit_engines orbit_decision orbit_index
+  orbit_descriptor orbit_base orbit_proto)
 # Inside the build the libraries include from the source and build trees; installed, from
 # P/include.
-foreach(library orbit_client orbit_api orbit_core)
+foreach(library IN LISTS orbit_client_libraries)
+  if(library STREQUAL orbit_proto)
+    continue()
+  endif()
   set_target_properties(${library} PROPERTIES INTERFACE_INCLUDE_DIRECTORIES
     "$<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}>;$<INSTALL_INTERFACE:${CMAKE_INSTALL_INCLUDEDIR}>")
 endforeach()
@@ -28,9 +35,34 @@ set_property(TARGET orbit_client APPEND PROPERTY INTERFACE_COMPILE_FEATURES cxx_
 install(TARGETS ${orbit_client_libraries} EXPORT OrbitClientTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   INCLUDES DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-foreach(folder client core api)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${folder}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${folder}
-    FILES_MATCHING PATTERN "*.h")
+# The headers of this tree that the given headers include, directly or through others, and
+# the given ones.
+function(orbit_header_closure out)
+  set(closure "")
+  set(queue ${ARGN})
+  while(queue)
+    list(POP_FRONT queue header)
+    if(header IN_LIST closure)
+      continue()
+    endif()
+    list(APPEND closure ${header})
+    file(STRINGS ${PROJECT_SOURCE_DIR}/${header} includes REGEX "^#include \"[^\"]+\\.h\"")
+    foreach(include IN LISTS includes)
+      string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" included "${include}")
+      if(EXISTS ${PROJECT_SOURCE_DIR}/${included})
+        list(APPEND queue ${included})
+      endif()
+    endforeach()
+  endwhile()
+  set(${out} ${closure} PARENT_SCOPE)
+endfunction()
+
+file(GLOB client_headers RELATIVE ${PROJECT_SOURCE_DIR} CONFIGURE_DEPENDS
+  ${PROJECT_SOURCE_DIR}/client/*.h)
+orbit_header_closure(public_headers ${client_headers})
+foreach(header IN LISTS public_headers)
+  get_filename_component(folder ${header} DIRECTORY)
+  install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/${folder})
 endforeach()
 install(DIRECTORY ${PROJECT_BINARY_DIR}/proto/orbit/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/orbit
   FILES_MATCHING PATTERN "*.pb.h")

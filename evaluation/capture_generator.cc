@@ -9,9 +9,9 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
-#include "core/angles.h"
-#include "core/distortion.h"
-#include "core/seeded_random.h"
+#include "core/base/angles.h"
+#include "core/descriptor/distortion.h"
+#include "core/base/seeded_random.h"
 
 namespace orbit {
 namespace {

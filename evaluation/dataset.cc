@@ -13,7 +13,7 @@
 #include <system_error>
 #include <tuple>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 
 namespace orbit {
 namespace {

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/distortion.h"
-#include "core/seeded_random.h"
+#include "core/descriptor/distortion.h"
+#include "core/base/seeded_random.h"
 
 namespace orbit {
 namespace {

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-#include "core/product_pipeline.h"
+#include "core/engines/product_pipeline.h"
 
 namespace orbit {
 namespace {

@@ -16,13 +16,13 @@
 #include <vector>
 
 #include "client/image_file.h"
-#include "core/angles.h"
-#include "core/cedd.h"
-#include "core/rejection_calibration.h"
-#include "core/seeded_random.h"
-#include "core/parallel_for.h"
-#include "core/product_pipeline.h"
-#include "core/view_description.h"
+#include "core/base/angles.h"
+#include "core/descriptor/cedd.h"
+#include "core/decision/rejection_calibration.h"
+#include "core/base/seeded_random.h"
+#include "core/base/parallel_for.h"
+#include "core/engines/product_pipeline.h"
+#include "core/descriptor/view_description.h"
 
 // gperftools' malloc_extension_c.h, when tcmalloc is linked (HeapBytesInUse).
 extern "C" int MallocExtension_GetNumericProperty(const char* property, std::size_t* value)
@@ -296,7 +296,7 @@ void Count(const Outcome& outcome, EvaluationCell& cell) {
 }
 
 // Whether `method` is evaluated on descriptors of `variant`: the product pipeline only on its own
-// variant (core/product_pipeline.h), every faithful method on every variant.
+// variant (core/engines/product_pipeline.h), every faithful method on every variant.
 bool Evaluates(std::string_view method, DescriptorVariant variant) {
   return method != kProductMethod || variant == Product().variant;
 }

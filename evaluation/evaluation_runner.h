@@ -1,10 +1,10 @@
-// EvaluationRunner: runs the evaluation protocol (core/evaluation_protocol.h, SPEC.md
+// EvaluationRunner: runs the evaluation protocol (evaluation/evaluation_protocol.h, SPEC.md
 // "Evaluation protocol") on a dataset of images and counts hits per method x descriptor variant
 // x distortion x query length n. The engine of `orbit eval`.
 //
 // What it does, in order:
 //   1. reads every image once and, for each variant, on all threads, describes it as a model
-//      view exactly as every enrollment path does (DescribeImage: core/view_description.h,
+//      view exactly as every enrollment path does (DescribeImage: core/descriptor/view_description.h,
 //      DescribeView with `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical
 //      distance), and computes its query under each distortion (evaluation/distortion_spec.h),
 //      whose noise is drawn with ImageNoiseSeed(seed, i), so reruns see the same noise. The DF
@@ -17,7 +17,7 @@
 //      its answer to the whole query (RecognitionEngine::ObserveSequence). Unknown objects (not
 //      in any model) are queried against the full index: the right answer is Decision::kUnknown.
 // The counts are exact and the same for any thread count (each task's draws come from its own
-// seed, core/evaluation_protocol.h); times are wall-clock and vary from run to run.
+// seed, evaluation/evaluation_protocol.h); times are wall-clock and vary from run to run.
 //
 // Thread safety: RunEvaluation may be called from any thread; it starts and joins its own.
 #pragma once
@@ -34,13 +34,13 @@
 #include "client/frame_quality.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_spec.h"
-#include "core/descriptor.h"
-#include "core/evaluation_protocol.h"
-#include "core/object_model.h"
-#include "core/recognition_engine.h"
-#include "core/parallel_for.h"
-#include "core/product_pipeline.h"
-#include "core/view_index.h"
+#include "core/descriptor/descriptor.h"
+#include "evaluation/evaluation_protocol.h"
+#include "core/index/object_model.h"
+#include "core/engines/recognition_engine.h"
+#include "core/base/parallel_for.h"
+#include "core/engines/product_pipeline.h"
+#include "core/index/view_index.h"
 
 namespace orbit {
 
@@ -81,13 +81,13 @@ struct EvaluationOptions {
   bool use_orientation = true;
   // false: the query frames carry no quality readings (noise, blur), as from a device that
   // does not measure them (`--quality-reading ignore`); the calibrated rule then makes no
-  // allowance for degraded frames (core/quality_allowance.h).
+  // allowance for degraded frames (core/decision/quality_allowance.h).
   bool use_quality_reading = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
   // Active vision (`orbit eval --active`, issue 12): 0 for the protocol's random views; else
   // each query takes the protocol's first two views, then each next view this many degrees
   // from its latest in the direction the method's latest update suggested (NextActiveView,
-  // core/evaluation_protocol.h), in capture order. Known objects' models lack the views near
+  // evaluation/evaluation_protocol.h), in capture order. Known objects' models lack the views near
   // every view taken so far, at each step.
   double active_step = 0;
   // With active_step: which way each step goes (ActivePolicy).

@@ -1,4 +1,4 @@
-// Fuzz target: the CEDD extractor (core/cedd.h, ExtractCedd) on arbitrary pixels: any size up
+// Fuzz target: the CEDD extractor (core/descriptor/cedd.h, ExtractCedd) on arbitrary pixels: any size up
 // to 128 x 128 (a COIL-100 image; past LIRE's grid modes at 40 and 80 pixels and the full
 // variant's one block per pixel under 40), any type (the three it takes and two it must refuse),
 // either variant, with or without a region (inside the image or not), in a continuous buffer or
@@ -10,7 +10,7 @@
 // there are none).
 //
 // Checked beyond "no crash": only std::invalid_argument is thrown, for the types and regions
-// core/cedd.h refuses and no others; the descriptor has the requested variant and values in
+// core/descriptor/cedd.h refuses and no others; the descriptor has the requested variant and values in
 // 0..7; and the CEDD of a region, or of an image held as a view into a wider buffer, equals the
 // CEDD of a continuous copy of the same pixels.
 #include <cstddef>
@@ -20,7 +20,7 @@
 
 #include <opencv2/core.hpp>
 
-#include "core/cedd.h"
+#include "core/descriptor/cedd.h"
 #include "fuzz/fuzz_check.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {

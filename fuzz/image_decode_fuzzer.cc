@@ -1,7 +1,7 @@
 // Fuzz target: an uploaded image as the server takes it (server/image_budget.h,
 // server/image_decoding.h): its header read (PNG's IHDR; JPEG's marker segments up to the frame
 // header, then its scans counted), held to the budget (CheckImageBudget), decoded by OpenCV's
-// PNG or JPEG decoder, and described as a frame is (core/cedd.h, ExtractCedd).
+// PNG or JPEG decoder, and described as a frame is (core/descriptor/cedd.h, ExtractCedd).
 //
 // Input: the encoded image's bytes. The seeds (corpus/image_decode/) are small PNGs (grey,
 // palette, RGB, RGBA, 16-bit, interlaced) and JPEGs (baseline, progressive, grey, with EXIF and
@@ -19,7 +19,7 @@
 #include <cstdint>
 #include <string_view>
 
-#include "core/cedd.h"
+#include "core/descriptor/cedd.h"
 #include "fuzz/fuzz_support.h"
 #include "server/image_budget.h"
 #include "server/image_decoding.h"

@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "api/conversion.h"
-#include "core/view_index.h"
+#include "core/index/view_index.h"
 #include "fuzz/fuzz_support.h"
 #include "orbit/v1/recognition.pb.h"
 #include "server/request_reading.h"

@@ -13,7 +13,7 @@
 #include <cstdint>
 
 #include "api/engine_names.h"
-#include "core/recognition_engine.h"
+#include "core/engines/recognition_engine.h"
 #include "fuzz/fuzz_support.h"
 #include "orbit/v1/recognition.pb.h"
 #include "server/session_engine.h"

@@ -12,7 +12,7 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 #include "orbit/v1/models.pb.h"
 #include "server/session_settings.h"
 #include "storage/model_store.h"

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "core/parallel_for.h"
+#include "core/base/parallel_for.h"
 #include "server/error_status.h"
 
 namespace orbit::server {

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "core/view_index.h"
+#include "core/index/view_index.h"
 #include "server/server_metrics.h"
 #include "storage/model_store.h"
 

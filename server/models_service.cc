@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "api/conversion.h"
-#include "core/enrollment_feedback.h"
+#include "core/decision/enrollment_feedback.h"
 #include "server/enrollment_stream.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"
@@ -22,7 +22,7 @@ constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
 
 // The enrollment report of object `summary.id` as the index holds it now
-// (core/enrollment_feedback.h); left unset when another call deleted it meanwhile.
+// (core/decision/enrollment_feedback.h); left unset when another call deleted it meanwhile.
 void AddEnrollmentReport(ModelCatalogue& catalogue, const ObjectSummary& summary,
                          v1::ObjectInfo* info) {
   const std::shared_ptr<const ViewIndexSnapshot> index = catalogue.Snapshot();

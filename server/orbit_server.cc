@@ -10,8 +10,8 @@
 #include <grpcpp/health_check_service_interface.h>
 
 #include "orbit/version.h"
-#include "core/parallel_for.h"
-#include "core/product_pipeline.h"
+#include "core/base/parallel_for.h"
+#include "core/engines/product_pipeline.h"
 #include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
 #include "server/model_change_follower.h"

@@ -1,5 +1,5 @@
 // RejectionCalibrator: the server's calibration of the calibrated accept / unknown rule
-// (core/rejection_calibration.h), kept in step with the model set without making sessions wait
+// (core/decision/rejection_calibration.h), kept in step with the model set without making sessions wait
 // for it.
 //
 // Computed once for the index the server starts with (before it serves), then again in the
@@ -24,8 +24,8 @@
 #include <mutex>
 #include <thread>
 
-#include "core/rejection_calibration.h"
-#include "core/view_index.h"
+#include "core/decision/rejection_calibration.h"
+#include "core/index/view_index.h"
 
 namespace orbit::server {
 

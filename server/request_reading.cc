@@ -5,11 +5,11 @@
 #include <stdexcept>
 
 #include "api/conversion.h"
-#include "core/cedd.h"
-#include "core/quality_allowance.h"
-#include "core/blur_estimate.h"
-#include "core/noise_estimate.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/decision/quality_allowance.h"
+#include "core/descriptor/blur_estimate.h"
+#include "core/descriptor/noise_estimate.h"
+#include "core/descriptor/view_description.h"
 #include "server/error_status.h"
 #include "server/image_decoding.h"
 #include "storage/model_validation.h"

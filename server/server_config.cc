@@ -4,7 +4,7 @@
 #include <stdexcept>
 
 #include "api/engine_names.h"
-#include "core/product_pipeline.h"
+#include "core/engines/product_pipeline.h"
 #include "storage/postgres_connection.h"
 
 namespace orbit::server {

@@ -6,7 +6,7 @@
 #include <optional>
 #include <string>
 
-#include "core/view_index.h"
+#include "core/index/view_index.h"
 #include "server/session_settings.h"
 
 namespace orbit::server {
@@ -28,7 +28,7 @@ struct ServerConfig {
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;
   // Of every model and session. Unset: the variant of the objects the store holds (StoreVariant),
-  // or the product's (core/product_pipeline.h: cedd-robust) for an empty store, so a store built
+  // or the product's (core/engines/product_pipeline.h: cedd-robust) for an empty store, so a store built
   // with an older default keeps serving without a flag.
   std::optional<DescriptorVariant> variant;
   ViewIndexOptions index{.search = SearchMode::kKdTree};

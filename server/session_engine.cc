@@ -4,7 +4,7 @@
 #include <unordered_map>
 
 #include "api/engine_names.h"
-#include "core/sector_similarity_table.h"
+#include "core/engines/sector_similarity_table.h"
 
 namespace orbit::server {
 namespace {

@@ -1,5 +1,5 @@
 // SessionEngine: the recognition state of one session, behind the engine the device chose:
-// one engine of core/recognition_engine.h, or VCI and the HMM together (ENGINE_VCI_HMM).
+// one engine of core/engines/recognition_engine.h, or VCI and the HMM together (ENGINE_VCI_HMM).
 //
 // The combination runs both engines on every frame and ranks objects by the mean of their two
 // scores (an object missing from one engine's ranking counts 0 there; both rankings are taken
@@ -13,9 +13,9 @@
 #include <memory>
 #include <vector>
 
-#include "core/recognition_engine.h"
-#include "core/rejection_calibration.h"
-#include "core/view_index.h"
+#include "core/engines/recognition_engine.h"
+#include "core/decision/rejection_calibration.h"
+#include "core/index/view_index.h"
 #include "server/session_settings.h"
 
 namespace orbit::server {

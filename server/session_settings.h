@@ -5,9 +5,9 @@
 #include <grpcpp/grpcpp.h>
 
 #include "api/engine_names.h"
-#include "core/descriptor.h"
-#include "core/product_pipeline.h"
-#include "core/recognition_engine.h"
+#include "core/descriptor/descriptor.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
 #include "orbit/v1/recognition.pb.h"
 
 namespace orbit::server {
@@ -33,7 +33,7 @@ struct ServerLimits {
 };
 
 struct SessionSettings {
-  // The product pipeline's engine and options by default (core/product_pipeline.h; why:
+  // The product pipeline's engine and options by default (core/engines/product_pipeline.h; why:
   // docs/results/robustness.md).
   v1::Engine engine = ProductSessionEngine();  // never ENGINE_UNSPECIFIED once resolved
   EngineOptions options = Product().options;

@@ -22,8 +22,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/descriptor.h"
-#include "core/object_model.h"
+#include "core/descriptor/descriptor.h"
+#include "core/index/object_model.h"
 
 namespace orbit {
 

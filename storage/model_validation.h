@@ -13,8 +13,8 @@
 #include <string_view>
 #include <vector>
 
-#include "core/descriptor.h"
-#include "core/object_model.h"
+#include "core/descriptor/descriptor.h"
+#include "core/index/object_model.h"
 
 namespace orbit {
 
@@ -30,7 +30,7 @@ inline constexpr std::size_t kMaxMetadataBytes = 16 * 1024;
 void ValidateObjectName(std::string_view name);
 
 // A view is valid when its descriptor values are in 0..kDescriptorMaxValue, its azimuth is finite
-// (the store keeps NormaliseAzimuth of it, core/angles.h: in [0, 360)),
+// (the store keeps NormaliseAzimuth of it, core/base/angles.h: in [0, 360)),
 // its elevation (if any) is finite and in [-90, 90], and its typical distance is in [0, 1] (a
 // Tanimoto distance, SPEC.md "Recognition"). `position` (the view's index) prefixes the message.
 void ValidateView(const ModelView& view, std::size_t position);

@@ -6,7 +6,7 @@
 #include <unordered_map>
 #include <utility>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 #include "storage/model_validation.h"
 #include "storage/postgres_connection.h"
 #include "storage/postgres_schema.h"

@@ -12,7 +12,7 @@
 
 #include <sqlite3.h>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 #include "storage/model_validation.h"
 #include "storage/schema.h"
 #include "storage/sqlite_connection.h"

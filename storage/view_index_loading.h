@@ -1,12 +1,12 @@
-// Loading a model store into the engines' view index at start-up (core/view_index.h).
+// Loading a model store into the engines' view index at start-up (core/index/view_index.h).
 #pragma once
 
 #include <memory>
 #include <optional>
 #include <vector>
 
-#include "core/descriptor.h"
-#include "core/view_index.h"
+#include "core/descriptor/descriptor.h"
+#include "core/index/view_index.h"
 #include "storage/model_store.h"
 
 namespace orbit {

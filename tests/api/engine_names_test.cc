@@ -7,7 +7,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/recognition_engine.h"
+#include "core/engines/recognition_engine.h"
 
 namespace orbit {
 namespace {

@@ -207,7 +207,7 @@ TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
 }
 
 // --orientation ignore runs the methods without azimuths: vci then answers as vci-w0 does with
-// them (tests/core/recognition_engine_test.cc), so the two rows' hit counts are equal.
+// them (tests/core/engines/recognition_engine_test.cc), so the two rows' hit counts are equal.
 TEST_F(EvalCommandTest, OrientationIgnoreRunsTheMethodsWithoutAzimuths) {
   const std::string eval = testing::OrbitBinary() + " eval --data " + coil_ +
                            " --objects 1-6 --n 4 --trials 2 --distortions mb --no-progress --csv ";

@@ -15,7 +15,7 @@
 #include "client/connection.h"
 #include "client/image_file.h"
 #include "client/models_client.h"
-#include "core/view_description.h"
+#include "core/descriptor/view_description.h"
 #include "storage/sqlite_model_store.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"

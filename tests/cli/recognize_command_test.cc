@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 #include <nlohmann/json.hpp>
 
 #include "tests/support/client_test_support.h"

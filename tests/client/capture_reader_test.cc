@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/angles.h"
+#include "core/base/angles.h"
 #include "evaluation/capture_generator.h"
 #include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"

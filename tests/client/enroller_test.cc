@@ -11,8 +11,8 @@
 
 #include "client/image_file.h"
 #include "client/models_client.h"
-#include "core/cedd.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/descriptor/view_description.h"
 #include "evaluation/capture_generator.h"
 #include "tests/support/capture_walks.h"
 #include "tests/support/client_test_support.h"

@@ -7,7 +7,7 @@
 
 #include "client/enroller.h"
 #include "client/rpc_error.h"
-#include "core/product_pipeline.h"
+#include "core/engines/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 

@@ -14,10 +14,10 @@
 #include "client/connection.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
-#include "core/angles.h"
-#include "core/cedd.h"
-#include "core/distortion.h"
-#include "core/product_pipeline.h"
+#include "core/base/angles.h"
+#include "core/descriptor/cedd.h"
+#include "core/descriptor/distortion.h"
+#include "core/engines/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -180,7 +180,7 @@ TEST(RecognitionSession, TheDefaultServerRecognisesBlurredAndNoisyFrames) {
 }
 
 // A noisy camera: the frames' noise, which Push measures and sends, lets the server's accept /
-// unknown rule accept a known object it would otherwise call unknown (core/quality_allowance.h).
+// unknown rule accept a known object it would otherwise call unknown (core/decision/quality_allowance.h).
 // Two noisy frames (variance 0.03, a deviation of about 37 grey levels) of each enrolled object,
 // once with their noise (Push) and once as bare descriptors (PushDescriptor). Measured: 10 of
 // 12 accepted and right with the noise, 8 without. The noisy arm goes first, so a calibration

@@ -9,7 +9,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "client/frame_quality.h"
-#include "core/angles.h"
+#include "core/base/angles.h"
 #include "tests/support/capture_walks.h"
 #include "tests/support/test_data.h"
 

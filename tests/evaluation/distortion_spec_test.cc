@@ -10,7 +10,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "core/distortion.h"
+#include "core/descriptor/distortion.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {

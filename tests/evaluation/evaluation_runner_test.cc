@@ -11,10 +11,10 @@
 #include <gtest/gtest.h>
 
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/distortion.h"
-#include "core/product_pipeline.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/descriptor/distortion.h"
+#include "core/engines/product_pipeline.h"
+#include "core/descriptor/view_description.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -107,7 +107,7 @@ TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
             "object \"a\" has 2 views; n = 4 needs as many");
 }
 
-// `product` is the product pipeline (core/product_pipeline.h): its engine with its options, on
+// `product` is the product pipeline (core/engines/product_pipeline.h): its engine with its options, on
 // its own variant only, which the evaluation adds when it was not asked for. With the engine's
 // options set to the product's it is therefore exactly that engine on that variant, query for
 // query.

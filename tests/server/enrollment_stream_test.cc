@@ -8,7 +8,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "core/view_description.h"
+#include "core/descriptor/view_description.h"
 #include "storage/model_validation.h"
 
 namespace orbit::server {

@@ -1,6 +1,6 @@
 // The Models service's enrollment (server/models_service.h) against a real `orbit serve`
 // process: however a view reaches the store, the same image stores the same numbers.
-#include "core/product_pipeline.h"
+#include "core/engines/product_pipeline.h"
 #include "server/models_service.h"
 
 #include <filesystem>

@@ -15,9 +15,9 @@
 #include <grpcpp/grpcpp.h>
 
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/product_pipeline.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/engines/product_pipeline.h"
+#include "core/descriptor/view_description.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "storage/postgres_connection.h"

@@ -15,10 +15,10 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/blur_estimate.h"
-#include "core/noise_estimate.h"
-#include "core/view_description.h"
+#include "core/descriptor/cedd.h"
+#include "core/descriptor/blur_estimate.h"
+#include "core/descriptor/noise_estimate.h"
+#include "core/descriptor/view_description.h"
 #include "server/image_budget.h"
 #include "tests/support/test_data.h"
 

@@ -12,7 +12,7 @@
 #include <thread>
 #include <vector>
 
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "server/metrics_endpoint.h"

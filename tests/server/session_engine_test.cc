@@ -7,7 +7,7 @@
 #include <gtest/gtest.h>
 
 #include "api/engine_names.h"
-#include "core/sector_similarity_table.h"
+#include "core/engines/sector_similarity_table.h"
 #include "tests/support/coil_models.h"
 
 namespace orbit::server {
@@ -27,7 +27,7 @@ bool HoldsSectorTable(const ViewIndexSnapshot& snapshot, int states) {
 }
 
 TEST(SessionEngineTest, TheWriterPreparesTheHmmsSectorTableBeforeSessionsSeeTheSnapshot) {
-  const SessionSettings product;  // the HMM (core/product_pipeline.h)
+  const SessionSettings product;  // the HMM (core/engines/product_pipeline.h)
   ASSERT_TRUE(RunsHmm(product.engine));
   const int states = product.options.hmm_states;
   ViewIndex index(CoilObjects(1, 3, EvenView));

@@ -9,8 +9,8 @@
 #include <vector>
 
 #include "client/image_file.h"
-#include "core/cedd.h"
-#include "core/object_model.h"
+#include "core/descriptor/cedd.h"
+#include "core/index/object_model.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::testing {

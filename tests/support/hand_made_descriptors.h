@@ -6,7 +6,7 @@
 #include <initializer_list>
 #include <utility>
 
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 
 namespace orbit::testing {
 

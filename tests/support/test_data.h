@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/descriptor.h"
+#include "core/descriptor/descriptor.h"
 
 namespace orbit::testing {
 

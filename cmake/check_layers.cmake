@@ -1,0 +1,58 @@
+# Fails when a source includes a header of a layer its own layer does not link
+# (cmake/OrbitLayers.cmake, docs/design.md#layers).
+#   cmake -DTABLE=build/orbit_layers.txt -DSOURCE_DIR=. -P cmake/check_layers.cmake
+# TABLE: one line per layer, "target|folder|include prefix|prefixes it may include,...".
+# Includes that match no layer's prefix (the standard library, third parties) are not checked.
+cmake_minimum_required(VERSION 3.25)
+get_filename_component(SOURCE_DIR ${SOURCE_DIR} ABSOLUTE)
+file(STRINGS ${TABLE} lines)
+set(targets "")
+foreach(line IN LISTS lines)
+  string(REPLACE "|" ";" fields "${line}")
+  list(GET fields 0 target)
+  list(GET fields 1 folder_${target})
+  list(GET fields 2 prefix_${target})
+  list(LENGTH fields count)
+  set(allowed_${target} "")
+  if(count GREATER 3)
+    list(GET fields 3 allowed)
+    string(REPLACE "," ";" allowed_${target} "${allowed}")
+  endif()
+  list(APPEND targets ${target})
+endforeach()
+
+# The layer whose prefix is the longest start of `path`, or "".
+function(layer_of path out)
+  set(best "")
+  set(best_length 0)
+  foreach(target IN LISTS targets)
+    string(LENGTH "${prefix_${target}}" length)
+    string(SUBSTRING "${path}" 0 ${length} start)
+    if(start STREQUAL prefix_${target} AND length GREATER best_length)
+      set(best ${target})
+      set(best_length ${length})
+    endif()
+  endforeach()
+  set(${out} "${best}" PARENT_SCOPE)
+endfunction()
+
+set(violations "")
+foreach(target IN LISTS targets)
+  file(GLOB sources ${SOURCE_DIR}/${folder_${target}}/*.h ${SOURCE_DIR}/${folder_${target}}/*.cc)
+  foreach(source IN LISTS sources)
+    file(STRINGS ${source} includes REGEX "^#include \"[^\"]+\"")
+    foreach(include IN LISTS includes)
+      string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" header "${include}")
+      layer_of("${header}" used)
+      if(used AND NOT prefix_${used} IN_LIST allowed_${target})
+        file(RELATIVE_PATH name ${SOURCE_DIR} ${source})
+        string(APPEND violations
+          "  ${name} includes \"${header}\", but ${target} does not link ${used}\n")
+      endif()
+    endforeach()
+  endforeach()
+endforeach()
+
+if(violations)
+  message(FATAL_ERROR "includes that point up a layer (docs/design.md#layers):\n${violations}")
+endif()

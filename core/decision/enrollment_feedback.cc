@@ -1,0 +1,93 @@
+#include "core/decision/enrollment_feedback.h"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "core/base/angles.h"
+#include "core/descriptor/similarity.h"
+
+namespace orbit {
+namespace {
+
+// View indices of `object` in azimuth order (ties: stored order).
+std::vector<std::size_t> ByAzimuth(const ObjectModel& object) {
+  std::vector<std::size_t> order(object.views.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+    return NormaliseAzimuth(object.views[a].azimuth) < NormaliseAzimuth(object.views[b].azimuth);
+  });
+  return order;
+}
+
+std::vector<AzimuthGap> Gaps(const ObjectModel& object, const std::vector<std::size_t>& order) {
+  std::vector<AzimuthGap> gaps;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const AzimuthGap gap{NormaliseAzimuth(object.views[order[k]].azimuth),
+                         NormaliseAzimuth(object.views[order[(k + 1) % order.size()]].azimuth)};
+    // One view alone leaves the whole circle open.
+    if (order.size() == 1 || gap.width() > kCoverageGapDegrees) gaps.push_back(gap);
+  }
+  return gaps;
+}
+
+}  // namespace
+
+double AzimuthGap::width() const {
+  const double width = NormaliseAzimuth(to - from);
+  return width == 0 ? 360 : width;
+}
+
+EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSnapshot& index) {
+  if (object.views.empty()) throw std::invalid_argument("AssessEnrollment: the object has no views");
+  EnrollmentFeedback feedback;
+  const std::vector<std::size_t> order = ByAzimuth(object);
+  feedback.gaps = Gaps(object, order);
+
+  // Each view's best TC with the object's other views (for closer_views), and the repeats.
+  std::vector<double> own_best(object.views.size(), 0);
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const DescriptorValues& view = object.views[order[k]].descriptor;
+    bool repeat = false;
+    for (std::size_t j = 0; j < order.size(); ++j) {
+      if (j == k) continue;
+      const double similarity = Tanimoto(view, object.views[order[j]].descriptor);
+      own_best[order[k]] = std::max(own_best[order[k]], similarity);
+      repeat = repeat || (j < k && similarity >= kRedundantSimilarity);
+    }
+    if (repeat) feedback.redundant_azimuths.push_back(NormaliseAzimuth(object.views[order[k]].azimuth));
+  }
+
+  // Every other object's best TC with each view.
+  const std::vector<ObjectSlot>& objects = index.objects();
+  std::vector<double> similarity_sum(objects.size(), 0);
+  std::vector<int> closer(objects.size(), 0);
+  std::vector<float> similarities;
+  for (std::size_t v = 0; v < object.views.size(); ++v) {
+    index.SimilarityToEveryView(object.views[v].descriptor, similarities);
+    for (std::size_t p = 0; p < objects.size(); ++p) {
+      if (objects[p].object->id() == object.id) continue;
+      float best = 0;
+      for (int w = 0; w < objects[p].object->view_count(); ++w) {
+        best = std::max(best, similarities[objects[p].first_slot + w]);
+      }
+      similarity_sum[p] += best;
+      closer[p] += object.views.size() > 1 && best > own_best[v];
+    }
+  }
+  for (std::size_t p = 0; p < objects.size(); ++p) {
+    if (objects[p].object->id() == object.id) continue;
+    feedback.confusable.push_back({objects[p].object->id(),
+                                   similarity_sum[p] / static_cast<double>(object.views.size()),
+                                   closer[p]});
+  }
+  const std::size_t kept = std::min<std::size_t>(feedback.confusable.size(), kConfusableObjects);
+  std::partial_sort(feedback.confusable.begin(), feedback.confusable.begin() + static_cast<std::ptrdiff_t>(kept),
+                    feedback.confusable.end(), [](const Confusion& a, const Confusion& b) {
+                      return a.similarity != b.similarity ? a.similarity > b.similarity
+                                                          : a.object < b.object;
+                    });
+  feedback.confusable.resize(kept);
+  return feedback;
+}
+
+}  // namespace orbit

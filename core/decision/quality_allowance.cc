@@ -1,0 +1,29 @@
+#include "core/decision/quality_allowance.h"
+
+#include <algorithm>
+
+namespace orbit {
+
+double NoiseAllowance(double noise_sigma) {
+  return kNoiseAllowancePerGreyLevel *
+         std::clamp(noise_sigma - kCleanNoiseSigma, 0.0, kNoiseAllowanceSpan);
+}
+
+double BlurAllowance(double blur) {
+  return kBlurAllowancePerUnit * std::max(0.0, blur - kSharpFrameBlur);
+}
+
+std::optional<double> MeanReading(std::span<const std::optional<double>> readings) {
+  double sum = 0;
+  int count = 0;
+  for (const std::optional<double>& reading : readings) {
+    if (reading) {
+      sum += *reading;
+      ++count;
+    }
+  }
+  if (count == 0) return std::nullopt;
+  return sum / count;
+}
+
+}  // namespace orbit

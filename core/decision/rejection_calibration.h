@@ -1,0 +1,76 @@
+// RejectionCalibration: the threshold of the calibrated accept / unknown rule, chosen from a
+// target false-accept rate and computed from the model set alone, with no labelled unknown
+// objects (issue 12).
+//
+// Leave one object out: each known object in turn plays an object the server has never seen.
+// Some of its views are queried against every other object; a window of n of them is answered
+// as a session would answer it (the winner and the runner-up are the two objects with the
+// largest summed best-view similarity over the window's frames) and gives one value of the
+// unknown statistic U (core/decision/unknown_statistic.h). Those values are the null distribution: what
+// U looks like when the object in front of the camera is unknown. The threshold for a target
+// false-accept rate f is the f-quantile of the null at the window's length: a window whose U is
+// at or below it is accepted, and an unknown object's window is accepted with probability about
+// f, provided unknown objects differ from the known ones the way known ones differ among
+// themselves. Look-alikes of enrolled objects are in the null too (an object whose twin is
+// enrolled), so on a model set with few of them the measured rate is below f.
+//
+// Sampling keeps the cost bounded: at most `max_sampled_views` views (spread evenly in azimuth
+// over every object), each compared with every view of the index once; windows draw their frames
+// from the sampled views of one object, with replacement. About 59 us per sampled view at
+// 100 objects and 590 us at 1000 (the exact scan), plus the window draws.
+//
+// Immutable after construction; thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "core/index/view_index.h"
+
+namespace orbit {
+
+// Window lengths with a null distribution of their own; longer windows use the longest one's
+// threshold (U's null narrows as n grows, so this rejects a little more than needed).
+inline constexpr int kCalibratedWindowLengths = 16;
+
+struct CalibrationOptions {
+  int max_sampled_views = 2048;   // views compared with the whole index (>= 1)
+  int windows_per_length = 2000;  // null values drawn per window length (>= 1)
+  std::uint64_t seed = 1;         // the window draws
+};
+
+class RejectionCalibration {
+ public:
+  // An empty calibration: calibrated() is false.
+  RejectionCalibration() = default;
+
+  // The null distributions of `index`. Empty (not calibrated) when the index holds fewer than
+  // two objects: no object can then play an unknown one. Throws std::invalid_argument for
+  // options out of range.
+  static RejectionCalibration FromIndex(const ViewIndexSnapshot& index,
+                                        const CalibrationOptions& options = {});
+
+  bool calibrated() const { return !null_.empty(); }
+
+  // The largest U accepted for a window of `frames` frames at the target false-accept rate
+  // (in (0, 1)). REQUIRES: calibrated(), frames >= 1.
+  double Threshold(int frames, double false_accept_rate) const;
+
+  // The share of the null at or below `statistic` for a window of `frames` frames, in (0, 1]:
+  // how often an unknown object's window looks at least this known (the rule's p-value).
+  // REQUIRES: calibrated(), frames >= 1.
+  double FalseAcceptRate(double statistic, int frames) const;
+
+  // The objects and views the null was drawn from.
+  int sampled_objects() const { return sampled_objects_; }
+  int sampled_views() const { return sampled_views_; }
+
+ private:
+  const std::vector<double>& Null(int frames) const;
+
+  std::vector<std::vector<double>> null_;  // [n - 1]: sorted U values for windows of n frames
+  int sampled_objects_ = 0;
+  int sampled_views_ = 0;
+};
+
+}  // namespace orbit

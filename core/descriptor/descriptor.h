@@ -1,0 +1,65 @@
+// The CEDD descriptor as the rest of the product sees it: 144 values in 0..7, tagged with the
+// variant of the extractor that produced it (SPEC.md, "Descriptor variants").
+//
+// Layout (docs/CEDD.md, "Histogram"): value i belongs to texture class i / 24 and fuzzy colour bin
+// i % 24. Classes: 0 non-edge, 1 non-directional, 2 horizontal, 3 vertical, 4 diagonal 45,
+// 5 diagonal 135.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace orbit {
+
+inline constexpr int kDescriptorSize = 144;
+inline constexpr int kDescriptorMaxValue = 7;   // each value is quantised to 3 bits
+inline constexpr int kColourBins = 24;          // fuzzy colour bins per texture class
+inline constexpr int kTextureClasses = 6;
+
+using DescriptorValues = std::array<std::uint8_t, kDescriptorSize>;
+
+enum class DescriptorVariant {
+  kCeddLire,  // bit-exact with the LIRE reference; reads only LIRE's grid of blocks
+  kCeddFull,  // the same algorithm on a 40x40 grid covering every pixel of the region
+  // cedd-full of the region's canonical frame (core/descriptor/canonical_frame.h: canonical size, blur and
+  // brightness): the product's variant, robust to blur, noise, compression and light
+  kCeddRobust,
+};
+inline constexpr std::array<DescriptorVariant, 3> kDescriptorVariants = {
+    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust};
+
+// The variant's name as it appears on the command line, in the API and in the model store:
+// "cedd-lire", "cedd-full" or "cedd-robust".
+std::string_view VariantName(DescriptorVariant variant);
+
+// Inverse of VariantName; nullopt for any other text.
+std::optional<DescriptorVariant> ParseVariant(std::string_view name);
+
+// VariantName of every variant, in kDescriptorVariants' order (for --variant's check).
+std::vector<std::string> VariantNames();
+
+// The one check of descriptor values, used wherever values arrive from outside (the store, the
+// index, the engines, the server's requests). Throws std::invalid_argument
+// "<what> value V at index I is outside 0..7" for the first value out of range.
+void ValidateDescriptorValues(std::span<const std::uint8_t> values,
+                              std::string_view what = "descriptor");
+
+// The descriptor held in `bytes` (a store's blob, a request's `cedd` field): exactly
+// kDescriptorSize values, each valid. Throws std::invalid_argument
+// "<what> has N values, expected 144", or as ValidateDescriptorValues.
+DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes,
+                                     std::string_view what = "descriptor");
+
+struct Descriptor {
+  DescriptorVariant variant = DescriptorVariant::kCeddLire;
+  DescriptorValues values{};
+
+  friend bool operator==(const Descriptor&, const Descriptor&) = default;
+};
+
+}  // namespace orbit

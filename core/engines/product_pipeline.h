@@ -1,0 +1,48 @@
+// The product's default recognition pipeline, defined once (issue 11): the descriptor variant a
+// device describes its frames in and a server keeps its models in, the engine a session runs
+// when it asks for none, and that engine's options. `orbit serve` takes its defaults from here,
+// the client library describes frames in its server's variant, and `orbit eval --methods
+// product` evaluates exactly this, so the three cannot drift apart.
+//
+// Why these choices: docs/results/robustness.md (the tables, the ablation, the commands).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "core/descriptor/descriptor.h"
+#include "core/engines/recognition_engine.h"
+
+namespace orbit {
+
+// The method name `orbit eval` gives the product pipeline.
+inline constexpr std::string_view kProductMethod = "product";
+
+struct ProductPipeline {
+  DescriptorVariant variant = DescriptorVariant::kCeddRobust;
+  std::string_view engine = "hmm";  // one of EngineNames()
+  // The engine's options: EngineOptions' defaults but for the HMM's sharpened emissions
+  // (hmm_sharpness 5: emissions to the 32nd power), with which using the measured turns no
+  // longer costs the right object points against ignoring them; half of each score from the
+  // nearest views (nearest_view_weight 0.5: the sector means alone miss what single views
+  // show when the window holds few frames); the calibrated accept / unknown rule; and move
+  // suggestions that never send the device back to a side it has seen while the other is new
+  // (docs/results/recognition.md).
+  EngineOptions options = [] {
+    EngineOptions options;
+    options.hmm_sharpness = kMaxHmmSharpness;
+    options.nearest_view_weight = 0.5;
+    options.rejection = RejectionRule::kCalibrated;
+    options.move_prefers_new_side = true;
+    return options;
+  }();
+};
+
+// The pipeline above.
+const ProductPipeline& Product();
+
+// One line saying what the product pipeline is, for reports and --help, e.g.
+// "hmm (8 states, window 8) on cedd-robust (canonical 128x128 frame, blur 2 px, brightness ...)".
+std::string DescribeProduct();
+
+}  // namespace orbit

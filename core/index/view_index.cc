@@ -1,0 +1,481 @@
+#include "core/index/view_index.h"
+
+#include <algorithm>
+#include <atomic>
+#include <stdexcept>
+#include <string>
+#include <unordered_set>
+
+#include <emmintrin.h>  // SSE2: part of every x86-64 CPU, so no runtime dispatch is needed
+
+#include <flann/flann.hpp>
+
+#include "core/descriptor/similarity.h"
+
+namespace orbit {
+
+using KdTree = flann::Index<flann::L2<float>>;
+
+// Views of some objects in one contiguous block, never modified after BuildSegment.
+struct ViewIndexSnapshot::Segment {
+  std::vector<std::shared_ptr<const IndexedObject>> objects;
+  std::vector<std::size_t> first_view;       // per object: its first view's local slot
+  std::size_t view_count = 0;
+  std::vector<std::uint8_t> descriptors;     // local slot s: [s * 144, (s + 1) * 144)
+  std::vector<std::int32_t> squared_norms;   // c.c per local slot
+  std::vector<std::int32_t> object_of_view;  // local object index per local slot
+  std::vector<float> points;                 // the descriptors as floats, for FLANN
+  std::unique_ptr<KdTree> kd_tree;           // kKdTree mode only; reads `points`
+};
+
+// A segment as one snapshot sees it: which of its objects are still present.
+struct ViewIndexSnapshot::SegmentState {
+  std::shared_ptr<const Segment> segment;
+  std::vector<bool> alive;  // per object of the segment
+  std::size_t dead_views = 0;
+};
+
+namespace {
+
+using Segment = ViewIndexSnapshot::Segment;
+using SegmentState = ViewIndexSnapshot::SegmentState;
+
+// The query widened to 16 bits once, so that each view costs nine 16-byte multiply-adds.
+struct WideQuery {
+  alignas(16) std::int16_t values[kDescriptorSize];
+  std::int32_t squared_norm = 0;
+
+  explicit WideQuery(const DescriptorValues& query) {
+    for (int i = 0; i < kDescriptorSize; ++i) {
+      values[i] = query[i];
+      squared_norm += query[i] * query[i];
+    }
+  }
+};
+
+// q.c for one view, exact (values are at most 7, so 16-bit products and 32-bit sums never
+// overflow).
+std::int32_t Dot(const WideQuery& query, const std::uint8_t* view) {
+  const __m128i zero = _mm_setzero_si128();
+  __m128i sum = _mm_setzero_si128();
+  for (int i = 0; i < kDescriptorSize; i += 16) {
+    const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(view + i));
+    const __m128i low = _mm_unpacklo_epi8(bytes, zero);
+    const __m128i high = _mm_unpackhi_epi8(bytes, zero);
+    const __m128i q_low = _mm_load_si128(reinterpret_cast<const __m128i*>(query.values + i));
+    const __m128i q_high = _mm_load_si128(reinterpret_cast<const __m128i*>(query.values + i + 8));
+    sum = _mm_add_epi32(sum, _mm_madd_epi16(low, q_low));
+    sum = _mm_add_epi32(sum, _mm_madd_epi16(high, q_high));
+  }
+  sum = _mm_add_epi32(sum, _mm_shuffle_epi32(sum, _MM_SHUFFLE(1, 0, 3, 2)));
+  sum = _mm_add_epi32(sum, _mm_shuffle_epi32(sum, _MM_SHUFFLE(2, 3, 0, 1)));
+  return _mm_cvtsi128_si32(sum);
+}
+
+// TC from the integer products, with Tanimoto()'s conventions for zero vectors.
+double TanimotoFromDot(std::int32_t qc, std::int32_t qq, std::int32_t cc) {
+  if (qq == 0 && cc == 0) return 1.0;
+  return static_cast<double>(qc) / (qq + cc - qc);
+}
+
+// (similarity, slot) ordered best first: higher similarity, then lower slot.
+using Scored = std::pair<double, std::size_t>;
+bool Better(const Scored& a, const Scored& b) {
+  return a.first > b.first || (a.first == b.first && a.second < b.second);
+}
+
+std::shared_ptr<const Segment> BuildSegment(std::vector<std::shared_ptr<const IndexedObject>> objects,
+                                            const ViewIndexOptions& options) {
+  auto segment = std::make_shared<Segment>();
+  for (const auto& object : objects) {
+    segment->first_view.push_back(segment->view_count);
+    segment->view_count += object->view_count();
+  }
+  segment->descriptors.reserve(segment->view_count * kDescriptorSize);
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    for (const ModelView& view : objects[o]->model().views) {
+      segment->descriptors.insert(segment->descriptors.end(), view.descriptor.begin(),
+                                  view.descriptor.end());
+      std::int32_t norm = 0;
+      for (const std::uint8_t value : view.descriptor) norm += value * value;
+      segment->squared_norms.push_back(norm);
+      segment->object_of_view.push_back(static_cast<std::int32_t>(o));
+    }
+  }
+  segment->objects = std::move(objects);
+  if (options.search == SearchMode::kKdTree && segment->view_count > 0) {
+    segment->points.assign(segment->descriptors.begin(), segment->descriptors.end());
+    flann::Matrix<float> points(segment->points.data(), segment->view_count, kDescriptorSize);
+    segment->kd_tree = std::make_unique<KdTree>(points, flann::KDTreeIndexParams(options.kd_trees));
+    // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
+    // std::random_device, so two builds over the same views give different trees (and kd-tree
+    // searches can return slightly different lists; docs/results/coil100-reproduction.md
+    // measures the spread). Builds in different threads are independent.
+    segment->kd_tree->buildIndex();
+  }
+  return segment;
+}
+
+SegmentState FreshState(std::shared_ptr<const Segment> segment) {
+  SegmentState state;
+  state.alive.assign(segment->objects.size(), true);
+  state.segment = std::move(segment);
+  return state;
+}
+
+// The live objects of some segments, oldest first, in one new segment.
+SegmentState Merge(const std::vector<const SegmentState*>& parts, const ViewIndexOptions& options) {
+  std::vector<std::shared_ptr<const IndexedObject>> objects;
+  for (const SegmentState* part : parts) {
+    for (std::size_t o = 0; o < part->segment->objects.size(); ++o) {
+      if (part->alive[o]) objects.push_back(part->segment->objects[o]);
+    }
+  }
+  return FreshState(BuildSegment(std::move(objects), options));
+}
+
+std::size_t LiveViews(const SegmentState& state) {
+  return state.segment->view_count - state.dead_views;
+}
+
+void ValidateOptions(const ViewIndexOptions& options) {
+  if (options.kd_trees < 1) throw std::invalid_argument("kd_trees must be at least 1");
+  if (options.kd_checks < 1) throw std::invalid_argument("kd_checks must be at least 1");
+  if (options.kd_candidates < 1) throw std::invalid_argument("kd_candidates must be at least 1");
+}
+
+std::shared_ptr<const IndexedObject> Prepare(ObjectModel model, DescriptorVariant variant) {
+  if (model.variant != variant) {
+    throw std::invalid_argument("object " + std::to_string(model.id) + " has variant " +
+                                std::string(VariantName(model.variant)) + ", the index holds " +
+                                std::string(VariantName(variant)));
+  }
+  return std::make_shared<const IndexedObject>(std::move(model));
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------
+// ViewIndexSnapshot
+
+ViewIndexSnapshot::ViewIndexSnapshot(DescriptorVariant variant, ViewIndexOptions options,
+                                     std::vector<SegmentState> segments)
+    : variant_(variant), options_(options), segments_(std::move(segments)) {
+  static std::atomic<std::uint64_t> next_serial{1};
+  serial_ = next_serial.fetch_add(1, std::memory_order_relaxed);
+  for (const SegmentState& state : segments_) {
+    const Segment& segment = *state.segment;
+    segment_first_slot_.push_back(slot_count_);
+    position_of_slot_.resize(slot_count_ + segment.view_count, -1);
+    view_of_slot_.resize(slot_count_ + segment.view_count, 0);
+    for (std::size_t o = 0; o < segment.objects.size(); ++o) {
+      const std::size_t first = slot_count_ + segment.first_view[o];
+      const int views = segment.objects[o]->view_count();
+      for (int v = 0; v < views; ++v) view_of_slot_[first + v] = v;
+      if (!state.alive[o]) continue;
+      const auto position = static_cast<std::int32_t>(objects_.size());
+      std::fill_n(position_of_slot_.begin() + static_cast<std::ptrdiff_t>(first), views, position);
+      position_of_id_[segment.objects[o]->id()] = objects_.size();
+      objects_.push_back({segment.objects[o].get(), first});
+      view_count_ += views;
+    }
+    slot_count_ += segment.view_count;
+  }
+}
+
+ViewIndexSnapshot::~ViewIndexSnapshot() = default;
+
+const IndexedObject* ViewIndexSnapshot::Find(ObjectId id) const {
+  const auto it = position_of_id_.find(id);
+  return it == position_of_id_.end() ? nullptr : objects_[it->second].object;
+}
+
+std::vector<ViewMatch> ViewIndexSnapshot::Search(const DescriptorValues& query, int count) const {
+  if (count < 1) throw std::invalid_argument("search count must be at least 1");
+  return options_.search == SearchMode::kKdTree ? SearchKdTree(query, count)
+                                                : SearchExact(query, count);
+}
+
+std::vector<ViewMatch> ViewIndexSnapshot::SearchExact(const DescriptorValues& query,
+                                                      int count) const {
+  if (count < 1) throw std::invalid_argument("search count must be at least 1");
+  const WideQuery wide(query);
+  // The best `count` so far as a heap whose top is the worst of them. Slots arrive in
+  // increasing order, so an equal similarity never displaces the worst kept.
+  std::vector<Scored> best;
+  const auto worse_on_top = [](const Scored& a, const Scored& b) { return Better(a, b); };
+  for (std::size_t s = 0; s < segments_.size(); ++s) {
+    const Segment& segment = *segments_[s].segment;
+    for (std::size_t o = 0; o < segment.objects.size(); ++o) {
+      if (!segments_[s].alive[o]) continue;
+      const std::size_t first = segment.first_view[o];
+      const std::size_t end = first + segment.objects[o]->view_count();
+      for (std::size_t v = first; v < end; ++v) {
+        const double tc =
+            TanimotoFromDot(Dot(wide, &segment.descriptors[v * kDescriptorSize]),
+                            wide.squared_norm, segment.squared_norms[v]);
+        if (static_cast<int>(best.size()) < count) {
+          best.emplace_back(tc, segment_first_slot_[s] + v);
+          std::push_heap(best.begin(), best.end(), worse_on_top);
+        } else if (tc > best.front().first) {
+          std::pop_heap(best.begin(), best.end(), worse_on_top);
+          best.back() = {tc, segment_first_slot_[s] + v};
+          std::push_heap(best.begin(), best.end(), worse_on_top);
+        }
+      }
+    }
+  }
+  return Best(best, count);
+}
+
+std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& query,
+                                                       int count) const {
+  const WideQuery wide(query);
+  std::vector<float> point(query.begin(), query.end());
+  const flann::Matrix<float> queries(point.data(), 1, kDescriptorSize);
+  std::vector<Scored> scored;
+  std::vector<std::size_t> indices;
+  std::vector<float> distances;
+  for (std::size_t s = 0; s < segments_.size(); ++s) {
+    const SegmentState& state = segments_[s];
+    const Segment& segment = *state.segment;
+    if (LiveViews(state) == 0) continue;
+    // Ask for enough that deleted views cannot crowd out the live candidates.
+    const std::size_t wanted = std::min(
+        segment.view_count,
+        static_cast<std::size_t>(std::max(count, options_.kd_candidates)) + state.dead_views);
+    indices.assign(wanted, 0);
+    distances.assign(wanted, 0);
+    flann::Matrix<std::size_t> index_matrix(indices.data(), 1, wanted);
+    flann::Matrix<float> distance_matrix(distances.data(), 1, wanted);
+    const int found = segment.kd_tree->knnSearch(queries, index_matrix, distance_matrix, wanted,
+                                                 flann::SearchParams(options_.kd_checks));
+    for (int i = 0; i < found; ++i) {
+      const std::size_t local = indices[i];
+      if (local >= segment.view_count || !state.alive[segment.object_of_view[local]]) continue;
+      const double tc = TanimotoFromDot(Dot(wide, &segment.descriptors[local * kDescriptorSize]),
+                                        wide.squared_norm, segment.squared_norms[local]);
+      scored.emplace_back(tc, segment_first_slot_[s] + local);
+    }
+  }
+  return Best(scored, count);
+}
+
+std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored,
+                                               int count) const {
+  std::vector<Scored> sorted = scored;
+  std::sort(sorted.begin(), sorted.end(), Better);
+  if (static_cast<int>(sorted.size()) > count) sorted.resize(count);
+  std::vector<ViewMatch> matches;
+  matches.reserve(sorted.size());
+  for (const auto& [similarity, slot] : sorted) {
+    const IndexedObject& object = *objects_[position_of_slot_[slot]].object;
+    const int view = view_of_slot_[slot];
+    matches.push_back({object.id(), view, object.model().views[view].azimuth, similarity});
+  }
+  return matches;
+}
+
+std::shared_ptr<const void> ViewIndexSnapshot::Derived(
+    DerivedKey key, const std::function<std::shared_ptr<const void>()>& build) const {
+  const std::lock_guard lock(derived_mutex_);
+  std::shared_ptr<const void>& derived = derived_[key];
+  if (!derived) derived = build();
+  return derived;
+}
+
+std::shared_ptr<const SnapshotChange> ViewIndexSnapshot::ChangeSince(
+    const ViewIndexSnapshot& before) const {
+  return std::static_pointer_cast<const SnapshotChange>(
+      Derived({"change-since", static_cast<std::int64_t>(before.serial())},
+              [&]() -> std::shared_ptr<const void> {
+                return std::make_shared<const SnapshotChange>(CompareSnapshots(before, *this));
+              }));
+}
+
+SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after) {
+  // An object is kept when the other snapshot has the same version (IndexedObject) under its id.
+  const auto position_in = [](const ViewIndexSnapshot& snapshot,
+                              const IndexedObject* object) -> std::int32_t {
+    if (snapshot.Find(object->id()) != object) return -1;
+    return static_cast<std::int32_t>(snapshot.PositionOf(object->id()));
+  };
+  SnapshotChange change;
+  for (const ObjectSlot& slot : before.objects()) {
+    if (position_in(after, slot.object) < 0) change.removed.push_back(slot.object);
+  }
+  std::size_t next = 0;  // position in `after`
+  for (const ObjectSlot& slot : after.objects()) {
+    const std::int32_t position = position_in(before, slot.object);
+    const bool added = position < 0;
+    const std::size_t source =
+        added ? change.added.size() : static_cast<std::size_t>(position);
+    std::vector<SnapshotChange::Run>& runs = change.runs;
+    if (!runs.empty() && runs.back().added == added &&
+        runs.back().source + runs.back().length == source) {
+      ++runs.back().length;
+    } else {
+      runs.push_back({next, source, 1, added});
+    }
+    ++next;
+    if (added) change.added.push_back(slot);
+  }
+  return change;
+}
+
+void ViewIndexSnapshot::SimilarityToEveryView(const DescriptorValues& query,
+                                              std::vector<float>& similarities) const {
+  const WideQuery wide(query);
+  similarities.resize(slot_count_);
+  for (std::size_t s = 0; s < segments_.size(); ++s) {
+    const Segment& segment = *segments_[s].segment;
+    float* out = similarities.data() + segment_first_slot_[s];
+    const std::uint8_t* views = segment.descriptors.data();
+    for (std::size_t v = 0; v < segment.view_count; ++v) {
+      out[v] = static_cast<float>(TanimotoFromDot(Dot(wide, views + v * kDescriptorSize),
+                                                  wide.squared_norm, segment.squared_norms[v]));
+    }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// ViewIndex
+
+ViewIndex::ViewIndex(DescriptorVariant variant, ViewIndexOptions options)
+    : variant_(variant), options_(options) {
+  ValidateOptions(options_);
+  current_ = std::make_shared<const ViewIndexSnapshot>(variant_, options_,
+                                                       std::vector<SegmentState>{});
+}
+
+namespace {
+DescriptorVariant VariantOf(const std::vector<ObjectModel>& models) {
+  if (models.empty()) {
+    throw std::invalid_argument("ViewIndex needs at least one model to know its variant");
+  }
+  return models.front().variant;
+}
+}  // namespace
+
+ViewIndex::ViewIndex(std::vector<ObjectModel> models, ViewIndexOptions options)
+    : variant_(VariantOf(models)), options_(options) {
+  ValidateOptions(options_);
+  current_ = BuildAll(std::move(models));
+}
+
+std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(std::vector<ObjectModel> models) const {
+  std::vector<SegmentState> segments;
+  if (!models.empty()) {
+    std::vector<std::shared_ptr<const IndexedObject>> objects;
+    std::unordered_set<ObjectId> ids;
+    for (ObjectModel& model : models) {
+      if (!ids.insert(model.id).second) {
+        throw std::invalid_argument("two models share the id " + std::to_string(model.id));
+      }
+      objects.push_back(Prepare(std::move(model), variant_));
+    }
+    segments.push_back(FreshState(BuildSegment(std::move(objects), options_)));
+  }
+  return std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
+}
+
+void ViewIndex::ReplaceAll(std::vector<ObjectModel> models) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  Publish(BuildAll(std::move(models)));
+}
+
+namespace {
+
+// Appends a segment holding `object` and merges segments of similar size. Binary-counter
+// merging: while the newest segment is at least as large as the one before it, the two become
+// one. Segment sizes then fall geometrically, so there are O(log views) segments and each view is
+// re-indexed O(log views) times in all.
+void AppendObject(std::vector<SegmentState>& segments, std::shared_ptr<const IndexedObject> object,
+                  const ViewIndexOptions& options) {
+  std::vector<std::shared_ptr<const IndexedObject>> added{std::move(object)};
+  segments.push_back(FreshState(BuildSegment(std::move(added), options)));
+  while (segments.size() >= 2 &&
+         LiveViews(segments.back()) >= LiveViews(segments[segments.size() - 2])) {
+    SegmentState merged = Merge({&segments[segments.size() - 2], &segments.back()}, options);
+    segments.pop_back();
+    segments.back() = std::move(merged);
+  }
+}
+
+// Marks object `id` deleted in `segments`; false (nothing changed) when it is not there.
+bool MarkDeleted(std::vector<SegmentState>& segments, ObjectId id,
+                 const ViewIndexOptions& options) {
+  for (std::size_t s = 0; s < segments.size(); ++s) {
+    SegmentState& state = segments[s];
+    const auto& objects = state.segment->objects;
+    for (std::size_t o = 0; o < objects.size(); ++o) {
+      if (!state.alive[o] || objects[o]->id() != id) continue;
+      state.alive[o] = false;
+      state.dead_views += objects[o]->view_count();
+      // A segment mostly deleted costs searches more than rewriting it does.
+      if (LiveViews(state) == 0) {
+        segments.erase(segments.begin() + static_cast<std::ptrdiff_t>(s));
+      } else if (2 * state.dead_views > state.segment->view_count) {
+        state = Merge({&state}, options);
+      }
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace
+
+void ViewIndex::Add(ObjectModel model) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  const std::shared_ptr<const ViewIndexSnapshot> base = Snapshot();
+  if (base->Find(model.id) != nullptr) {
+    throw std::invalid_argument("an object with id " + std::to_string(model.id) +
+                                " is already in the index");
+  }
+  std::vector<SegmentState> segments = base->segments_;
+  AppendObject(segments, Prepare(std::move(model), variant_), options_);
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+}
+
+void ViewIndex::Replace(ObjectModel model) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  // Validated before anything changes: a refused model leaves the index as it was.
+  std::shared_ptr<const IndexedObject> object = Prepare(std::move(model), variant_);
+  std::vector<SegmentState> segments = Snapshot()->segments_;
+  MarkDeleted(segments, object->id(), options_);
+  AppendObject(segments, std::move(object), options_);
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+}
+
+bool ViewIndex::Remove(ObjectId id) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  std::vector<SegmentState> segments = Snapshot()->segments_;
+  if (!MarkDeleted(segments, id, options_)) return false;
+  Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
+  return true;
+}
+
+std::shared_ptr<const ViewIndexSnapshot> ViewIndex::Snapshot() const {
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  return current_;
+}
+
+void ViewIndex::PrepareSnapshotsWith(SnapshotPreparation prepare) {
+  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  prepare_ = std::move(prepare);
+}
+
+void ViewIndex::Publish(std::shared_ptr<const ViewIndexSnapshot> next) {
+  if (prepare_) {
+    try {
+      prepare_(*next, *Snapshot());
+    } catch (const std::exception&) {
+      // A head start only (PrepareSnapshotsWith): the change itself must not be lost.
+    }
+  }
+  std::lock_guard<std::mutex> lock(publish_mutex_);
+  current_ = std::move(next);
+}
+
+}  // namespace orbit
