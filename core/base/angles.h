@@ -1,5 +1,5 @@
-// Azimuth arithmetic (SPEC.md, "Notation"): device azimuths have an unknown offset from the
-// model's, so the engines use only differences, wrapped to (-180, 180], and every sector or
+// Azimuth arithmetic (docs/design.md#notation): device azimuths have an unknown offset from
+// the model's, so the engines use only differences, wrapped to (-180, 180], and every sector or
 // interval is circular so that sequences crossing 0/360 behave like any other.
 //
 // All functions are pure and thread-safe. Angles are in degrees unless the name says radians.

@@ -1,6 +1,6 @@
 // SeededRandom: the pseudo-random numbers of the evaluation protocol and of the distortions, the
-// same with every standard library for a given seed (SPEC.md, "Evaluation protocol": "Seeds
-// fixed and printed"). The standard library's distributions are implementation-defined, so only
+// same with every standard library for a given seed (docs/design.md#seeds: seeds fixed and
+// printed). The standard library's distributions are implementation-defined, so only
 // std::mt19937_64's raw output (fully specified by the standard) is used and the uniform and
 // normal variates are derived from it here. (Normal() goes through log, sin and cos, whose last
 // bit may differ between C libraries.)

@@ -1,4 +1,4 @@
-// Active vision (SPEC.md, "Active vision"): where should the device move so that the objects
+// Active vision (docs/design.md#active-vision): where should the device move so that the objects
 // still in contention look most different from one another?
 //
 // Each object has N_avg averaged views (IndexedObject::Sectors(N_avg): the mean CEDD of the views
@@ -38,8 +38,9 @@ struct MoveCandidate {
 // positive to the right; MeasuredTurn(latest, frame)): a side is seen when a frame lies on it
 // less than one and a half sectors (of 360 / averaged_views) away. Going back shows what the window already holds, so the new side is the
 // better bet whatever the averaged views say: on COIL-100 under motion blur, four views
-// following SPEC.md's rule alone are 0.8 points less often right than four views stepping one
-// way (docs/results/recognition.md, "Active vision"). Empty `seen_turns`: SPEC.md's rule.
+// following the separation rule alone are less often right than four views stepping one way
+// (docs/results/recognition.md, "Active vision: does following the move suggestion help?").
+// Empty `seen_turns`: the separation rule alone, as the thesis' methods use it.
 // Throws std::invalid_argument when averaged_views < 2 or a candidate's object is null.
 SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int averaged_views,
                           std::span<const double> seen_turns = {});

@@ -1,4 +1,4 @@
-// The confidence of an update (issue 12): how likely the top-1 object is the object in front of
+// The confidence of an update: how likely the top-1 object is the object in front of
 // the camera, in [0, 1], meant literally: among updates with confidence about 0.9, about 90%
 // are right.
 //

@@ -1,4 +1,4 @@
-// What an enrollment got (issue 12), for the operator who walks round the object: where the
+// What an enrollment got, for the operator who walks round the object: where the
 // views leave the object unseen, which views repeat others, and which objects already enrolled
 // it could be taken for. Like the scanning apps that guide a user round an object, but after
 // the fact, in the Enroll and AddViews replies.
@@ -24,8 +24,8 @@
 namespace orbit {
 
 inline constexpr double kCoverageGapDegrees = 30;
-// COIL-100's neighbouring views 5 degrees apart have TC 0.984 (median) to 0.992 (75th
-// percentile) in cedd-robust; 0.995 and above is a repeat.
+// Above what most of COIL-100's neighbouring views, 5 degrees apart, reach in cedd-robust:
+// 0.995 and above is a repeat.
 inline constexpr double kRedundantSimilarity = 0.995;
 inline constexpr int kConfusableObjects = 3;
 

@@ -1,7 +1,7 @@
-// The pose of what is seen (issue 12): which side of the winner faces the camera at the latest
+// The pose of what is seen: which side of the winner faces the camera at the latest
 // frame, and how sure that is.
 //
-// A rotation search on the winner alone (EIIS' idea, SPEC.md "Engines", for one object): each
+// A rotation search on the winner alone (EIIS' idea for one object; docs/design.md#pose): each
 // view azimuth theta of the object is tried as the model azimuth of the latest frame; frame k
 // is then expected at theta + (alpha(q_k) - alpha(q_latest)), its measured turn, and is
 // compared with the object's view nearest that azimuth:

@@ -1,4 +1,4 @@
-// The quality allowance of the calibrated accept / unknown rule (issue 12): how much the
+// The quality allowance of the calibrated accept / unknown rule: how much the
 // unknown statistic U (core/decision/unknown_statistic.h) of an unknown object's window rises when its
 // frames are noisy or blurred, taken off U so that the rule's target false-accept rate holds
 // for degraded windows as it does for clean ones.
@@ -6,7 +6,7 @@
 // Why: the rule's threshold is a quantile of a null of clean windows
 // (core/decision/rejection_calibration.h) and the server cannot draw degraded ones (it holds
 // descriptors, not images). Noise moves every frame away from every view, so U rises for
-// unknown and known objects alike (for known ones about three times as fast) and a single
+// unknown and known objects alike (for known ones faster still) and a single
 // threshold rejects most noisy known objects (docs/results/recognition.md, "Noisy and blurred
 // frames"); blur does the same, less strongly. The device measures each frame's
 // noise and blur (Frame.quality, client/frame_quality.h); the rule then accepts
@@ -21,13 +21,11 @@
 //
 // The slope is the rise of the null's 15% quantile (the default target rate when it was fitted)
 // with the frames' measured noise, fitted over a sweep of noise strengths (variance
-// 0.002..0.03) of the tuning split's unknown objects (every tenth object of COIL-100; 0.0050 per
-// grey level at n = 1, 0.0074 at n = 8) and checked on the other split (0.0076, 0.0053). The
-// 17% quantile of today's default rises alike (fitted on the noisy strengths alone, 0.003-0.007
-// per grey level over the two splits and n, against 0.005-0.008 for the 15%; each point is a
-// quantile of 100 windows). It is the null's rise, not the known objects' (0.019 at the
-// median): allowing that much accepted 58% of the tuning split's unknown objects at the
-// strongest noise, for a target of 15%. Beyond the span measured, a frame claims no more.
+// 0.002..0.03) of the tuning split's unknown objects (every tenth object of COIL-100) and
+// checked on the other split. The 17% quantile of today's default rises alike. It is the null's
+// rise, not the known objects' (which is steeper): allowing that much accepted most of the
+// tuning split's unknown objects at the strongest noise. Beyond the span measured, a frame
+// claims no more. The fits: docs/results/recognition.md, "Noisy and blurred frames".
 //
 // Pure and thread-safe.
 #pragma once
@@ -50,10 +48,10 @@ double NoiseAllowance(double noise_sigma);
 //
 //   BlurAllowance(b) = kBlurAllowancePerUnit * max(0, b - kSharpFrameBlur)
 //
-// fitted the same way, over a sweep of motion blur (5..25 px at changing angles; the null's 15%
-// quantile rises 0.40 per unit at n = 1 and 0.58 at n = 8 above 0.5, where sharp COIL-100
-// frames end; the 17% quantile 0.35 and 0.60). Noise reads as sharpness and blur hides noise,
-// so at most one of the two allowances is large for a frame. A smooth, textureless object
+// fitted the same way, over a sweep of motion blur (5..25 px at changing angles), above 0.5,
+// where sharp COIL-100 frames end (docs/results/recognition.md, "Noisy and blurred frames").
+// Noise reads as sharpness and blur hides noise, so at most one of the two allowances is large
+// for a frame. A smooth, textureless object
 // reads somewhat blurred even when sharp, and is allowed a little.
 inline constexpr double kMaxBlur = 1;                 // EstimateBlur's range is [0, kMaxBlur]
 inline constexpr double kSharpFrameBlur = 0.5;        // what sharp frames read, at most

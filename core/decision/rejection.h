@@ -1,6 +1,6 @@
-// The accept / unknown decision (SPEC.md, "Recognition"): the best object is accepted when the
-// query frames fit the views matched to them about as well as those views fit distorted copies
-// of themselves.
+// The accept / unknown decision (docs/design.md#threshold-rule): the best object is accepted
+// when the query frames fit the views matched to them about as well as those views fit distorted
+// copies of themselves.
 //
 //   T_M = mean over frames of T(q_k, matched view)      (T = 1 - TC)
 //   accept  iff  T_M / mean(Ttyp of the matched views) <= Th        (Th default 2)
@@ -22,8 +22,8 @@ enum class Decision {
 std::string_view DecisionName(Decision decision);     // "ACCEPT", "UNKNOWN", "UNDECIDED"
 
 enum class RejectionRule {
-  kTypicalDistance,  // "th": SPEC.md's rule
-  kCalibrated,       // "calibrated": the product's (issue 12)
+  kTypicalDistance,  // "th": the thesis' rule (docs/design.md#threshold-rule)
+  kCalibrated,       // "calibrated": the product's (docs/design.md#calibrated-rule)
 };
 
 // "th", "calibrated".

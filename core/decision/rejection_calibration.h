@@ -1,6 +1,6 @@
 // RejectionCalibration: the threshold of the calibrated accept / unknown rule, chosen from a
 // target false-accept rate and computed from the model set alone, with no labelled unknown
-// objects (issue 12).
+// objects (docs/design.md#calibrated-rule).
 //
 // Leave one object out: each known object in turn plays an object the server has never seen.
 // Some of its views are queried against every other object; a window of n of them is answered
@@ -16,8 +16,8 @@
 //
 // Sampling keeps the cost bounded: at most `max_sampled_views` views (spread evenly in azimuth
 // over every object), each compared with every view of the index once; windows draw their frames
-// from the sampled views of one object, with replacement. About 59 us per sampled view at
-// 100 objects and 590 us at 1000 (the exact scan), plus the window draws.
+// from the sampled views of one object, with replacement. A sampled view costs one exact scan of
+// the index, plus the window draws (docs/results/recognition.md, "Cost", times a calibration).
 //
 // Immutable after construction; thread-safe.
 #pragma once

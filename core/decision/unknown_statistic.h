@@ -1,11 +1,11 @@
-// The unknown-object statistic of the calibrated accept / unknown rule (issue 12; SPEC.md's
-// Th rule is core/decision/rejection.h): how far the window's frames lie from the winner, measured
+// The unknown-object statistic of the calibrated accept / unknown rule (the thesis' Th rule
+// is core/decision/rejection.h): how far the window's frames lie from the winner, measured
 // against how far they lie from the runner-up and against how far the winner's views lie from
 // distorted copies of themselves. Small for an object the index knows, near 1 and above for
 // one it does not. Engine-agnostic: it reads the frames and the two objects' views, not an
 // engine's internal matching.
 //
-// For each frame q_k of the window (k = 1..n):
+// For each frame q_k of the window (k = 1..n; docs/design.md#unknown-statistic):
 //   d1_k = 1 - max_v TC(q_k, v)   over the winner's views v (the frame's best view of it)
 //   d2_k = 1 - max_v TC(q_k, v)   over the runner-up's views (1 when there is no runner-up)
 //   t_k  = Ttyp of the winner's best view for q_k
@@ -15,7 +15,7 @@
 // Why this form (docs/results/recognition.md): the ratio to the runner-up (the nearest-
 // neighbour distance ratio test) scales with what a distortion does to every distance at once,
 // so blurred or noisy frames of a known object stay below unknown ones; the typical-distance
-// term adds what SPEC.md's rule knew, the view's own spread under distortion. The weight was
+// term adds what the threshold rule knew, the view's own spread under distortion. The weight was
 // chosen on one split of COIL-100 (every tenth object unknown) and checked on the other.
 //
 // Pure and thread-safe.

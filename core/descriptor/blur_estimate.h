@@ -1,5 +1,5 @@
 // EstimateBlur: how blurred a frame is, from the frame alone, in [0, 1] (0 sharp, 1 as blurred
-// as blurring can make it), cheaply enough to run on every frame on the device (issue 12: the
+// as blurring can make it), cheaply enough to run on every frame on the device (for the
 // calibrated rule's allowance for blurred frames, core/decision/quality_allowance.h).
 //
 // Crété-Roffet, Dolmière, Ladret and Nicolas, "The blur effect: perception and estimation with
@@ -11,8 +11,8 @@
 // the same horizontally, and the larger of the two (motion blur along one direction reads
 // high). Unlike the variance of the Laplacian (client/frame_quality.h), the ratio does not
 // depend on how much texture the scene has, so it is comparable across objects. Noise reads as
-// sharpness: a noisy frame's blur is low whatever its blur (COIL-100: clean frames 0.30-0.51,
-// motion blur of 15 px 0.62-0.83, either with noise of deviation 25 about 0.15).
+// sharpness: a noisy frame's blur is low whatever its blur (the readings on COIL-100:
+// docs/results/recognition.md, "Noisy and blurred frames").
 //
 // Pure and thread-safe.
 #pragma once

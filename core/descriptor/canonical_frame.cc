@@ -17,8 +17,7 @@ namespace {
 // The mean of every k x k block of `bgr` (k >= 2), rounded; rows and columns past the last
 // whole block are left out (fewer than k of them). What INTER_AREA computes for an integer
 // factor, as two passes of integer additions: k rows summed into one (vectorised), then k
-// pixels of that sum into one. OpenCV's INTER_AREA takes several times longer on 3 channels
-// (640 x 480 to 148 x 111: 720 us).
+// pixels of that sum into one. OpenCV's INTER_AREA takes several times longer on 3 channels.
 cv::Mat BlockMeans(const cv::Mat& bgr, int k) {
   const int width = bgr.cols / k, height = bgr.rows / k;
   const std::size_t span = static_cast<std::size_t>(width) * k * 3;  // bytes of whole blocks
@@ -68,7 +67,7 @@ cv::Mat CanonicalSize(const cv::Mat& bgr, int area) {
   if (block >= 2 && bgr.cols / block >= width && bgr.rows / block >= height) {
     cv::Mat blocks = BlockMeans(bgr, block);
     if (blocks.cols == width && blocks.rows == height) return blocks;
-    // Less than a factor 2 is left: bilinear is as good there and 5x faster than INTER_AREA.
+    // Less than a factor 2 is left: bilinear is as good there and faster than INTER_AREA.
     cv::Mat resized;
     cv::resize(blocks, resized, cv::Size(width, height), 0, 0, cv::INTER_LINEAR);
     return resized;

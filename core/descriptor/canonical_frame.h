@@ -1,7 +1,7 @@
 // CanonicalFrame: what the cedd-robust descriptor variant does to a region before CEDD, so that
 // one object seen by different cameras, at different distances, shaken, noisy, compressed or
-// under different light gives nearly the same descriptor (issue 11; docs/results/robustness.md
-// measures each step).
+// under different light gives nearly the same descriptor (docs/design.md#canonical-frame;
+// docs/results/robustness.md measures each step).
 //
 // Three steps, in this order:
 //   1. Canonical size. The region is resampled to about kCanonicalArea pixels (128 x 128 for a

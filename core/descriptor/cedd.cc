@@ -1,6 +1,6 @@
 // CEDD extraction: grid, block sums, texture and colour per block, histogram, quantisation.
 //
-// Speed without giving up bit-exactness (docs/CEDD.md, "Texture of a block"): the reference sums
+// Speed without giving up bit-exactness (docs/design.md#exactness): the reference sums
 // per-pixel luminance Y = 0.114*B + 0.587*G + 0.299*R in doubles. Here 1000*Y is summed exactly as
 // an integer from per-quadrant channel sums (Y is linear), which gives the exact quadrant mean as
 // a fraction. The reference's rounding can only change the truncated mean when that exact mean is
@@ -200,7 +200,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
       const cedd::TextureClasses texture =
           cedd::ClassifyTexture({quadrant[0], quadrant[1], quadrant[2], quadrant[3]});
 
-      // Mean colour with integer division (docs/CEDD.md, "Colour of a block").
+      // Mean colour with integer division (docs/design.md#colour-of-a-block).
       const Divider block = lire ? lire_block : Divider(pixels);
       const cedd::Fuzzy24 colour =
           cedd::FuzzyColour(static_cast<int>(block.Divide(channel[2]).quotient),

@@ -1,4 +1,5 @@
-// The CEDD extractor (docs/CEDD.md): colour and edge directivity descriptor of an image region.
+// The CEDD extractor (docs/design.md#cedd): colour and edge directivity descriptor of an image
+// region.
 //
 // Thread-safe: ExtractCedd keeps no state between calls.
 #pragma once

@@ -1,4 +1,4 @@
-// The colour half of CEDD (docs/CEDD.md, "Colour of a block"): a block's mean colour becomes a
+// The colour half of CEDD (docs/design.md#colour-of-a-block): a block's mean colour becomes a
 // 24-bin fuzzy colour histogram via LIRE's integer HSV, the 10-bin fuzzy linking and its
 // expansion to 24 bins.
 //
@@ -22,10 +22,12 @@ Hsv RgbToHsv(int red, int green, int blue);
 using Fuzzy10 = std::array<double, 10>;
 using Fuzzy24 = std::array<double, 24>;
 
-// The 10-bin fuzzy linking of docs/CEDD.md step 4 (white, grey, black, red ... magenta).
+// The 10-bin fuzzy linking, step 4 of docs/design.md#colour-of-a-block (white, grey, black,
+// red ... magenta).
 Fuzzy10 FuzzyLink10(const Hsv& hsv);
 
-// The 24-bin expansion of docs/CEDD.md step 5 (each chromatic bin split light/normal/dark).
+// The 24-bin expansion, step 5 of docs/design.md#colour-of-a-block (each chromatic bin split
+// light/normal/dark).
 Fuzzy24 FuzzyLink24(const Hsv& hsv, const Fuzzy10& fuzzy10);
 
 // Both steps at once: the block's contribution to each of the 24 colour bins.

@@ -30,7 +30,7 @@ struct Grid {
   bool empty() const { return left.empty() || top.empty(); }
 };
 
-// LIRE's grid for a width x height region (docs/CEDD.md, "Grid"): 40x40, 20x20 or 2x2-pixel
+// LIRE's grid for a width x height region (docs/design.md#grid): 40x40, 20x20 or 2x2-pixel
 // blocks by the smaller side; pixels right of or below the last whole block are not covered.
 // Empty when the region is 1 pixel wide or tall.
 Grid LireGrid(int width, int height);

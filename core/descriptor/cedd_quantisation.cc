@@ -6,7 +6,7 @@
 namespace orbit::cedd {
 namespace {
 
-// Quantisation levels of docs/CEDD.md, scaled by 1e6 as in the reference.
+// Quantisation levels of docs/design.md#quantisation, scaled by 1e6 as in the reference.
 constexpr double kLevels[4][8] = {
     {180.19686541079636, 23730.024499150866, 61457.152912541605, 113918.55437576842,
      179122.46400035513, 260980.3325940354, 341795.93301552488, 554729.98648386425},

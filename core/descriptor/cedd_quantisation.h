@@ -1,4 +1,4 @@
-// The last step of CEDD (docs/CEDD.md, "Histogram" and "Quantisation to 3 bits"): the 144-bin
+// The last step of CEDD (docs/design.md#quantisation): the 144-bin
 // fuzzy histogram, normalised by its sum, each bin quantised to the nearest of its texture
 // class's eight levels.
 #pragma once

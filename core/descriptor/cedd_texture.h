@@ -1,4 +1,4 @@
-// The texture half of CEDD (docs/CEDD.md, "Texture of a block"): the five MPEG-7 edge-filter
+// The texture half of CEDD (docs/design.md#texture-of-a-block): the five MPEG-7 edge-filter
 // magnitudes of a block's four quadrant means, and the texture classes they select.
 #pragma once
 

@@ -1,7 +1,7 @@
 // The CEDD descriptor as the rest of the product sees it: 144 values in 0..7, tagged with the
-// variant of the extractor that produced it (SPEC.md, "Descriptor variants").
+// variant of the extractor that produced it (docs/design.md#variants).
 //
-// Layout (docs/CEDD.md, "Histogram"): value i belongs to texture class i / 24 and fuzzy colour bin
+// Layout (docs/design.md#histogram): value i belongs to texture class i / 24 and fuzzy colour bin
 // i % 24. Classes: 0 non-edge, 1 non-directional, 2 horizontal, 3 vertical, 4 diagonal 45,
 // 5 diagonal 135.
 #pragma once

@@ -1,5 +1,5 @@
-// The image distortions of the evaluation protocol (SPEC.md, "Evaluation protocol": MB and GN
-// query images) and of the typical distance (SPEC.md, "Recognition"), defined exactly as the
+// The image distortions of the evaluation protocol's MB and GN query images and of the typical
+// distance (docs/design.md#distortions), defined exactly as the
 // thesis' MATLAB code produced them:
 //   MB  imfilter(I, fspecial('motion', 15, 20))
 //   GN  imnoise(I, 'gaussian', 0, 0.012)

@@ -1,6 +1,6 @@
 // EstimateNoiseSigma: how much Gaussian-like noise a frame carries, in grey levels, cheaply
-// enough to run on every frame on the device (issue 11: a pipeline that adapts to noisy frames;
-// issue 14: frame quality).
+// enough to run on every frame on the device (a frame's quality reading, which the calibrated
+// rule's allowance for noisy frames reads).
 //
 // Immerkær's estimator (J. Immerkær, "Fast noise variance estimation", CVIU 64(2), 1996): the
 // image is convolved with the 3x3 mask N = [1 -2 1; -2 4 -2; 1 -2 1], the difference of two

@@ -1,4 +1,4 @@
-// Similarity between CEDD descriptors (SPEC.md, "Similarity"; docs/CEDD.md, "LIRE's distance").
+// Similarity between CEDD descriptors (docs/design.md#similarity).
 //
 // All functions are pure and thread-safe.
 #pragma once

@@ -1,4 +1,4 @@
-// Typical distance Ttyp of a model view (SPEC.md, "Recognition"):
+// Typical distance Ttyp of a model view (docs/design.md#typical-distance):
 //   Ttyp(c_{i,f}) = mean T(c_{i,f}, c^noisy_{i,f})
 // the mean Tanimoto distance between the view's CEDD and the CEDDs of its distorted copies. It
 // says how far a query of this very view typically lands when the camera shakes or the sensor is

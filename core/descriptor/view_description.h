@@ -1,8 +1,8 @@
 // DescribeView: what a model view stores, computed from its image. The one way a view is
 // described for enrollment, whichever path enrolls it (the client library on a device, the
 // server from an uploaded image, `orbit import`, the evaluation harness), so that the same image
-// stores the same numbers through every path (SPEC.md, "Recognition": "Without images at
-// enrollment, the client library computes the distorted descriptors on the device").
+// stores the same numbers through every path (docs/design.md#typical-distance: a device that
+// sends descriptors without images computes the distorted copies itself).
 //
 // The seed rule. The Gaussian noise of a view's noisy copy (core/descriptor/typical_distance.h) is seeded
 // from the view itself:

@@ -1,4 +1,4 @@
-// The baseline engines of the thesis (SPEC.md, "Engines"), against which VCI and the HMM are
+// The baseline engines of the thesis (docs/design.md#engines), against which VCI and the HMM are
 // measured. Each keeps, per window frame, the Tanimoto coefficient of the frame with every view
 // of the index (one brute-force pass per frame, ViewIndexSnapshot::SimilarityToEveryView), so
 // they always search exactly whatever the index's mode.

@@ -1,8 +1,8 @@
 // BatchViterbi: the most probable state path of many HMMs at once, one per object, that share
 // their states' layout, initial probabilities and transitions and differ only in emissions
-// (SPEC.md, "Engines", HMM: the transitions come from the measured orientation change, the same
-// for every object). Objects sit in SIMD lanes, so a frame step costs a few vector operations per
-// non-zero transition, whatever the number of objects.
+// (docs/design.md#orientation-hmm: the transitions come from the measured orientation change,
+// the same for every object). Objects sit in SIMD lanes, so a frame step costs a few vector
+// operations per non-zero transition, whatever the number of objects.
 //
 // It decodes what Viterbi() (orientation_hmm.h) decodes, in linear space with floats: after
 // every frame each object's scores are rescaled to a maximum of 1, which changes no path's rank.

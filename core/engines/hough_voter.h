@@ -1,4 +1,4 @@
-// VCI: Hough voting over retrieval lists (SPEC.md, "Engines", VCI; the thesis' parts 1 and 2).
+// VCI: Hough voting over retrieval lists (docs/design.md#vci; the thesis' parts 1 and 2).
 //
 // Every window frame q_k gets a retrieval list L_k: the N_L views most similar to it in the
 // index (ViewIndexSnapshot::Search: the kd-tree re-ranked by exact TC in kKdTree mode). The

@@ -310,7 +310,7 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
 // What a frame keeps while it is in the window: every object's best emission in 16 bits (the
 // bound that chooses what to decode), and the emissions of the few objects decoded lately ("kept"
 // objects), not all 8000 states' (32 KB a frame, 256 KB a session at 1000 objects). A session
-// then holds about 30 KB at 1000 objects, so that many more sessions' windows stay in the
+// then holds far less, so that many more sessions' windows stay in the
 // shared cache, where whole windows streamed from memory on every frame (docs/results/load.md,
 // "A window of bounds"). An object decoded for the first time gets its emissions for the older
 // frames from its own sector sums (SectorSimilarityTable::ComputeObject: the same values to the
@@ -407,8 +407,9 @@ class OrientationHmm final : public RecognitionEngine {
         std::min<std::size_t>(objects, static_cast<std::size_t>(RankedDepth(options())));
     // A first guess a little above the shown objects, doubled while an object left out could
     // still rank: every object decoded costs a cache line per frame when the session's window
-    // is out of cache (starting at 32 instead: 8 closed-loop sessions at 1000 objects 7% fewer
-    // frames/s, docs/results/load.md). top[decoded] is the best object left out.
+    // is out of cache (starting at 32 instead gave closed-loop sessions fewer frames/s:
+    // docs/results/load.md, "At 1000 objects with the product default, again"). top[decoded] is
+    // the best object left out.
     std::size_t decoded = std::min(objects, std::max<std::size_t>(shown + 3, 8));
     thread_local std::vector<std::uint32_t> top;  // the thread's: warm whichever session it serves
     std::vector<double> sums;
@@ -462,7 +463,7 @@ class OrientationHmm final : public RecognitionEngine {
   // When more objects than this (and than the last answer decoded) are kept, all but the last
   // answer's are dropped. A kept object costs `states` values per frame; an object decoded
   // again after being dropped costs its sector sums' products with each older frame. (32
-  // instead: 8 sessions about 3 us a frame slower in orbit_bench, 256 sessions the same.)
+  // instead made no session faster: docs/results/load.md, "Cold reads and the floor".)
   static constexpr std::size_t kKeptObjects = 128;
 
   // What the engine keeps of a frame while it is in the window.
@@ -562,8 +563,8 @@ class OrientationHmm final : public RecognitionEngine {
   // Asks for every line the decoding of `positions` reads from the window at once: the kept
   // emissions of each object in each frame and each frame's transitions. Where the session's
   // window is out of cache (hundreds of sessions), the gathering below would otherwise wait for
-  // them a frame at a time, behind the previous frame's sharpening (256 closed-loop sessions at
-  // 1000 objects 3% faster: docs/results/load.md, "Cold reads and the floor").
+  // them a frame at a time, behind the previous frame's sharpening (docs/results/load.md, "Cold
+  // reads and the floor", measures the gain).
   void PrefetchDecoded(std::span<const std::uint32_t> positions) const {
     constexpr std::size_t kEntriesPerLine = 64 / sizeof(std::pair<int, float>);
     const std::size_t states = static_cast<std::size_t>(states_);

@@ -1,6 +1,6 @@
-// The orientation HMM (SPEC.md, "Engines", HMM; the thesis' part 3): each object is a hidden
-// Markov model whose states are N equal azimuth sectors; the orientation sensor's measured change
-// between frames sets the transition probabilities.
+// The orientation HMM (docs/design.md#orientation-hmm; the thesis' part 3): each object is a
+// hidden Markov model whose states are N equal azimuth sectors; the orientation sensor's
+// measured change between frames sets the transition probabilities.
 //
 //   states        S_i = sector i of the object's model azimuths, [i*360/N, (i+1)*360/N); its
 //                 descriptor is the mean CEDD of the model views in it (IndexedObject::Sectors).

@@ -1,6 +1,6 @@
 // SectorSimilarityTable: TC(S, o) between one query frame and every HMM state of every object
-// of a view index at once (SPEC.md, "Engines", HMM: the state descriptor S is the mean CEDD of
-// the model views in a sector, and the emissions are built from these similarities).
+// of a view index at once (docs/design.md#orientation-hmm: the state descriptor S is the mean
+// CEDD of the model views in a sector, and the emissions are built from these similarities).
 //
 // Why a table: an HMM session scores every state of every object on every frame, 8000 states
 // for 1000 objects. A state's descriptor is a mean, so S.o = (sum of its views).o / count, an

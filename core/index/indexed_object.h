@@ -1,7 +1,7 @@
 // IndexedObject: one known object as the index holds it, with what the engines precompute from
 // its model: its views ordered by azimuth (to find the view at a given orientation) and its
 // sector views (the mean CEDD of the views in each of N equal azimuth sectors: the HMM's state
-// descriptors and active vision's averaged views, SPEC.md "Engines" and "Active vision").
+// descriptors and active vision's averaged views, docs/design.md#sector-views).
 //
 // Thread safety: immutable after construction except for the sector-view cache, which is
 // filled under an internal mutex; every method is const and safe to call from many threads.

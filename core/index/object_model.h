@@ -1,5 +1,5 @@
 // A known object as the engines see it: a set of views, each a descriptor taken at a known
-// azimuth (SPEC.md, "Notation": c_i is a set of views c_{i,f}).
+// azimuth (docs/design.md#notation: c_i is a set of views c_{i,f}).
 //
 // This is the vocabulary shared by core/ (index, engines), storage/ (the model store loads and
 // saves it) and server/. Plain data; no invariants beyond the field comments.
@@ -22,7 +22,7 @@ struct ModelView {
   double azimuth = 0;                // degrees, normalised to [0, 360)
   std::optional<double> elevation;   // degrees, when the capture recorded it
   // Ttyp(c_{i,f}): mean Tanimoto distance between this view and its distorted copies
-  // (SPEC.md, "Recognition"); 0 when unknown.
+  // (docs/design.md#typical-distance); 0 when unknown.
   double typical_distance = 0;
 
   bool operator==(const ModelView&) const = default;

@@ -1,6 +1,6 @@
 // ViewIndex: every view of every known object (descriptor, object, azimuth), searchable by
-// Tanimoto similarity (SPEC.md, "Similarity" and "Engines": VCI's retrieval lists, the
-// baselines' scans). Public interface of the index for the engines, the evaluation and the server.
+// Tanimoto similarity (docs/design.md#view-index: VCI's retrieval lists, the baselines'
+// scans). Public interface of the index for the engines, the evaluation and the server.
 //
 //   ViewIndex index(models, {.search = SearchMode::kKdTree});
 //   std::shared_ptr<const ViewIndexSnapshot> snapshot = index.Snapshot();
@@ -171,7 +171,8 @@ class ViewIndexSnapshot {
 
   // CompareSnapshots(before, *this), computed once per `before` and shared: the sessions that
   // meet this snapshot after `before` (all of them, after one enrollment) pay for the change once
-  // between them, not once each (issue 13, defect E at 1000 objects).
+  // between them, not once each (with many sessions open, one enrollment would otherwise cost
+  // each of them the whole comparison).
   std::shared_ptr<const SnapshotChange> ChangeSince(const ViewIndexSnapshot& before) const;
 
   // The `count` views most similar to `query` by Tanimoto, best first (ties: lower object
