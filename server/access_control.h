@@ -1,4 +1,4 @@
-// AccessControl: who may call what (issue "access control"; SPEC.md, "Service behaviour").
+// AccessControl: who may call what (docs/design.md#service-behaviour).
 //
 // Tokens come from a file, one per line: `<token> <role>`, role `recognize` (sessions and reads)
 // or `admin` (everything, including enroll, add views and delete). Blank lines and lines

@@ -1,5 +1,5 @@
 // The gRPC status of a refusal or a failure, the one mapping of the server's errors to the
-// codes SPEC.md's "Service behaviour" names. Pure functions, thread-safe.
+// codes docs/design.md#service-behaviour names. Pure functions, thread-safe.
 #pragma once
 
 #include <exception>

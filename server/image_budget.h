@@ -2,13 +2,13 @@
 // before a single pixel is decoded.
 //
 // An encoded image says in its first bytes how large it is, and a decoder allocates and fills
-// that many pixels: a 1.2 MB PNG can claim 20000x20000 pixels and cost 1.2 GB and 7 s of CPU
-// (issue 13, A). So the server reads the dimensions from the header itself, refuses images above
-// ServerLimits::max_image_pixels, and only then decodes; and at most one image per core is
-// decoded at a time across the process (DecodeSlots), so several large-but-allowed images cannot
-// take every worker's memory at once. A progressive JPEG can also repeat cheap scans, each a pass
-// over every block of the image (about 1 ms at 4096x4096): a 4 MB message could hold 100000 of
-// them, so the scans are counted too and bounded by kMaxJpegScans.
+// that many pixels: a 1.2 MB PNG can claim 20000x20000 pixels and cost 1.2 GB and seconds of CPU
+// (docs/service.md, "Limits (flags of `orbit serve`)"). So the server reads the dimensions from
+// the header itself, refuses images above ServerLimits::max_image_pixels, and only then decodes;
+// and at most one image per core is decoded at a time across the process (DecodeSlots), so
+// several large-but-allowed images cannot take every worker's memory at once. A progressive JPEG
+// can also repeat cheap scans, each a pass over every block of the image: a 4 MB message could
+// hold 100000 of them, so the scans are counted too and bounded by kMaxJpegScans.
 //
 // Only PNG and JPEG are accepted: the two formats devices send, the two whose headers are read
 // here. Every other format OpenCV could decode (TIFF, WebP, JPEG 2000, OpenEXR, ...) is refused
@@ -39,8 +39,8 @@ struct ImageHeader {
 // The most scans a JPEG may have. Encoders write 1 to 4 for baseline JPEG and about 10 for
 // progressive (libjpeg's default progression: 10 scans for colour, 6 for grey); 256 is the bound
 // NVIDIA's nvImageCodec sets against the same attack (NVIMGCODEC_MAX_JPEG_SCANS, after Cure53's
-// review of libjpeg-turbo). A scan without data costs about 1 ms at 4096x4096, so 256 of them
-// add about 0.3 s; a scan with data costs what its bytes do, bounded by the message size.
+// review of libjpeg-turbo). A scan without data is one pass over the image, so the bound caps
+// them at 256 passes; a scan with data costs what its bytes do, bounded by the message size.
 inline constexpr int kMaxJpegScans = 256;
 
 // Reads the dimensions of an encoded image from its header:

@@ -1,8 +1,9 @@
 // ModelCatalogue: the server's objects, durable in a ModelStore and searchable in a ViewIndex,
 // kept in step. A write goes to the store first (when it returns, the object survives a crash)
-// and then to the index, so every session sees it from its next frame on (SPEC.md, "Service
-// behaviour"). Each change reaches the index as one snapshot (ViewIndex::Replace, Remove): a
-// frame never ranks without an object that is merely gaining views.
+// and then to the index, so every session sees it from its next frame on
+// (docs/design.md#service-behaviour). Each change reaches the index as one snapshot
+// (ViewIndex::Replace, Remove): a frame never ranks without an object that is merely gaining
+// views.
 //
 // Thread-safe: writes are serialised among themselves; reads (Snapshot, store reads) run beside
 // them.

@@ -64,11 +64,10 @@ bool RejectionCalibrator::TEST_WaitFor(const ViewIndexSnapshot& snapshot,
 }
 
 void RejectionCalibrator::Run() {
-  // On the core's idle time only: a recalibration is seconds of CPU at 1000 objects (1.8 s), and
-  // on a busy core at the sessions' priority it delayed their frames by scheduler slices
-  // (256 sessions x 10 frames/s with a 72-view enrollment every 5 s: p99 round trip 16 ms
-  // instead of under 1; at nice 19 still 26-42 sessions above 5 ms in some runs). Sessions keep
-  // the previous calibration meanwhile.
+  // On the core's idle time only: a recalibration is seconds of CPU at 1000 objects, and on a
+  // busy core at the sessions' priority, or even at nice 19, it delayed their frames by
+  // scheduler slices (docs/results/load.md, "At 1000 objects with the product default, again").
+  // Sessions keep the previous calibration meanwhile.
   RunThisThreadOnIdleTime();
   std::unique_lock lock(mutex_);
   const auto due = [this] {

@@ -5,14 +5,14 @@
 // Computed once for the index the server starts with (before it serves), then again in the
 // background once a session shows it a snapshot that differs enough from the one it was
 // computed from (RecalibrationDue): an enrollment or deletion, from any source. Sessions keep
-// the previous calibration until the new one is ready (137 ms at 100 objects, 1.73 s at 1000 on
-// one core: rejection-calibration in docs/results/recognition.md). A session waits only for the
+// the previous calibration until the new one is ready (what it costs: rejection-calibration in
+// docs/results/recognition.md, "Cost"; docs/service.md). A session waits only for the
 // very first calibration, when the server started with fewer than two objects. A burst of
 // changes costs one recalibration per change it cannot coalesce, on one thread that runs on the
 // core's idle time (SCHED_IDLE, thread_priority.h), so it never takes the core from a session;
 // it still streams the whole model set through the caches, which slows the sessions' frames
-// while it runs (at 1000 objects: 256 sessions x 10 frames/s, 24-141 sessions with a p99 round
-// trip above 5 ms instead of 0-4), hence the wait for a change worth it.
+// while it runs (docs/results/load.md, "At 1000 objects with the product default, again"),
+// hence the wait for a change worth it.
 //
 // Thread-safe.
 #pragma once

@@ -1,5 +1,5 @@
-// Requests read into the values of core/ and storage/, with the checks SPEC.md's "Service
-// behaviour" asks for and that only the server makes: the variant of a request against the
+// Requests read into the values of core/ and storage/, with the checks that only the server
+// makes (docs/design.md#service-behaviour): the variant of a request against the
 // server's, uploaded images decoded and described here. The conversions both ends share are in
 // api/conversion.h. Every refusal names the field and says what is wrong; it is INVALID_ARGUMENT,
 // except an image above the server's pixel limit (RESOURCE_EXHAUSTED, server/image_budget.h).

@@ -6,7 +6,7 @@
 // to a worker thread and the update back cost two thread wake-ups per frame, more CPU than the
 // HMM's work on 100 objects (docs/results/load.md). An image frame is decoded on the bulk
 // workers, so that a large image never delays another session's descriptor frames. Any bad
-// request ends this stream alone with the status SPEC.md names.
+// request ends this stream alone with the status docs/design.md#service-behaviour names.
 //
 // Lifetime: created by RecognitionService for each call, deleted in OnDone.
 #pragma once
