@@ -1,4 +1,4 @@
-// StreamCapture: a recognition session fed by a capture (issue 14): every frame of the
+// StreamCapture: a recognition session fed by a capture: every frame of the
 // CaptureReader whose object is tracked is pushed with its azimuth, its region, its time and
 // its quality, at the video's own rate or as fast as the server allows.
 //

@@ -1,4 +1,4 @@
-// SelectCaptureViews: the views to enroll from a walk around an object (issue 14). The circle
+// SelectCaptureViews: the views to enroll from a walk around an object. The circle
 // of azimuths is cut into steps (default 5 degrees, COIL-100's spacing; step k holds azimuths
 // [k * step, (k + 1) * step) of the device's compass); each step keeps its sharpest usable
 // frame, so a walk that lingers gives one view per step and a fast one leaves steps empty,

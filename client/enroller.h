@@ -3,9 +3,10 @@
 //
 // Everything heavy happens on the device: each view's CEDD (in the server's descriptor variant)
 // and its typical distance Ttyp, described exactly as the server, `orbit import` and the
-// evaluation describe a view (core/descriptor/view_description.h, DescribeView; SPEC.md, "Recognition"),
-// so the server receives 144 bytes and one number per view and never an image. The object is committed atomically when the stream ends:
-// on any error nothing is stored.
+// evaluation describe a view (core/descriptor/view_description.h, DescribeView;
+// docs/design.md#typical-distance), so the server receives 144 bytes and one number per view
+// and never an image. The object is committed atomically when the stream ends: on any error
+// nothing is stored.
 //
 // Errors: RpcError with the server's status (ALREADY_EXISTS for a name in use,
 // INVALID_ARGUMENT for a bad name or view, PERMISSION_DENIED without the `admin` role, ...);
@@ -56,7 +57,7 @@ class Enroller {
   v1::ObjectInfo Enroll(const std::string& name, const std::vector<EnrollmentImage>& images,
                         const std::string& metadata_json = "{}");
 
-  // Enrolls object `name` from a walk around it (issue 14, docs/capture.md): chooses the views
+  // Enrolls object `name` from a walk around it (docs/capture.md): chooses the views
   // (SelectCaptureViews: the sharpest usable frame of each azimuth step, on the tracked
   // region), computes them and enrolls them in one atomic Enroll. Returns the stored object and
   // what the capture gave. Throws std::invalid_argument, before anything is sent, when no frame

@@ -1,5 +1,5 @@
 // FrameQuality: how useful a frame is to describe, measured cheaply on the device on the
-// object's region (issue 14): its sharpness and its noise.
+// object's region: its sharpness and its noise.
 //
 // - sharpness: the variance of the Laplacian of the grey region (the "variance of Laplacian"
 //   focus measure, Pech-Pacheco et al., ICPR 2000). Motion blur and defocus remove the fine
@@ -39,7 +39,8 @@ struct FrameQualityLimits {
   // (half of CEDD) would describe the blur, not the object.
   double min_relative_sharpness = 0.35;
   // Above this noise (grey levels) the descriptor is dominated by noise; the evaluation's
-  // strong noise (gn, variance 0.01 of the 0..1 range) reads about 25.
+  // strong noise (gn, variance 0.01 of the 0..1 range) reads well above it
+  // (docs/results/recognition.md, "Noisy and blurred frames").
   double max_noise_sigma = 12;
 };
 

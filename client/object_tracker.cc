@@ -209,8 +209,9 @@ ObjectTracker::ObjectTracker(const cv::Mat& first_frame, const cv::Rect& box, Tr
           [] {
             cv::TrackerCSRT::Params params;
             params.psr_threshold = kCsrtMinPeakToSidelobe;
-            // Without its colour segmentation of the object CSRT costs half as much per
-            // 640x480 frame (27 instead of 51 ms) and follows the generated walks as well.
+            // Without its colour segmentation of the object CSRT costs far less per 640x480
+            // frame and follows the generated walks as well (docs/results/capture.md, "What a
+            // frame costs on the device").
             params.use_segmentation = false;
             return cv::Ptr<cv::Tracker>(cv::TrackerCSRT::create(params));
           },

@@ -3,7 +3,7 @@
 // Every call of the client library (Connection, ModelsClient, Enroller, RecognitionSession)
 // throws RpcError for a non-OK gRPC status, carrying the code and the server's message
 // unchanged, so a caller can tell UNAUTHENTICATED from NOT_FOUND from UNAVAILABLE
-// (SPEC.md, "Service behaviour" lists which status each bad input gets). Arguments the library
+// (docs/design.md#service-behaviour lists which status each bad input gets). Arguments the library
 // itself can reject before any call (an empty image, a bad region) throw std::invalid_argument,
 // as core/ does.
 #pragma once

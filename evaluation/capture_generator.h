@@ -1,4 +1,4 @@
-// CaptureGenerator: test captures made by the project, never downloaded (issue 14). A walk
+// CaptureGenerator: test captures made by the project, never downloaded. A walk
 // around a COIL-100 object is rendered as a device would film it: the object's turntable views
 // composited onto a cluttered, textured background that pans, the object's box drifting and
 // scaling, some frames motion-blurred or noisy, and the device's orientation log at its own

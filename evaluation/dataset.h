@@ -1,5 +1,5 @@
 // Datasets of object views on disk: the images `orbit import` turns into a model set and
-// `orbit eval` runs the evaluation protocol on (SPEC.md, "Evaluation protocol").
+// `orbit eval` runs the evaluation protocol on (docs/design.md#datasets).
 //
 // Two layouts:
 //   coil100   a folder of files objN__A.png (COIL-100: object N, azimuth A degrees);

@@ -1,5 +1,5 @@
-// Query distortions as `orbit eval --distortions` names them: the protocol's three (SPEC.md,
-// "Evaluation protocol": df, mb, gn) and parameterised ones that combine, so that robustness is
+// Query distortions as `orbit eval --distortions` names them: the protocol's three (df, mb, gn;
+// docs/design.md#query-images) and parameterised ones that combine, so that robustness is
 // measured along each kind of damage a real camera does, at any strength:
 //
 //   df                       the view as captured

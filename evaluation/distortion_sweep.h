@@ -1,8 +1,8 @@
 // A sweep of one distortion's strength (`orbit eval --sweep`): the same kind of distortion at
 // evenly spaced strengths, so a report shows hit rate against strength rather than at one
-// setting that could have been tuned for (issue 11, deliverable 3).
+// setting that could have been tuned for.
 //
-// Axes and their default ranges (issue 11's goals, ends included):
+// Axes and their default ranges (those of docs/results/robustness.md's sweeps, ends included):
 //   mb    blur length 5..25 px; the angle changes from step to step (0, 37, 74, ... degrees
 //         modulo 180), so no angle is favoured
 //   gn    noise variance 0.002..0.03

@@ -1,4 +1,4 @@
-// The evaluation protocol (SPEC.md, "Evaluation protocol", the thesis' protocol made exact):
+// The evaluation protocol (docs/design.md#evaluation-protocol, the thesis' protocol made exact):
 // what one trial asks of an engine and how its answer is scored. Pure: no images are read and
 // no engine is run here (evaluation/evaluation_runner.h does both).
 //
@@ -56,7 +56,7 @@ TrialQuery SampleTrial(std::span<const double> view_azimuths, int n, std::uint64
 std::vector<int> ExcludedViews(std::span<const double> view_azimuths,
                                std::span<const int> query_views);
 
-// Active vision (`orbit eval --active`, issue 12): after its first views, the device takes each
+// Active vision (`orbit eval --active`): after its first views, the device takes each
 // next view `step` degrees from its latest one in the direction the latest update suggested
 // (kRight: increasing azimuth, kLeft: decreasing), and on in the direction it last went when
 // the update said kNone. `direction` (+1 or -1) is that last direction; a move updates it.

@@ -1,4 +1,4 @@
-// The recognition reports of `orbit eval` (issue 12): what the accept / unknown decision, the
+// The recognition reports of `orbit eval`: what the accept / unknown decision, the
 // confidence and the pose estimate did, per method x variant x distortion x n, from the
 // per-query verdicts the runner keeps (EvaluationCell::verdicts).
 //

@@ -1,5 +1,5 @@
-// ModelStore: where the server keeps its object models between runs (SPEC.md, "Service
-// behaviour": enrollment is atomic and durable).
+// ModelStore: where the server keeps its object models between runs
+// (docs/design.md#service-behaviour: enrollment is atomic and durable).
 //
 // An abstract interface so that a networked database (storage/postgres_model_store.h) can
 // replace the embedded SQLite store (storage/sqlite_model_store.h) without touching core/. Every

@@ -31,8 +31,8 @@ void ValidateObjectName(std::string_view name);
 
 // A view is valid when its descriptor values are in 0..kDescriptorMaxValue, its azimuth is finite
 // (the store keeps NormaliseAzimuth of it, core/base/angles.h: in [0, 360)),
-// its elevation (if any) is finite and in [-90, 90], and its typical distance is in [0, 1] (a
-// Tanimoto distance, SPEC.md "Recognition"). `position` (the view's index) prefixes the message.
+// its elevation (if any) is finite and in [-90, 90], and its typical distance is in [0, 1]
+// (docs/design.md#typical-distance). `position` (the view's index) prefixes the message.
 void ValidateView(const ModelView& view, std::size_t position);
 
 // The views of one write: 1..kMaxViewsPerObject valid views, and `thumbnails` empty or one per

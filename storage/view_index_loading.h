@@ -17,14 +17,14 @@ std::optional<DescriptorVariant> StoreVariant(ModelStore& store);
 
 // Every object of `store` (ModelStore::LoadAll), checked to be of `variant`: what the index's
 // bulk constructor and ViewIndex::ReplaceAll take. Throws StoreError kIncompatible, naming the
-// first such object, when the store holds an object of another variant (SPEC.md, "Descriptor
-// variants": never mix variants); other errors as ModelStore::LoadAll.
+// first such object, when the store holds an object of another variant (docs/design.md#variants:
+// never mix variants); other errors as ModelStore::LoadAll.
 std::vector<ObjectModel> LoadModels(ModelStore& store, DescriptorVariant variant);
 
 // A ViewIndex of every object in `store`, built in one pass from one snapshot (LoadModels) with
 // the index's bulk constructor: one segment, one kd-tree. Adding the objects one by one instead
-// makes the index merge its segments over and over (about 7x slower in kd-tree mode for 1000
-// objects x 72 views: `build/orbit_bench --benchmark_filter='store-load-index|index-add'`). An
+// makes the index merge its segments over and over (far slower in kd-tree mode: docs/storage.md,
+// "Measured", `store-load-index-kdtree` against `index-add-loop-kdtree`). An
 // empty store gives an empty index of `variant`. Throws as LoadModels and the ViewIndex
 // constructor.
 std::unique_ptr<ViewIndex> LoadViewIndex(ModelStore& store, DescriptorVariant variant,
