@@ -1,4 +1,4 @@
-// The device's per-frame cost of a capture (issue 14), against bgr2gray/640x480 of the same run
+// The device's per-frame cost of a capture, against bgr2gray/640x480 of the same run
 // (bench/cedd_bench.cc): following the object with each tracker (client/object_tracker.h) and
 // measuring the frame's quality (client/frame_quality.h). Frames are a generated walk
 // (evaluation/capture_generator.h) at 640x480, the object about 220 pixels across; the tracker

@@ -1,4 +1,4 @@
-// Speed of the client library end to end (issue 5): what one frame costs a device from Push()
+// Speed of the client library end to end: what one frame costs a device from Push()
 // to its update, against an in-process OrbitServer on loopback holding COIL-100 objects 1-20
 // enrolled every 10 degrees (720 views, kd-tree index, default VCI session, W = 8), and what one
 // view costs a device at enrollment.

@@ -1,12 +1,12 @@
-// Speed of the view index and the engines (issue 3, item 8), on synthetic model sets of 100 and
+// Speed of the view index and the engines, on synthetic model sets of 100 and
 // 1000 objects x 72 views, plus the kd-tree's recall against exact search on COIL-100.
 //
 //   exact-scan/<objects>             one brute-force Tanimoto pass over every view
 //                                    (ViewIndexSnapshot::SimilarityToEveryView)
 //   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
 //                                    kd-tree index, default options; engine "product" is the
-//                                    product pipeline's engine with its options (issue 11's
-//                                    budget: at most 0.25x exact-scan/1000)
+//                                    product pipeline's engine with its options (the
+//                                    product's budget: at most 0.25x exact-scan/1000)
 //   session-frame/<engine>/<objects>/sessions:<n>
 //                                    the same, with n sessions on the snapshot taking frames in
 //                                    turn, so each frame finds its session's state out of cache
@@ -225,7 +225,7 @@ void BM_SessionFrames(benchmark::State& state, std::string engine_name, int obje
 
 // One frame of a session whose window is full, on a snapshot that differs from its previous
 // frame's by one enrolled (even iterations) or deleted (odd) object of 72 views: what an
-// enrollment costs each open session (issue 13, defect E). `shared_work_done` builds the
+// enrollment costs each open session. `shared_work_done` builds the
 // snapshot's shared state first (the HMM's sector table, built once per snapshot by the first
 // session to see it), as for every session but one; otherwise the session pays for it.
 void BM_FrameAfterModelChange(benchmark::State& state, std::string engine_name, int objects,

@@ -11,9 +11,8 @@ find_package(PkgConfig REQUIRED)
 find_package(prometheus-cpp CONFIG REQUIRED)
 
 # tcmalloc (gperftools' minimal build): build/orbit's allocator. gRPC, protobuf and the engines
-# allocate on every frame; with glibc's malloc a server with 256 closed-loop sessions at 1000
-# objects spends 5 us of every frame in it. With tcmalloc it answers 11% more frames per second
-# with 8 closed-loop sessions and 19% more with 256 (medians of five pairs; docs/results/load.md,
+# allocate on every frame, and with glibc's malloc a loaded server spends a noticeable share of
+# every frame in it; with tcmalloc it answers more frames per second (docs/results/load.md,
 # "The allocator"). Off under sanitizers, which bring their own.
 option(ORBIT_TCMALLOC "Link build/orbit with tcmalloc" ON)
 if(ORBIT_TCMALLOC AND CMAKE_CXX_FLAGS MATCHES "-fsanitize")

@@ -30,10 +30,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using namespace orbit;
   constexpr auto kVariant = DescriptorVariant::kCeddLire;
   // Describing an image (CEDD, then its blurred and noisy copies and theirs) under the fuzzer's
-  // instrumentation costs about 30x what it costs in a release build (1.4 s against 0.04 s for
-  // a stream of a few 512 x 512 images), so on a busy machine such streams ran past the timeout. So images here are smaller than FuzzLimits' and a
-  // stream's images are described only up to kMaxDescribedImages: the checks a larger stream
-  // meets are the same ones, and the server's budget for many large images is image_budget's.
+  // instrumentation costs many times what it costs in a release build (docs/results/fuzz.md,
+  // "What was found"), so on a busy machine streams of a few 512 x 512 images ran past the
+  // timeout. So images here are smaller than FuzzLimits' and a stream's images are described
+  // only up to kMaxDescribedImages: the checks a larger stream meets are the same ones, and the
+  // server's budget for many large images is image_budget's.
   constexpr int kMaxDescribedImages = 16;
   static const server::ServerLimits limits = [] {
     server::ServerLimits l = fuzz::FuzzLimits();

@@ -19,7 +19,7 @@ namespace orbit::fuzz {
 // The server's limits (server/session_settings.h, the defaults of `orbit serve`) but for the
 // pixels an uploaded image may have: 512 x 512 instead of 4096 x 4096. The budget's logic is the
 // same at any limit; at the default, an input of a few hundred bytes may legitimately decode to
-// 128 MiB and take a second under the sanitizers, which would only slow the search down.
+// 128 MiB, which under the sanitizers would only slow the search down.
 inline server::ServerLimits FuzzLimits() {
   server::ServerLimits limits;
   limits.max_image_pixels = 512 * 512;

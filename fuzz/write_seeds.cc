@@ -207,7 +207,7 @@ void WriteSessionSeeds() {
     Write(t, "options-at-limits", Serialized(request));
   }
   {
-    RecognizeRequest request;  // azimuths far apart (issue 13, defect D), with elevations
+    RecognizeRequest request;  // azimuths whose difference overflows a double, with elevations
     request.mutable_options()->set_engine(orbit::v1::ENGINE_VCI);
     const double far = 1e308;
     for (double azimuth : {far, -far, 0.0, far}) {

@@ -5,14 +5,14 @@
 #   scripts/loadtest.sh [BUILD_DIR]        # default build/, which ./scripts/build.sh makes (Release)
 #   scripts/loadtest.sh BUILD_DIR soak     # 500 sessions x 10 frames/s for SOAK_SECONDS (600), an
 #                                          # enrollment every 3 s and the one before it deleted
-#   OBJECTS=1000 scripts/loadtest.sh       # the 1000-object rows (issue 13's goals at 1000 objects)
+#   OBJECTS=1000 scripts/loadtest.sh       # the 1000-object rows (the goals at 1000 objects)
 #
 # A server (`orbit serve`, pinned to CPU $SERVER_CPU) on a copy of a SQLite store holding all 100
-# COIL-100 objects (imported once into $DB, about a minute), then one `orbit loadtest` (pinned to
+# COIL-100 objects (imported once into $DB), then one `orbit loadtest` (pinned to
 # CPU $LOAD_CPU) per row, $DURATION seconds each, in the order of the table. Every run's JSON goes
 # to $OUT; the Markdown table to stdout, progress to stderr. With OBJECTS=1000 the store holds
 # COIL-100 and nine copies of it with permuted colours and turned images (BUILD_DIR/
-# orbit_coil_variants; 1000 objects x 72 views, made once in about 4 minutes), and the sessions
+# orbit_coil_variants; 1000 objects x 72 views, made once), and the sessions
 # show the 100 original objects.
 #
 # Environment: ORBIT_DATA (default ../shared/data), DURATION (15), PORT (50151), SERVER_CPU (0),
