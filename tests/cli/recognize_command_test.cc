@@ -169,9 +169,8 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
       if (update["decision"] != "ACCEPT") continue;
       (update["candidates"][0]["name"] == "obj" + std::to_string(object) ? right : wrong) += 1;
     }
-    // Never a confident wrong answer. Object 3 is recognised (measured: 23 of 24 accepted and
-    // right, the other UNKNOWN). Object 8's second walk, on another background, matches neither
-    // model (similarities 0.45-0.55 to both): every update is UNKNOWN with confidence below 0.02,
+    // Never a confident wrong answer. Object 3 is recognised. Object 8's second walk, on another
+    // background, matches neither model well: every update is UNKNOWN with a low confidence,
     // with the tracked box or the true boxes, before and after the product's nearest-view
     // blend, and which of the two rejected candidates is listed first is a coin toss.
     EXPECT_EQ(wrong, 0) << "object " << object;

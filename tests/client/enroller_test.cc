@@ -67,7 +67,7 @@ TEST(EnrollerTest, FromVideoStoresTheViewsOfItsChosenFramesGivenAsImages) {
   const Enroller::VideoEnrollment enrolled = enroller.FromVideo("walked", reader);
   const std::vector<CaptureView>& chosen = enrolled.selection.views;
   // 40 frames over 200 degrees, one per 5-degree step but for the log's 3 degrees of noise:
-  // some steps get two frames and others none; 4 frames are blurred, 3 noisy (measured: 21).
+  // some steps get two frames and others none; 4 frames are blurred, 3 noisy.
   ASSERT_GE(chosen.size(), 18u);
   EXPECT_EQ(enrolled.object.view_count(), static_cast<int>(chosen.size()));
 

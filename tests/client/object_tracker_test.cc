@@ -39,10 +39,9 @@ TrackingScore Track(const GeneratedCapture& capture, TrackerKind kind) {
 }
 
 TEST(ObjectTrackerTest, FollowsGeneratedWalksWithIouAboveSixTenths) {
-  // CSRT, the default: every frame of three walks within IoU 0.6 of the true box, none lost
-  // (measured: min 0.60, 0.87, 0.75; mean 0.83, 0.95, 0.89). KCF loses 1 and 2 frames of
-  // objects 1 and 12; CamShift, following hue alone, drops to IoU 0 on object 5
-  // (docs/results/capture.md).
+  // CSRT, the default: every frame of three walks within IoU 0.6 of the true box, none lost.
+  // KCF loses frames of objects 1 and 12; CamShift, following hue alone, loses object 5
+  // (docs/results/capture.md, "How well each tracker follows the object").
   for (int object : {1, 5, 12}) {
     const GeneratedCapture capture = GenerateCapture(Walk(object));
     const TrackingScore score = Track(capture, TrackerKind::kCsrt);
@@ -66,7 +65,7 @@ TEST(ObjectTrackerTest, ReportsLostWhenTheObjectIsGone) {
   for (int f = 1; f < 12; ++f) EXPECT_FALSE(tracker.Track(walk.frames[f]).lost) << f;
   int lost = 0;
   for (int f = 12; f < 24; ++f) lost += tracker.Track(elsewhere.frames[f]).lost ? 1 : 0;
-  EXPECT_EQ(lost, 12);  // measured: every frame of the other scene
+  EXPECT_EQ(lost, 12);  // every frame of the other scene
 }
 
 TEST(ObjectTrackerTest, ReportsLostWhenTheBoxLeavesTheFrame) {

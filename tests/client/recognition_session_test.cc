@@ -182,9 +182,8 @@ TEST(RecognitionSession, TheDefaultServerRecognisesBlurredAndNoisyFrames) {
 // A noisy camera: the frames' noise, which Push measures and sends, lets the server's accept /
 // unknown rule accept a known object it would otherwise call unknown (core/decision/quality_allowance.h).
 // Two noisy frames (variance 0.03, a deviation of about 37 grey levels) of each enrolled object,
-// once with their noise (Push) and once as bare descriptors (PushDescriptor). Measured: 10 of
-// 12 accepted and right with the noise, 8 without. The noisy arm goes first, so a calibration
-// still catching up with the enrollments could only cost it.
+// once with their noise (Push) and once as bare descriptors (PushDescriptor). The noisy arm
+// goes first, so a calibration still catching up with the enrollments could only cost it.
 TEST(RecognitionSession, NoisyFramesOfAKnownObjectAreAcceptedWhenTheirNoiseIsSent) {
   ServerProcess server;
   const Connection connection(testing::At(server.address()));

@@ -70,7 +70,7 @@ TEST(CaptureGeneratorTest, WritesAVideoAnyOpenCvReadsBack) {
   int frames = 0;
   while (video.read(frame)) {
     // Motion-JPEG: close to the rendered frame, not equal; it smooths away much of the noise of
-    // the noisy frames (measured: about 10 per pixel over the three channels, 50 for those).
+    // the noisy frames, which stay further from theirs.
     const double difference = cv::norm(frame, capture.frames[frames], cv::NORM_L1) / frame.total();
     EXPECT_LT(difference, capture.degraded[frames] ? 60 : 20) << frames;
     ++frames;

@@ -1,4 +1,4 @@
-# The installed device library, as an application outside Orbit's tree uses it (issue 14):
+# The installed device library, as an application outside Orbit's tree uses it:
 # installs the build into a fresh prefix under /tmp, builds examples/capture_client there with
 # find_package(OrbitClient) and again with the compiler and `pkg-config --cflags --libs
 # orbit-client` alone, and runs both builds (no arguments: usage, exit 2).

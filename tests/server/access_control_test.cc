@@ -1,6 +1,6 @@
 // Who may call what: the token file `orbit serve --tokens` reads, every refusal it promises
 // (each naming the file, and the line when there is one), and the status each call gets
-// (server/access_control.h; SPEC.md, "Service behaviour").
+// (server/access_control.h; docs/design.md#service-behaviour).
 //
 // The calls' metadata is put on a real grpc::ServerContext with gRPC's own test peer,
 // grpc::testing::ServerContextTestSpouse, so no server needs to run.

@@ -160,7 +160,7 @@ TEST(ImageBudgetTest, JpegSegmentsAreSkippedByTheirLengthAsLibjpegDoes) {
 }
 
 TEST(ImageBudgetTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
-  // The bomb: a PNG claiming 20000x20000 (1.2 GB decoded).
+  // A decompression bomb: a PNG claiming 20000x20000 (1.2 GB decoded).
   const grpc::Status bomb = CheckImageBudget(Read(PngClaiming(20000, 20000)), kDefaultMax,
                                              "frame.image");
   EXPECT_EQ(bomb.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);

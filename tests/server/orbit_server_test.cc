@@ -1,5 +1,5 @@
 // The gRPC service end to end: a real `orbit serve` process on a loopback port, spoken to through
-// the generated stubs, with COIL-100 views as the objects (SPEC.md, "Service behaviour").
+// the generated stubs, with COIL-100 views as the objects (docs/design.md#service-behaviour).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -295,15 +295,16 @@ TEST(Server, RecognizeAnswersABatchLikeASession) {
 }
 
 // The session's threshold Th decides ACCEPT / UNKNOWN from the typical distances the device sent.
-// (With SPEC.md's Th = 2 nearly every untrained COIL-100 object is accepted: Gaussian noise of
-// variance 0.012 moves a 128x128 CEDD so far (T about 0.7) that Ttyp is about 0.43, and
-// 2 x 0.43 is more than almost any match's distance. Th = 1 separates these two.)
+// (With the default Th = 2 of docs/design.md#threshold-rule nearly every untrained COIL-100
+// object is accepted: Gaussian noise of variance 0.012 moves a 128x128 CEDD so far that Ttyp is
+// large, and twice it is more than almost any match's distance; docs/results/engines-speed.md,
+// "Rejection threshold on COIL-100 (observation)". Th = 1 separates these two.)
 TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
   ServerProcess server;
   Client client(server.address());
   ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {11, 12, 13}, AzimuthsAwayFrom(60, 90), /*typical=*/true));
   v1::SessionOptions options;
-  options.set_rejection(v1::REJECTION_TH);  // SPEC.md's rule, by name
+  options.set_rejection(v1::REJECTION_TH);  // the thesis' rule, by name
   options.set_threshold(1.0);
   const auto known = client.Session(options, CoilSweep(12, 60, 10, 4, 0));
   ASSERT_EQ(known.updates.size(), 4u);
@@ -777,7 +778,7 @@ TEST(Server, SigtermEndsOpenSessionsCleanlyAndExitsZero) {
   EXPECT_EQ(exit_code.get(), 0);
 }
 
-// Issue 13, A: an image whose header claims 30000x30000 pixels (2.7 GB decoded) in 18 KB is
+// A bomb: an image whose header claims 30000x30000 pixels (2.7 GB decoded) in 18 KB is
 // refused from its header, before any decoding, and the server carries on.
 TEST(Server, RefusesADecompressionBombFromItsHeaderAndKeepsServing) {
   ServerProcess server;

@@ -213,7 +213,7 @@ TEST(RequestReadingTest, ViewWithCeddKeepsItsTypicalDistanceAndRefusesBadOnes) {
 }
 
 TEST(RequestReadingTest, ImagesAboveTheServersPixelLimitAreRefusedBeforeDecoding) {
-  // The bomb: 20000x20000 pixels (1.2 GB decoded) in a few hundred bytes.
+  // A decompression bomb: 20000x20000 pixels (1.2 GB decoded) in a few hundred bytes.
   v1::Frame frame;
   frame.set_image(PngBomb(20000, 20000));
   QueryFrame query;

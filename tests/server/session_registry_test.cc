@@ -1,6 +1,6 @@
 // The open recognition sessions: the limit on their number, the idle timeout and the end at
-// shutdown (server/session_registry.h; SPEC.md, "Service behaviour"). The sessions are a small
-// implementation of RegisteredSession that records how it was closed.
+// shutdown (server/session_registry.h; docs/design.md#service-behaviour). The sessions are a
+// small implementation of RegisteredSession that records how it was closed.
 #include "server/session_registry.h"
 
 #include <chrono>

@@ -1,5 +1,5 @@
 // Bad input is refused by the store itself, with a message that says what is wrong, and nothing
-// is written (ModelStore's contract; SPEC.md "Service behaviour": INVALID_ARGUMENT).
+// is written (ModelStore's contract; docs/design.md#service-behaviour: INVALID_ARGUMENT).
 #include "storage/model_validation.h"
 
 #include <functional>

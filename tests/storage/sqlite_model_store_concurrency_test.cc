@@ -1,5 +1,5 @@
 // Reads beside writes, and backups while writing: readers never wait for a writer and only ever
-// see whole, committed objects (SPEC.md, "Users and their jobs": enrollment, listing and deleting
+// see whole, committed objects (docs/design.md#overview: enrollment, listing and deleting
 // while queries run).
 #include <atomic>
 #include <thread>

@@ -1,5 +1,5 @@
 // kill -9 in the middle of writing: the store reopens intact, every object in it is whole, and
-// every write that was acknowledged before the kill is there (SPEC.md, "Service behaviour":
+// every write that was acknowledged before the kill is there (docs/design.md#service-behaviour:
 // "when the server says OK, the object survives a kill -9").
 #include <unistd.h>
 

@@ -1,5 +1,6 @@
 // Writes are all or nothing, another writer is waited for (then refused, clearly), and the
-// write-ahead log stays bounded (SPEC.md, "Service behaviour": enrollment is atomic and durable).
+// write-ahead log stays bounded (docs/design.md#service-behaviour: enrollment is atomic and
+// durable).
 #include <atomic>
 #include <chrono>
 #include <filesystem>

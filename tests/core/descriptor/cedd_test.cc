@@ -1,6 +1,6 @@
 // Behaviour of the CEDD extractor beyond the reference vectors: degenerate regions, the two
 // variants, the three image types, regions of interest, errors, and the fast path against a
-// literal transcription of docs/CEDD.md on random images.
+// literal transcription of docs/design.md#cedd on random images.
 #include <gtest/gtest.h>
 
 #include <random>
@@ -149,12 +149,12 @@ TEST(Cedd, RefusesWhatItCannotDescribe) {
   EXPECT_THROW(ExtractCedd(cv::Mat(8, 8, CV_8UC2), kLire), std::invalid_argument);
 }
 
-// --- the fast path against a literal transcription of docs/CEDD.md -------------------------
+// --- the fast path against a literal transcription of docs/design.md#cedd ------------------
 
-// docs/CEDD.md transcribed line by line for the LIRE grid: per-pixel double luminance summed per
-// quadrant in row-major order, truncated means, integer mean colour. Shares only the colour and
-// texture classification and the quantisation (covered by the reference vectors) with the
-// product.
+// docs/design.md#cedd transcribed line by line for the LIRE grid: per-pixel double luminance
+// summed per quadrant in row-major order, truncated means, integer mean colour. Shares only the
+// colour and texture classification and the quantisation (covered by the reference vectors)
+// with the product.
 DescriptorValues LiteralLireCedd(const cv::Mat& bgr) {
   const int width = bgr.cols, height = bgr.rows, m = std::min(width, height);
   int n = -1;

@@ -1,4 +1,4 @@
-// Tanimoto, its rotation-tolerant form and LIRE's distance (SPEC.md, "Similarity"), on
+// Tanimoto, its rotation-tolerant form and LIRE's distance (docs/design.md#similarity), on
 // hand-computed cases and against LIRE's own distances.
 #include <gtest/gtest.h>
 

@@ -35,9 +35,8 @@ TEST(ProductPipelineTest, IsTheRobustVariantWithTheHmmAndSaysSo) {
 
 // Objects 41-48, 3 trials per object and n, n = 1 and 4: 24 queries per cell, so one query is
 // 4.2 points. The product may lose at most one query to the best faithful method in any cell,
-// and under noise must win by at least 6 queries, 25 points (measured at this commit: 24 of 24
-// for the product, 14 and 15 for the best faithful method; with only 8 objects there are few
-// confusers, on all 100 the gap is 70 points: docs/results/robustness.md).
+// and under noise must win by at least 6 queries, 25 points (with only 8 objects there are few
+// confusers; the gap on all 100: docs/results/robustness.md).
 TEST(ProductPipelineTest, RobustnessSmokeProductIsNeverBelowTheFaithfulMethods) {
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod), "eis", "eiis", "vci", "hmm"};

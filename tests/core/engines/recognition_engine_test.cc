@@ -406,7 +406,7 @@ TEST(RecognitionEngineTest, BaselineScoresByHand) {
   }
 }
 
-// The nearest-view blend, by hand, on one frame q = (bin 0: 2, bin 1: 2), HMM with SPEC.md's
+// The nearest-view blend, by hand, on one frame q = (bin 0: 2, bin 1: 2), HMM with the thesis'
 // emissions. Object 1 has views (bin 0: 4) at 0 and (bin 1: 4) at 10 degrees, one sector
 // whose mean view is q itself: path TC 1, but each view alone only 8 / (8 + 16 - 8) = 0.5.
 // Object 2 has one view q + (bin 2: 1): TC 8 / (8 + 9 - 8) = 8/9 both ways. The HMM alone
@@ -476,10 +476,10 @@ TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
 // the known objects' queries are accepted, and a query of an object the index does not hold is
 // "unknown", for VCI and for the HMM.
 //
-// Th is 0.5 here, not SPEC.md's default 2: the 15-pixel motion blur makes Ttyp large on
-// 128x128 COIL views (mean 0.42 over these objects), so T_M / Ttyp is 0.04-0.09 for these known
-// objects and 0.9-1.9 for strangers (measured with exact best views): Th = 2 would accept every
-// stranger. See docs/results/engines-speed.md.
+// Th is 0.5 here, not the default 2 of docs/design.md#threshold-rule: the 15-pixel motion blur
+// makes Ttyp large on 128x128 COIL views, so T_M / Ttyp is far below 0.5 for these known objects
+// and above it for strangers: Th = 2 would accept every stranger (docs/results/engines-speed.md,
+// "Rejection threshold on COIL-100 (observation)").
 TEST(RecognitionEngineTest, UnknownObjectsAreRejectedKnownOnesAccepted) {
   std::vector<ObjectModel> models = CoilObjects(1, 6, EvenView);
   for (ObjectModel& model : models) {
