@@ -135,8 +135,7 @@ TEST(QualityAllowanceTest, NoisyKnownObjectsAreAcceptedWhenTheFramesCarryTheirNo
 
 TEST(QualityAllowanceTest, BlurredKnownObjectsAreAcceptedWhenTheFramesCarryTheirBlur) {
   // The same sweeps shaken: motion blur of 21 px at 75 degrees (not a length or angle the
-  // slope was fitted on). Measured: without the readings 33 known and 2 unknown sweeps
-  // accepted; with them 37 and 2.
+  // slope was fitted on).
   const auto shaken = [](const cv::Mat& image, std::uint64_t) {
     return MotionBlur(image, 21, 75);
   };
