@@ -8,7 +8,7 @@
 // was tuned on); DISTORTIONs are eval's specs (evaluation/distortion_spec.h; default: a spread
 // of blur, noise, compression, gain and resolution). For each configuration, every view of the
 // objects is a model view and every third view a single-frame query under each distortion,
-// matched to its nearest model view by Tanimoto similarity (docs/design.md#eis at n = 1), the
+// matched to its nearest model view by Tanimoto similarity (EIS at n = 1, docs/design.md#eis), the
 // query's own view and its neighbours within 10 degrees left out as the protocol leaves them
 // out. Prints one Markdown row per configuration: the top-1 hit rate per distortion, the mean
 // and the worst. Noise is seeded per image: reruns print the same table.
