@@ -52,7 +52,7 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "descriptor",
       "Print the CEDD descriptor of each image: one line per file, `FILE v0 v1 ... v143`,\n"
-      "values 0..7 (docs/CEDD.md). A file that cannot be read is reported on stderr and\n"
+      "values 0..7 (docs/design.md). A file that cannot be read is reported on stderr and\n"
       "makes the exit status 1; the other files are still processed.");
   command
       ->add_option("--variant", options->variant,

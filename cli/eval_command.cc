@@ -1,5 +1,6 @@
-// orbit eval: the evaluation protocol of SPEC.md on a dataset (evaluation/evaluation_runner.h):
-// a Markdown table of hit rates on stdout, optionally a CSV file and a PNG plot.
+// orbit eval: the evaluation protocol (docs/design.md#evaluation-protocol) on a dataset
+// (evaluation/evaluation_runner.h): a Markdown table of hit rates on stdout, optionally a CSV
+// file and a PNG plot.
 #include <unistd.h>
 
 #include <cstdio>
@@ -182,7 +183,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<EvalOptions>();
   CLI::App* command = app.add_subcommand(
       "eval",
-      "Run the evaluation protocol (SPEC.md) on a dataset: for every object, n random views\n"
+      "Run the evaluation protocol of docs/design.md on a dataset: per object, n random views\n"
       "are the query (their neighbours within 10 degrees leave the model), unchanged (df),\n"
       "motion-blurred (mb) or noisy (gn), with noisy azimuths; prints the top-1 hit rate per\n"
       "method x distortion x n as Markdown, plus time per query and model memory.");
@@ -282,7 +283,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--rejection", o->rejection,
-                      "accept / unknown rule of the thesis' engines: th (SPEC.md's, --threshold) "
+                      "accept / unknown rule of the thesis' engines: th (their own rule in "
+                      "docs/design.md, --threshold) "
                       "or calibrated (the product's, --false-accept-rate); the product always "
                       "uses its own")
       ->check(CLI::IsMember({"th", "calibrated"}))
@@ -322,12 +324,12 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(1, kMaxHmmStates))
       ->capture_default_str();
   command->add_option("--hmm-sharpness", o->hmm_sharpness,
-                      "hmm decodes with emissions to the power 2^S (0: SPEC.md's HMM)")
+                      "hmm decodes with emissions to the power 2^S (0: the thesis' HMM)")
       ->check(CLI::Range(0, kMaxHmmSharpness))
       ->capture_default_str();
   command->add_option("--nearest-view-weight", o->nearest_view_weight,
                       "share of each ranked object's score the thesis' engines take from the "
-                      "window's nearest views (1 - T_EIS) instead of their own (0: SPEC.md's "
+                      "window's nearest views (1 - T_EIS) instead of their own (0: the thesis' "
                       "engines; the product's is its own)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();

@@ -1,5 +1,5 @@
 // orbit import: turns a dataset of object views into a model store, one object per name, each
-// enrolled in its own transaction (SPEC.md, "Users and their jobs": import a dataset as a model
+// enrolled in its own transaction (docs/design.md#overview: turning a dataset into a model
 // set).
 #include <unistd.h>
 

@@ -3,11 +3,12 @@
 //
 // It drives the generated stub on gRPC's callback API rather than client/recognition_session.h,
 // whose session reads on a thread of its own and writes synchronously. In a closed loop of 64
-// HMM sessions against a server pinned to one core (spending 55-61 us of CPU a frame), that
-// session cost the generator, pinned to another, 57 us a frame, 92% of its core: a server made
-// faster would have been measured at the generator's speed. This one costs 37 us (59%). (At 8
-// sessions both cost about 60 us a frame, mostly the kernel's: a send and a wake-up for one
-// small message each way.) The library's session also replays frames after a dropped
+// HMM sessions against a server pinned to one core, that session cost the generator, pinned to
+// another, about what a frame cost the server and nearly all of its core: a server made faster
+// would have been measured at the generator's speed. This one costs markedly less (the
+// generator's CPU per frame: docs/results/load.md, "The table at B0"). (At 8 sessions
+// both cost about the same, mostly the kernel's: a send and a wake-up for one small message
+// each way.) The library's session also replays frames after a dropped
 // connection, which would hide the errors a load test is to count, and sends descriptors only
 // (--image-frames sends encoded images). The connection (token, TLS) and the open message
 // (ToProtoSessionOptions) are the client library's.

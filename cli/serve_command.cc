@@ -132,7 +132,8 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--rejection", o->rejection,
                   "default accept / unknown rule: calibrated (the product's: a threshold from "
-                  "--false-accept-rate, computed from the model set) or th (SPEC.md's, --threshold)")
+                  "--false-accept-rate, computed from the model set) or th (the thesis' rule in "
+                  "docs/design.md, --threshold)")
       ->check(CLI::IsMember({"calibrated", "th"}))
       ->capture_default_str();
   cmd->add_option("--false-accept-rate", c.session_defaults.options.false_accept_rate,

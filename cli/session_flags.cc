@@ -23,7 +23,8 @@ void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
   command.add_option("--hmm-states", flags.hmm_states, "HMM sectors per object");
   command.add_option("--rejection", flags.rejection,
                      "accept / unknown rule: calibrated (a threshold from --false-accept-rate, "
-                     "computed by the server from its model set) or th (SPEC.md's, --threshold)")
+                     "computed by the server from its model set) or th (the thesis' rule in "
+                     "docs/design.md, --threshold)")
       ->check(CLI::IsMember({"calibrated", "th"}));
   command.add_option("--false-accept-rate", flags.false_accept_rate,
                      "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
