@@ -1,11 +1,10 @@
 #include "api/engine_names.h"
 
-#include <algorithm>
 #include <cctype>
 #include <stdexcept>
 
 #include "core/engines/product_pipeline.h"
-#include "core/engines/recognition_engine.h"
+#include "core/engines/engine_registry.h"
 
 namespace orbit {
 
@@ -43,18 +42,12 @@ v1::Engine ParseSessionEngine(std::string_view name) {
 
 v1::Engine ProductSessionEngine() { return ParseSessionEngine(Product().engine); }
 
-std::vector<std::string_view> CoreEngineNames(v1::Engine engine) {
-  if (engine == v1::ENGINE_VCI_HMM) return {"vci", "hmm"};
-  const std::string name = SessionEngineName(engine);
-  for (std::string_view core : EngineNames()) {
-    if (core == name) return {core};
-  }
-  return {};
-}
-
 bool RunsHmm(v1::Engine engine) {
-  const std::vector<std::string_view> names = CoreEngineNames(engine);
-  return std::find(names.begin(), names.end(), "hmm") != names.end();
+  const std::string name = SessionEngineName(engine);
+  for (const EngineKind& kind : EngineKinds()) {
+    if (kind.name == name) return kind.keeps_hmm;
+  }
+  return false;
 }
 
 }  // namespace orbit

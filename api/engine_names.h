@@ -1,11 +1,10 @@
-// The engines a recognition session can run, by name: the one list of names with their parsing,
-// for the server (what a v1::Engine runs), the command line (--engine) and reports.
+// The engines as the API names them: proto/orbit/v1/recognition.proto's Engine values and the
+// engines' names (core/engines/engine_registry.h), converted both ways, for the server (what a
+// v1::Engine runs), the command line (--engine) and reports.
 //
-// The names are those of proto/orbit/v1/recognition.proto's Engine values, lower-cased, without
-// "ENGINE_" and with '-' for '_': vci, hmm, vci-hmm, vci-bm, vci-w0, eis, siis, eiis. Every one
-// but vci-hmm is the name of one engine of core/engines/recognition_engine.h (CreateEngine); vci-hmm runs
-// vci and hmm side by side (server/session_engine.h). tests/api/engine_names_test.cc checks that
-// the proto's engines and core's agree.
+// A value's name is the value's, lower-cased, without "ENGINE_" and with '-' for '_'
+// (ENGINE_VCI_HMM: "vci-hmm"). tests/api/engine_names_test.cc checks that every value names an
+// engine of the registry and every engine has a value.
 #pragma once
 
 #include <string>
@@ -29,12 +28,9 @@ v1::Engine ParseSessionEngine(std::string_view name);
 // default of a session that asks for none.
 v1::Engine ProductSessionEngine();
 
-// The engines of core/engines/recognition_engine.h that `engine` runs: one name, two for ENGINE_VCI_HMM,
-// none for ENGINE_UNSPECIFIED or an unknown value.
-std::vector<std::string_view> CoreEngineNames(v1::Engine engine);
-
-// Whether `engine` keeps an HMM (ENGINE_HMM, ENGINE_VCI_HMM), whose memory grows with
-// window x states (server/session_settings.h bounds it).
+// Whether `engine` keeps an HMM (EngineKind::keeps_hmm: ENGINE_HMM, ENGINE_VCI_HMM), whose
+// memory grows with window x states (server/session_settings.h bounds it); false for
+// ENGINE_UNSPECIFIED or a value this build does not know.
 bool RunsHmm(v1::Engine engine);
 
 }  // namespace orbit

@@ -43,6 +43,7 @@
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
 #include "core/engines/product_pipeline.h"
+#include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/engines/sector_similarity_table.h"

@@ -87,7 +87,7 @@ int RunDemo(const DemoOptions& options) {
             << " frames from azimuth " << options.start << " in steps of " << options.step
             << " degrees (its compass reads " << options.compass_offset
             << " degrees off; only differences count).\n";
-  SessionOptions session_options = ToSessionOptions(options.session);
+  RecognitionOptions session_options = ToRecognitionOptions(options.session);
   const bool json = options.json;
   session_options.on_update = [json](const v1::SessionUpdate& u) { PrintUpdate(u, json); };
   auto session = RecognitionSession::Open(connection, std::move(session_options));

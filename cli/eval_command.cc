@@ -198,7 +198,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                       "comma-separated: product (what `orbit serve` runs by default: " +
                           DescribeProduct() +
                           "; evaluated on its own variant, added when --variant lacks it) and "
-                          "the thesis' engines")
+                          "every engine a server runs (the thesis' seven and vci-hmm, the two "
+                          "together)")
       ->delimiter(',')
       ->check(CLI::IsMember(DefaultMethods()))
       ->capture_default_str();

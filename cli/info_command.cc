@@ -1,6 +1,5 @@
 // orbit info --server: what a server is and holds (Models.ServerInfo). Also the Docker image's
 // health check: exit status 0 only when the server answered.
-#include <cctype>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -9,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "api/conversion.h"
+#include "api/engine_names.h"
 #include "cli/commands.h"
 #include "cli/network_options.h"
 #include "cli/session_flags.h"
@@ -21,13 +21,6 @@ struct InfoOptions {
   NetworkOptions network;
   bool json = false;
 };
-
-std::string EngineText(v1::Engine engine) {
-  std::string name = v1::Engine_Name(engine);  // ENGINE_VCI_HMM
-  name = name.substr(name.find('_') + 1);
-  for (char& c : name) c = c == '_' ? '-' : static_cast<char>(std::tolower(c));
-  return name;  // vci-hmm, as --engine spells it
-}
 
 // "calibrated" / "th", as --rejection spells it; "" for a server that does not say.
 std::string RejectionText(v1::Rejection rejection) {
@@ -44,7 +37,7 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
       {"objects", info.object_count()},
       {"views", info.view_count()},
       {"session_defaults",
-       {{"engine", EngineText(d.engine())},
+       {{"engine", SessionEngineName(d.engine())},
         {"top_k", d.top_k()},
         {"window", d.window()},
         {"w", d.orientation_weight()},

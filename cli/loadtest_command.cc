@@ -331,7 +331,7 @@ int RunLoadtest(const LoadtestOptions& options) {
                         options.enroll_count, options.delete_during);
   }
 
-  SessionOptions session_options = ToSessionOptions(options.session);
+  RecognitionOptions session_options = ToRecognitionOptions(options.session);
   const v1::SessionOptions open = ToProtoSessionOptions(session_options, variant);
   LoadReport report;
   report.server = options.network.server;

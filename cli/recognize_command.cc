@@ -35,7 +35,7 @@ struct RecognizeOptions {
 int RunRecognizeVideo(const RecognizeOptions& options) {
   const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture);
   const Connection connection(ToConnectionOptions(options.network));
-  SessionOptions session_options = ToSessionOptions(options.session);
+  RecognitionOptions session_options = ToRecognitionOptions(options.session);
   const bool json = options.json;
   session_options.on_update = [json](const v1::SessionUpdate& u) { PrintUpdate(u, json); };
   auto session = RecognitionSession::Open(connection, std::move(session_options));
@@ -74,7 +74,7 @@ int RunRecognize(const RecognizeOptions& options) {
       options.images, azimuths ? options.azimuths : std::vector<double>(options.images.size()));
 
   const Connection connection(ToConnectionOptions(options.network));
-  SessionOptions session_options = ToSessionOptions(options.session);
+  RecognitionOptions session_options = ToRecognitionOptions(options.session);
   const bool json = options.json;
   session_options.on_update = [json](const v1::SessionUpdate& u) { PrintUpdate(u, json); };
   auto session = RecognitionSession::Open(connection, std::move(session_options));

@@ -13,20 +13,15 @@
 
 namespace orbit::cli {
 
+// The flags bind to the client's options directly; only the two named by text are parsed after.
 struct SessionFlags {
-  std::string engine;  // "" for the server's default
-  int top_k = 0;
-  int window = 0;
-  std::optional<double> orientation_weight;
-  int list_length = 0;
-  int hmm_states = 0;
-  std::optional<double> threshold;
+  RecognitionOptions options;
+  std::string engine;     // "" for the server's default
   std::string rejection;  // "calibrated", "th" or "" (the server's)
-  std::optional<double> false_accept_rate;
 };
 
 void AddSessionFlags(CLI::App& command, SessionFlags& flags);
 
-SessionOptions ToSessionOptions(const SessionFlags& flags);
+RecognitionOptions ToRecognitionOptions(const SessionFlags& flags);
 
 }  // namespace orbit::cli

@@ -3,7 +3,7 @@
 // its quality, at the video's own rate or as fast as the server allows.
 //
 // Frames whose tracking is lost are not sent (their box would describe the background); the
-// result counts them. Updates arrive as the session delivers them (SessionOptions::on_update or
+// result counts them. Updates arrive as the session delivers them (RecognitionOptions::on_update or
 // NextUpdate); this function does not close the session.
 // Errors: as CaptureReader::Next and RecognitionSession::Push (RpcError once the session ended).
 #pragma once

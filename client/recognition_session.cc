@@ -27,7 +27,7 @@ bool IsTransient(const grpc::Status& status) {
 
 // The window the server will keep: the session's own, else the server's default, else the
 // largest the API allows (replaying more frames than the window changes nothing).
-int WindowSize(const SessionOptions& options, const v1::ServerInfoResponse& info) {
+int WindowSize(const RecognitionOptions& options, const v1::ServerInfoResponse& info) {
   if (options.window > 0) return options.window;
   if (info.session_defaults().window() > 0) return info.session_defaults().window();
   return kMaxWindow;
@@ -41,7 +41,7 @@ std::chrono::microseconds ReplayInterval(const v1::ServerInfoResponse& info) {
 
 }  // namespace
 
-v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, DescriptorVariant variant) {
+v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options, DescriptorVariant variant) {
   v1::SessionOptions open;
   open.set_engine(options.engine);
   open.set_top_k(options.top_k);
@@ -57,7 +57,7 @@ v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, Descript
 }
 
 std::unique_ptr<RecognitionSession> RecognitionSession::Open(const Connection& connection,
-                                                             SessionOptions options) {
+                                                             RecognitionOptions options) {
   const v1::ServerInfoResponse info = ModelsClient(connection).ServerInfo();
   std::unique_ptr<RecognitionSession> session(
       new RecognitionSession(connection, std::move(options), info));
@@ -74,7 +74,7 @@ std::unique_ptr<RecognitionSession> RecognitionSession::Open(const Connection& c
   return session;
 }
 
-RecognitionSession::RecognitionSession(const Connection& connection, SessionOptions options,
+RecognitionSession::RecognitionSession(const Connection& connection, RecognitionOptions options,
                                        const v1::ServerInfoResponse& info)
     : connection_(connection),
       options_(std::move(options)),

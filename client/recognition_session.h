@@ -15,7 +15,7 @@
 // whose updates are not delivered again - then every frame not yet answered. The server thus
 // rebuilds the same window and the updates continue in order, none lost and none repeated,
 // with the frame indices the device was given. Attempts continue for
-// SessionOptions::reconnect_timeout; after that the session ends with UNAVAILABLE. Frames sent
+// RecognitionOptions::reconnect_timeout; after that the session ends with UNAVAILABLE. Frames sent
 // before a Reset() and still unanswered when the connection drops are not replayed: the device
 // had started over.
 //
@@ -51,9 +51,10 @@
 
 namespace orbit {
 
-// Options of a session. A field left at 0 / unset takes the server's default (ServerInfo's
-// session_defaults); the meaning and ranges are those of v1::SessionOptions.
-struct SessionOptions {
+// What a device asks of a recognition session: the engine and its options (a field left at 0 /
+// unset takes the server's default, ServerInfo's session_defaults; the meaning and ranges are
+// those of v1::SessionOptions, checked by the server), and how the client library runs it.
+struct RecognitionOptions {
   v1::Engine engine = v1::ENGINE_UNSPECIFIED;  // VCI, HMM, both, or a baseline
   int top_k = 0;                               // candidates per update
   int window = 0;                              // W: frames the session remembers
@@ -77,14 +78,14 @@ struct SessionOptions {
 
 // The `open` message of a session with `options` whose frames are in `variant`: unset fields
 // stay unset, so the server fills in its defaults.
-v1::SessionOptions ToProtoSessionOptions(const SessionOptions& options, DescriptorVariant variant);
+v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options, DescriptorVariant variant);
 
 class RecognitionSession {
  public:
   // Asks the server for its variant and defaults, then opens the stream. `connection` must
   // outlive the session. Throws RpcError when ServerInfo fails or the stream cannot start.
   static std::unique_ptr<RecognitionSession> Open(const Connection& connection,
-                                                  SessionOptions options);
+                                                  RecognitionOptions options);
 
   // Cancels the stream if Close() was not called; updates not yet received are dropped.
   ~RecognitionSession();
@@ -140,7 +141,7 @@ class RecognitionSession {
     v1::Frame frame;
   };
 
-  RecognitionSession(const Connection& connection, SessionOptions options,
+  RecognitionSession(const Connection& connection, RecognitionOptions options,
                      const v1::ServerInfoResponse& info);
   // REQUIRES: write_mu_ held. Starts a stream and sends the open message; false when the write
   // failed (the stream's Finish() says why).
@@ -157,7 +158,7 @@ class RecognitionSession {
   void ThrowIfEnded(const char* call) const;
 
   const Connection& connection_;
-  const SessionOptions options_;
+  const RecognitionOptions options_;
   const DescriptorVariant variant_;
   const int window_size_;
   const std::chrono::microseconds replay_interval_;  // paces replays to the server's frame limit

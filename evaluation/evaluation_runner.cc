@@ -60,6 +60,31 @@ void RunStage(std::size_t count, int threads, std::string_view stage,
   });
 }
 
+// The one variant method `name` is evaluated on (the product's own), or none for every variant.
+std::optional<DescriptorVariant> OnlyVariant(std::string_view name) {
+  if (name == kProductMethod) return Product().variant;
+  return std::nullopt;
+}
+
+// A method as the runner runs it: an engine with its options, on the variants it is measured on.
+struct Method {
+  std::string_view engine;  // one of EngineNames()
+  EngineOptions options;
+  std::optional<DescriptorVariant> only_variant;  // none: every variant of the run
+};
+
+// The method called `name` in a run whose engines take `run`: an engine of EngineNames() with
+// `run`, or kProductMethod, the product pipeline (core/engines/product_pipeline.h): its engine
+// with its own options, the window raised and the false-accept rate set as the run's, on its
+// own variant only. Throws std::invalid_argument for any other name.
+Method ResolveMethod(std::string_view name, const EngineOptions& run) {
+  if (name != kProductMethod) return {FindEngine(name).name, run, OnlyVariant(name)};
+  EngineOptions options = Product().options;
+  options.window = std::max(options.window, run.window);
+  options.false_accept_rate = run.false_accept_rate;
+  return {Product().engine, options, OnlyVariant(name)};
+}
+
 // Throws std::invalid_argument for options out of range or no known image (RunEvaluation's
 // contract).
 void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOptions& options) {
@@ -86,14 +111,15 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
 }
 
-// `options` with the product's variant added to the variants (last) when the product method is
-// asked for and its variant is not.
+// `options` with the variants its methods are evaluated on only (the product's) added, last, when
+// `variants` lacks them.
 EvaluationOptions WithProductVariant(EvaluationOptions options) {
-  const bool product = std::find(options.methods.begin(), options.methods.end(), kProductMethod) !=
-                       options.methods.end();
-  if (product && std::find(options.variants.begin(), options.variants.end(), Product().variant) ==
-                     options.variants.end()) {
-    options.variants.push_back(Product().variant);
+  for (const std::string& method : options.methods) {
+    const std::optional<DescriptorVariant> only = OnlyVariant(method);
+    if (only && std::find(options.variants.begin(), options.variants.end(), *only) ==
+                    options.variants.end()) {
+      options.variants.push_back(*only);
+    }
   }
   return options;
 }
@@ -255,6 +281,7 @@ struct TrialGrid {
 
 // One method's answer to one query.
 struct Outcome {
+  bool answered = false;  // false: the task asked nothing (a capture shorter than its n)
   QueryVerdict verdict;
   double seconds = 0;     // wall-clock time in ObserveSequence
 };
@@ -281,6 +308,7 @@ void Judge(const FrameUpdate& update, ObjectId expected, std::optional<double> t
 
 // Adds one query's outcome to its cell.
 void Count(const Outcome& outcome, EvaluationCell& cell) {
+  if (!outcome.answered) return;
   const QueryVerdict& verdict = outcome.verdict;
   cell.seconds += outcome.seconds;
   if (verdict.known) {
@@ -295,23 +323,20 @@ void Count(const Outcome& outcome, EvaluationCell& cell) {
   cell.verdicts.push_back(verdict);
 }
 
-// Whether `method` is evaluated on descriptors of `variant`: the product pipeline only on its own
-// variant (core/engines/product_pipeline.h), every faithful method on every variant.
+// Whether `method` is evaluated on descriptors of `variant`.
 bool Evaluates(std::string_view method, DescriptorVariant variant) {
-  return method != kProductMethod || variant == Product().variant;
+  const std::optional<DescriptorVariant> only = OnlyVariant(method);
+  return !only || *only == variant;
 }
 
 // One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,
-// made anew when none is idle, and gives it back. The product method runs the product's engine
-// with the product's options (its window raised as the others'). Thread-safe.
+// made anew when none is idle, and gives it back. Thread-safe.
 class EnginePool {
  public:
   using Engines = std::vector<std::unique_ptr<RecognitionEngine>>;
 
-  EnginePool(const std::vector<std::string>& methods, const EngineOptions& options)
-      : methods_(methods), options_(options), product_options_(Product().options) {
-    product_options_.window = std::max(product_options_.window, options.window);
-    product_options_.false_accept_rate = options.false_accept_rate;
+  EnginePool(const std::vector<std::string>& methods, const EngineOptions& options) {
+    for (const std::string& name : methods) methods_.push_back(ResolveMethod(name, options));
   }
 
   Engines Take() {
@@ -324,10 +349,8 @@ class EnginePool {
       }
     }
     Engines engines;
-    for (const std::string& method : methods_) {
-      engines.push_back(method == kProductMethod
-                            ? CreateEngine(Product().engine, product_options_)
-                            : CreateEngine(method, options_));
+    for (const Method& method : methods_) {
+      engines.push_back(CreateEngine(method.engine, method.options));
     }
     return engines;
   }
@@ -338,9 +361,7 @@ class EnginePool {
   }
 
  private:
-  const std::vector<std::string>& methods_;
-  const EngineOptions options_;
-  EngineOptions product_options_;
+  std::vector<Method> methods_;
   std::mutex mutex_;
   std::vector<Engines> idle_;  // guarded by mutex_
 };
@@ -477,69 +498,102 @@ class ActiveQuery {
   double offset_ = 0;
 };
 
-// Step 3: every task of `grid` on `threads` threads; returns the outcome table. Each task
-// draws its query (SampleTrial, from its own TrialSeed) and asks every method, for every
-// distortion, for its answer to the whole query.
-std::vector<Outcome> RunTrials(const EvaluationDataset& dataset, const DescribedImages& described,
-                               const std::vector<VariantModels>& models, const TrialGrid& grid,
-                               const EvaluationOptions& options,
-                               const EngineOptions& engine_options, int threads) {
+// One method's answer to a task's query under one distortion, and the model azimuth its latest
+// frame was taken at, when known (for the pose error).
+struct Answer {
+  FrameUpdate update;
+  std::optional<double> latest_azimuth;
+};
+
+// What one task asks every method: its right answer and, per distortion, an engine's answer.
+struct TaskQuery {
+  bool skipped = false;   // the task asks nothing
+  ObjectId expected = 0;  // 0: an object outside the model set, whose right answer is kUnknown
+  std::function<Answer(RecognitionEngine& engine, std::size_t distortion)> ask;
+};
+
+// Step 3: every task of `grid` on `threads` threads, each method of `options` answering
+// `query_of(task)` under every distortion; returns the outcome table.
+std::vector<Outcome> RunTasks(const TrialGrid& grid, const EvaluationOptions& options,
+                              const std::vector<VariantModels>& models,
+                              const EngineOptions& engine_options, int threads,
+                              const std::function<TaskQuery(const TrialGrid::Task&)>& query_of) {
   std::vector<Outcome> outcomes(grid.outcome_count());
   EnginePool pool(options.methods, engine_options);
   RunStage(grid.task_count(), threads, "trials", options, [&](std::size_t task) {
     const TrialGrid::Task t = grid.TaskAt(task);
-    const int n = options.query_lengths[t.n_slot];
-    const DatasetObject& target = dataset.object(t.object);
-    std::vector<double> azimuths;
-    for (std::size_t i : target.images) azimuths.push_back(dataset.images[i]->azimuth);
-    const std::uint64_t trial_seed =
-        TrialSeed(options.seed, static_cast<int>(t.object), n, static_cast<int>(t.trial));
-    const TrialQuery query = SampleTrial(azimuths, n, trial_seed);
-    const bool is_known = dataset.is_known(t.object);
-    const std::shared_ptr<const ViewIndexSnapshot> snapshot =
-        is_known ? TrialIndex(models[t.variant].models, t.object, query, options.index)
-                 : models[t.variant].full_index;
-
+    const TaskQuery query = query_of(t);
+    if (query.skipped) return;
     EnginePool::Engines engines = pool.Take();
-    const ObjectId expected = static_cast<ObjectId>(t.object + 1);
-    std::vector<QueryFrame> frames(query.views.size());
     for (std::size_t d = 0; d < grid.distortions; ++d) {
-      for (std::size_t k = 0; k < frames.size(); ++k) {
-        const DescribedImage& image = described[target.images[query.views[k]]][t.variant];
-        frames[k] = WithReadings(
-            {{options.variants[t.variant], image.queries[d]},
-             options.use_orientation ? std::optional<double>(query.azimuths[k]) : std::nullopt},
-            image.query_quality[d], options);
-      }
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
         engines[m]->SetCalibration(models[t.variant].calibration);
-        int latest_view = query.views.back();
         const Clock::time_point start = Clock::now();
-        FrameUpdate update;
-        if (options.active_step > 0) {
-          ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
-                                  is_known ? expected : 0, models[t.variant].full_index,
-                                  azimuths, nullptr, trial_seed, n, options.active_step,
-                                  options.active_policy, options.use_orientation, options.index};
-          active.frame = [&](int view) {
-            const DescribedImage& image = described[target.images[view]][t.variant];
-            return WithReadings({{options.variants[t.variant], image.queries[d]}, std::nullopt},
-                                image.query_quality[d], options);
-          };
-          update = ActiveQuery(*engines[m], active).Run(latest_view);
-        } else {
-          update = engines[m]->ObserveSequence(snapshot, frames);
-        }
+        const Answer answer = query.ask(*engines[m], d);
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
         outcome.seconds = SecondsSince(start);
-        Judge(update, is_known ? expected : 0, dataset.images[target.images[latest_view]]->azimuth,
-              outcome);
+        outcome.answered = true;
+        Judge(answer.update, query.expected, answer.latest_azimuth, outcome);
       }
     }
     pool.Give(std::move(engines));
   });
   return outcomes;
+}
+
+// The protocol's query of task `t` (docs/design.md#trials): n views of the object drawn with
+// its own TrialSeed (SampleTrial), asked against every model, the object's own without the views
+// near its query, or for an unknown object the full index; with --active, views taken where the
+// method's moves point.
+TaskQuery ProtocolQuery(const TrialGrid::Task& t, const EvaluationDataset& dataset,
+                        const DescribedImages& described, const std::vector<VariantModels>& models,
+                        const EvaluationOptions& options) {
+  const int n = options.query_lengths[t.n_slot];
+  const DatasetObject& target = dataset.object(t.object);
+  std::vector<double> azimuths;
+  for (std::size_t i : target.images) azimuths.push_back(dataset.images[i]->azimuth);
+  const std::uint64_t trial_seed =
+      TrialSeed(options.seed, static_cast<int>(t.object), n, static_cast<int>(t.trial));
+  const TrialQuery trial = SampleTrial(azimuths, n, trial_seed);
+  const bool is_known = dataset.is_known(t.object);
+  const ObjectId object_id = static_cast<ObjectId>(t.object + 1);
+  const std::shared_ptr<const ViewIndexSnapshot> snapshot =
+      is_known ? TrialIndex(models[t.variant].models, t.object, trial, options.index)
+               : models[t.variant].full_index;
+  const DescriptorVariant variant = options.variants[t.variant];
+  // The frame of view `view` (a position in the object's images) under distortion d.
+  const auto frame = [&described, &options, images = &target.images, t, variant](
+                         int view, std::size_t d, std::optional<double> azimuth) {
+    const DescribedImage& image = described[(*images)[view]][t.variant];
+    return WithReadings({{variant, image.queries[d]}, azimuth}, image.query_quality[d], options);
+  };
+  TaskQuery query;
+  query.expected = is_known ? object_id : 0;
+  query.ask = [=, &dataset, &models, &options, target_images = &target.images](
+                  RecognitionEngine& engine, std::size_t d) {
+    int latest_view = trial.views.back();
+    Answer answer;
+    if (options.active_step > 0) {
+      ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
+                              is_known ? object_id : 0, models[t.variant].full_index,
+                              azimuths, nullptr, trial_seed, n, options.active_step,
+                              options.active_policy, options.use_orientation, options.index};
+      active.frame = [&frame, d](int view) { return frame(view, d, std::nullopt); };
+      answer.update = ActiveQuery(engine, active).Run(latest_view);
+    } else {
+      std::vector<QueryFrame> frames;
+      for (std::size_t k = 0; k < trial.views.size(); ++k) {
+        frames.push_back(frame(trial.views[k], d,
+                               options.use_orientation ? std::optional<double>(trial.azimuths[k])
+                                                       : std::nullopt));
+      }
+      answer.update = engine.ObserveSequence(snapshot, frames);
+    }
+    answer.latest_azimuth = dataset.images[(*target_images)[latest_view]]->azimuth;
+    return answer;
+  };
+  return query;
 }
 
 // The report's cells, in its fixed order (variant, distortion, method, n), each summing its
@@ -666,7 +720,9 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
                        options.distortions.size(),  options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
   const std::vector<Outcome> outcomes =
-      RunTrials(dataset, described, models, grid, options, report.engine, report.threads);
+      RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
+        return ProtocolQuery(t, dataset, described, models, options);
+      });
   report.trial_seconds = SecondsSince(trial_start);
 
   report.cells = AggregateCells(outcomes, grid, options);
@@ -756,60 +812,34 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   const std::vector<VariantModels> models = BuildModels(dataset, described, options);
   for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
 
-  // Step 3: one task per (variant, sequence, n).
-  const std::size_t ns = options.query_lengths.size();
-  const std::size_t distortions = options.distortions.size(), methods = options.methods.size();
-  const std::size_t tasks = options.variants.size() * sequences.size() * ns;
-  std::vector<Outcome> outcomes(tasks * distortions * methods);
+  // Step 3: one task per (variant, sequence, n): the sequence's first n frames, asked against
+  // the full index; a sequence shorter than n asks nothing.
+  const TrialGrid grid{options.variants.size(),     sequences.size(),
+                       options.query_lengths.size(), 1,
+                       options.distortions.size(),  options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
-  EnginePool pool(options.methods, report.engine);
-  RunStage(tasks, report.threads, "trials", options, [&](std::size_t task) {
-    const std::size_t v = task / ns / sequences.size(), s = task / ns % sequences.size();
-    const int n = options.query_lengths[task % ns];
-    const CapturedSequence& sequence = sequences[s];
-    if (static_cast<int>(sequence.frames.size()) < n) return;
-    EnginePool::Engines engines = pool.Take();
-    std::vector<QueryFrame> query(static_cast<std::size_t>(n));
-    for (std::size_t d = 0; d < distortions; ++d) {
-      for (int k = 0; k < n; ++k) {
-        const std::size_t f = sequence.frames[static_cast<std::size_t>(k)];
-        query[k] = WithReadings({{options.variants[v], queries[f][v][d]},
-                                 options.use_orientation ? captures[f].azimuth : std::nullopt},
-                                quality[f][d], options);
-      }
-      for (std::size_t m = 0; m < methods; ++m) {
-        if (!Evaluates(options.methods[m], options.variants[v])) continue;
-        engines[m]->SetCalibration(models[v].calibration);
-        const Clock::time_point start = Clock::now();
-        const FrameUpdate update = engines[m]->ObserveSequence(models[v].full_index, query);
-        Outcome& outcome = outcomes[(task * distortions + d) * methods + m];
-        outcome.seconds = SecondsSince(start);
-        Judge(update, expected[s], std::nullopt, outcome);
-      }
-    }
-    pool.Give(std::move(engines));
-  });
-  report.trial_seconds = SecondsSince(trial_start);
-
-  for (std::size_t v = 0; v < options.variants.size(); ++v) {
-    for (std::size_t d = 0; d < distortions; ++d) {
-      for (std::size_t m = 0; m < methods; ++m) {
-        if (!Evaluates(options.methods[m], options.variants[v])) continue;
-        for (std::size_t slot = 0; slot < ns; ++slot) {
-          EvaluationCell& cell = report.cells.emplace_back();
-          cell.method = options.methods[m];
-          cell.variant = options.variants[v];
-          cell.distortion = options.distortions[d].name;
-          cell.n = options.query_lengths[slot];
-          for (std::size_t s = 0; s < sequences.size(); ++s) {
-            if (static_cast<int>(sequences[s].frames.size()) < cell.n) continue;
-            const std::size_t task = (v * sequences.size() + s) * ns + slot;
-            Count(outcomes[(task * distortions + d) * methods + m], cell);
+  const std::vector<Outcome> outcomes = RunTasks(
+      grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
+        const CapturedSequence* sequence = &sequences[t.object];
+        const int n = options.query_lengths[t.n_slot];
+        TaskQuery query;
+        query.skipped = static_cast<int>(sequence->frames.size()) < n;
+        query.expected = expected[t.object];
+        query.ask = [&, sequence, t, n](RecognitionEngine& engine, std::size_t d) {
+          std::vector<QueryFrame> frames;
+          for (int k = 0; k < n; ++k) {
+            const std::size_t f = sequence->frames[static_cast<std::size_t>(k)];
+            frames.push_back(WithReadings(
+                {{options.variants[t.variant], queries[f][t.variant][d]},
+                 options.use_orientation ? captures[f].azimuth : std::nullopt},
+                quality[f][d], options));
           }
-        }
-      }
-    }
-  }
+          return Answer{engine.ObserveSequence(models[t.variant].full_index, frames), {}};
+        };
+        return query;
+      });
+  report.trial_seconds = SecondsSince(trial_start);
+  report.cells = AggregateCells(outcomes, grid, options);
   return report;
 }
 

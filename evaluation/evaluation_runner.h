@@ -1,5 +1,5 @@
-// EvaluationRunner: runs the evaluation protocol (evaluation/evaluation_protocol.h, SPEC.md
-// "Evaluation protocol") on a dataset of images and counts hits per method x descriptor variant
+// EvaluationRunner: runs the evaluation protocol (evaluation/evaluation_protocol.h,
+// docs/design.md#evaluation-protocol) on a dataset of images and counts hits per method x descriptor variant
 // x distortion x query length n. The engine of `orbit eval`.
 //
 // What it does, in order:
@@ -37,6 +37,7 @@
 #include "core/descriptor/descriptor.h"
 #include "evaluation/evaluation_protocol.h"
 #include "core/index/object_model.h"
+#include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
 #include "core/base/parallel_for.h"
 #include "core/engines/product_pipeline.h"
@@ -84,7 +85,7 @@ struct EvaluationOptions {
   // allowance for degraded frames (core/decision/quality_allowance.h).
   bool use_quality_reading = true;
   std::uint64_t seed = 1;                         // every random draw derives from it
-  // Active vision (`orbit eval --active`, issue 12): 0 for the protocol's random views; else
+  // Active vision (`orbit eval --active`, docs/design.md#other-query-modes): 0 for the protocol's random views; else
   // each query takes the protocol's first two views, then each next view this many degrees
   // from its latest in the direction the method's latest update suggested (NextActiveView,
   // evaluation/evaluation_protocol.h), in capture order. Known objects' models lack the views near

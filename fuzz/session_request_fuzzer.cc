@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "core/decision/rejection_calibration.h"
 #include "core/index/view_index.h"
 #include "fuzz/fuzz_support.h"
 #include "orbit/v1/recognition.pb.h"
@@ -75,7 +76,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
            .ok()) {
     return 0;
   }
-  server::SessionEngine engine(settings);
+  const std::unique_ptr<RecognitionEngine> engine = server::CreateSessionEngine(settings);
+  engine->SetCalibration(calibration);
   for (const v1::Frame& frame : request.frames()) {
     QueryFrame query;
     if (!server::ToQueryFrame(frame, kVariant, limits, &query).ok()) return 0;
@@ -84,7 +86,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     for (std::uint8_t value : query.descriptor.values) ORBIT_FUZZ_CHECK(value <= kDescriptorMaxValue);
     FrameUpdate update;
     try {
-      update = engine.Observe(index, calibration, query);
+      update = engine->Observe(index, query);
     } catch (const std::exception&) {
       return 0;  // the service answers with the exception's status (StatusFromException)
     }

@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       continue;
     }
     const EngineOptions& o = settings.options;
-    ORBIT_FUZZ_CHECK(!CoreEngineNames(settings.engine).empty());
+    ORBIT_FUZZ_CHECK(!SessionEngineName(settings.engine).empty());
     ORBIT_FUZZ_CHECK(o.top_k >= 1 && o.top_k <= 100);
     ORBIT_FUZZ_CHECK(o.window >= 1 && o.window <= limits.max_window);
     ORBIT_FUZZ_CHECK(o.list_length >= 1 && o.list_length <= 64);
@@ -60,8 +60,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
                          .ok());
     ORBIT_FUZZ_CHECK(SameSettings(settings, again));
 
-    server::SessionEngine engine(settings);
-    engine.Reset();
+    server::CreateSessionEngine(settings)->Reset();
   }
   return 0;
 }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <string>
 
 #include "api/conversion.h"
 #include "server/error_status.h"
@@ -48,7 +49,8 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
     }
     if (request->frames_size() > kMaxWindow) {
       return metrics.Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                             "at most 64 frames per Recognize call; stream longer sequences"},
+                             "at most " + std::to_string(kMaxWindow) +
+                                 " frames per Recognize call; stream longer sequences"},
                             RefusalReason::kRequestSize);
     }
     SessionSettings settings;
@@ -57,7 +59,7 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
     if (!status.ok()) {
       return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kSessionLimit));
     }
-    SessionEngine engine(settings);
+    const std::unique_ptr<RecognitionEngine> engine = CreateSessionEngine(settings);
     const FrameMetrics frame_metrics = metrics.ForEngine(settings.engine);
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     for (const v1::Frame& frame : request->frames()) {
@@ -68,7 +70,8 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
         return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kImageBudget));
       }
       v1::SessionUpdate* update = response->add_updates();
-      *update = ToSessionUpdate(engine.Observe(index, env_.calibrator.For(index), query), *index);
+      engine->SetCalibration(env_.calibrator.For(index));
+      *update = ToSessionUpdate(engine->Observe(index, query), *index);
       if (frame.has_timestamp_us()) update->set_timestamp_us(frame.timestamp_us());
       const Clock::duration spent = Clock::now() - start;
       update->set_processing_time_us(

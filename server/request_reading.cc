@@ -6,7 +6,7 @@
 
 #include "api/conversion.h"
 #include "core/descriptor/cedd.h"
-#include "core/decision/quality_allowance.h"
+#include "core/descriptor/query_frame.h"
 #include "core/descriptor/blur_estimate.h"
 #include "core/descriptor/noise_estimate.h"
 #include "core/descriptor/view_description.h"
@@ -73,27 +73,24 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 
 grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
                           const ServerLimits& limits, QueryFrame* out) {
-  if (frame.has_azimuth_deg()) {
-    if (auto s = CheckFinite(frame.azimuth_deg(), "frame.azimuth_deg"); !s.ok()) return s;
-  }
-  if (frame.has_elevation_deg()) {
-    if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
-  }
   out->azimuth = frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
   out->noise_sigma.reset();
   out->blur.reset();
   if (frame.has_quality()) {
-    const double sigma = frame.quality().noise_sigma(), blur = frame.quality().blur();
-    if (!(sigma >= 0 && sigma <= kMaxNoiseSigma)) {
-      return InvalidArgument("frame.quality.noise_sigma must be in [0, " +
-                             std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels");
-    }
-    if (!(blur >= 0 && blur <= kMaxBlur)) {
-      return InvalidArgument("frame.quality.blur must be in [0, " +
-                             std::to_string(static_cast<int>(kMaxBlur)) + "]");
-    }
-    out->noise_sigma = sigma;
-    out->blur = blur;
+    out->noise_sigma = frame.quality().noise_sigma();
+    out->blur = frame.quality().blur();
+  }
+  out->descriptor = {};
+  try {
+    ValidateQueryFrame(*out, {.descriptor = "frame.cedd",
+                              .azimuth = "frame.azimuth_deg",
+                              .noise_sigma = "frame.quality.noise_sigma",
+                              .blur = "frame.quality.blur"});
+  } catch (const std::invalid_argument& e) {
+    return InvalidArgument(e.what());
+  }
+  if (frame.has_elevation_deg()) {
+    if (auto s = CheckFinite(frame.elevation_deg(), "frame.elevation_deg"); !s.ok()) return s;
   }
   out->descriptor.variant = variant;
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();

@@ -90,7 +90,7 @@ void SessionReactor::HandleOpen(const v1::SessionOptions& options) {
     Refuse(resolved, ReasonOfCheck(resolved, RefusalReason::kSessionLimit));
     return;
   }
-  engine_ = std::make_unique<SessionEngine>(settings);
+  engine_ = CreateSessionEngine(settings);
   frame_metrics_ = env_.metrics.ForEngine(settings.engine);
   ReadNext();
 }
@@ -125,7 +125,8 @@ void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
   if (status.ok()) {
     try {
       const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-      update = ToSessionUpdate(engine_->Observe(index, env_.calibrator.For(index), query), *index);
+      engine_->SetCalibration(env_.calibrator.For(index));
+      update = ToSessionUpdate(engine_->Observe(index, query), *index);
     } catch (const std::exception& e) {
       status = StatusFromException(e);
       reason = RefusalReasonOf(e);

@@ -92,7 +92,7 @@ class SessionReactor final
   std::recursive_mutex mutex_;
   v1::SessionRequest request_;
   v1::SessionUpdate update_;
-  std::unique_ptr<SessionEngine> engine_;  // set by the open request
+  std::unique_ptr<RecognitionEngine> engine_;  // set by the open request
   FrameMetrics frame_metrics_;             // of the engine_'s engine, set with it
   bool registered_ = false;
   bool busy_ = false;      // a frame is being processed or its update written

@@ -1,6 +1,7 @@
 #include "server/session_settings.h"
 
-#include <cmath>
+#include <optional>
+#include <stdexcept>
 #include <string>
 
 #include "api/conversion.h"
@@ -9,12 +10,6 @@
 #include "server/request_reading.h"
 
 namespace orbit::server {
-namespace {
-
-constexpr int kMaxTopK = 100;
-constexpr int kMaxListLength = 64;
-
-}  // namespace
 
 grpc::Status CheckHmmCells(const SessionSettings& settings, const ServerLimits& limits) {
   const EngineOptions& o = settings.options;
@@ -34,54 +29,11 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
   if (auto s = CheckVariant(requested.variant(), variant, "options.variant"); !s.ok()) return s;
   SessionSettings settings = defaults;
   if (requested.engine() != v1::ENGINE_UNSPECIFIED) {
-    if (CoreEngineNames(requested.engine()).empty()) {
+    if (SessionEngineName(requested.engine()).empty()) {
       return InvalidArgument("options.engine " + std::to_string(requested.engine()) +
                              " is not an engine");
     }
     settings.engine = requested.engine();
-  }
-  EngineOptions& o = settings.options;
-  if (requested.top_k() != 0) {
-    if (requested.top_k() < 1 || requested.top_k() > kMaxTopK) {
-      return InvalidArgument("options.top_k must be 1.." + std::to_string(kMaxTopK));
-    }
-    o.top_k = requested.top_k();
-  }
-  if (requested.window() != 0) {
-    if (requested.window() < 1 || requested.window() > kMaxWindow) {
-      return InvalidArgument("options.window must be 1.." + std::to_string(kMaxWindow));
-    }
-    if (requested.window() > limits.max_window) {
-      return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-              "options.window " + std::to_string(requested.window()) + " is above this server's " +
-                  std::to_string(limits.max_window)};
-    }
-    o.window = requested.window();
-  }
-  if (requested.has_orientation_weight()) {
-    const double w = requested.orientation_weight();
-    if (!(w >= 0 && w <= kMaxOrientationWeight)) {  // NaN fails both comparisons
-      return InvalidArgument("options.orientation_weight must be in [0, " +
-                             std::to_string(static_cast<int>(kMaxOrientationWeight)) + "]");
-    }
-    o.orientation_weight = w;
-  }
-  if (requested.list_length() != 0) {
-    if (requested.list_length() < 1 || requested.list_length() > kMaxListLength) {
-      return InvalidArgument("options.list_length must be 1.." + std::to_string(kMaxListLength));
-    }
-    o.list_length = requested.list_length();
-  }
-  if (requested.hmm_states() != 0) {
-    if (requested.hmm_states() < 1 || requested.hmm_states() > kMaxHmmStates) {
-      return InvalidArgument("options.hmm_states must be 1.." + std::to_string(kMaxHmmStates));
-    }
-    o.hmm_states = requested.hmm_states();
-  }
-  if (requested.has_threshold()) {
-    const double th = requested.threshold();
-    if (!std::isfinite(th) || th <= 0) return InvalidArgument("options.threshold must be > 0");
-    o.threshold = th;
   }
   if (requested.rejection() != v1::REJECTION_UNSPECIFIED) {
     const std::optional<RejectionRule> rule = FromProtoRejection(requested.rejection());
@@ -89,21 +41,29 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
       return InvalidArgument("options.rejection " + std::to_string(requested.rejection()) +
                              " is not a rule (REJECTION_TH = 1, REJECTION_CALIBRATED = 2)");
     }
-    o.rejection = *rule;
+    settings.options.rejection = *rule;
   }
-  if (requested.has_false_accept_rate()) {
-    const double rate = requested.false_accept_rate();
-    if (!(rate > 0 && rate < 1)) {
-      return InvalidArgument("options.false_accept_rate must be in (0, 1)");
-    }
-    o.false_accept_rate = rate;
+  // A field at 0 or unset keeps the default; every value is checked below, once.
+  EngineOptions& o = settings.options;
+  if (requested.top_k() != 0) o.top_k = requested.top_k();
+  if (requested.window() != 0) o.window = requested.window();
+  if (requested.has_orientation_weight()) o.orientation_weight = requested.orientation_weight();
+  if (requested.list_length() != 0) o.list_length = requested.list_length();
+  if (requested.hmm_states() != 0) o.hmm_states = requested.hmm_states();
+  if (requested.has_threshold()) o.threshold = requested.threshold();
+  if (requested.has_false_accept_rate()) o.false_accept_rate = requested.false_accept_rate();
+  try {
+    ValidateEngineOptions(o, "options.");
+  } catch (const std::invalid_argument& e) {
+    return InvalidArgument(e.what());
+  }
+  // Within the API's ranges, above what this server allows.
+  if (o.window > limits.max_window) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "options.window " + std::to_string(o.window) +
+                                                      " is above this server's " +
+                                                      std::to_string(limits.max_window)};
   }
   if (auto s = CheckHmmCells(settings, limits); !s.ok()) return s;
-  try {
-    ValidateEngineOptions(o);
-  } catch (const std::exception& e) {
-    return StatusFromException(e);
-  }
   *out = settings;
   return grpc::Status::OK;
 }

@@ -33,9 +33,10 @@
 #include <optional>
 #include <span>
 
+#include "core/descriptor/query_frame.h"
+
 namespace orbit {
 
-inline constexpr double kMaxNoiseSigma = 255;                 // grey levels: the largest accepted
 inline constexpr double kCleanNoiseSigma = 2;                 // what clean frames read, at most
 inline constexpr double kNoiseAllowancePerGreyLevel = 0.006;  // U per grey level above it
 inline constexpr double kNoiseAllowanceSpan = 40;             // grey levels above it, at most
@@ -53,7 +54,6 @@ double NoiseAllowance(double noise_sigma);
 // Noise reads as sharpness and blur hides noise, so at most one of the two allowances is large
 // for a frame. A smooth, textureless object
 // reads somewhat blurred even when sharp, and is allowed a little.
-inline constexpr double kMaxBlur = 1;                 // EstimateBlur's range is [0, kMaxBlur]
 inline constexpr double kSharpFrameBlur = 0.5;        // what sharp frames read, at most
 inline constexpr double kBlurAllowancePerUnit = 0.5;  // U per unit of blur above it
 

@@ -1,8 +1,37 @@
 #include "core/descriptor/query_frame.h"
 
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
 #include "core/base/angles.h"
 
 namespace orbit {
+
+void ValidateQueryFrame(const QueryFrame& frame, const QueryFrameFields& fields) {
+  if (frame.azimuth && !std::isfinite(*frame.azimuth)) {
+    throw std::invalid_argument(std::string(fields.azimuth) + " must be a finite number");
+  }
+  const auto require = [](bool in_range, std::string_view field, std::string_view range,
+                          double value) {
+    if (in_range) return;
+    std::ostringstream message;
+    message << field << " must be in " << range << ", got " << value;
+    throw std::invalid_argument(message.str());
+  };
+  // Written so that NaN fails.
+  if (frame.noise_sigma) {
+    require(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma, fields.noise_sigma,
+            "[0, " + std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels",
+            *frame.noise_sigma);
+  }
+  if (frame.blur) {
+    require(*frame.blur >= 0 && *frame.blur <= kMaxBlur, fields.blur,
+            "[0, " + std::to_string(static_cast<int>(kMaxBlur)) + "]", *frame.blur);
+  }
+  ValidateDescriptorValues(frame.descriptor.values, fields.descriptor);
+}
 
 std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to) {
   if (!from.azimuth || !to.azimuth) return std::nullopt;

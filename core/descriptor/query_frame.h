@@ -4,6 +4,7 @@
 #pragma once
 
 #include <optional>
+#include <string_view>
 
 #include "core/descriptor/descriptor.h"
 
@@ -25,6 +26,26 @@ struct QueryFrame {
   std::optional<double> noise_sigma{};  // initialised: {descriptor, azimuth} needs no more
   std::optional<double> blur{};
 };
+
+// The readings' ranges: those of EstimateNoiseSigma (grey levels) and EstimateBlur.
+inline constexpr double kMaxNoiseSigma = 255;
+inline constexpr double kMaxBlur = 1;
+
+// What a caller calls a frame's fields in its messages: the engines' words by default, a
+// request's field paths on the server.
+struct QueryFrameFields {
+  std::string_view descriptor = "frame descriptor";
+  std::string_view azimuth = "frame azimuth";
+  std::string_view noise_sigma = "frame noise_sigma";
+  std::string_view blur = "frame blur";
+};
+
+// Every range a frame's values must be in, checked here once: throws std::invalid_argument
+// naming the first field out of range, "<field> must be a finite number" for an azimuth,
+// "<field> must be in [0, 255] grey levels, got <value>" for a noise reading, "<field> must be
+// in [0, 1], got <value>" for a blur reading, or as ValidateDescriptorValues for a descriptor
+// value above kDescriptorMaxValue.
+void ValidateQueryFrame(const QueryFrame& frame, const QueryFrameFields& fields = {});
 
 // AzimuthChange(from, to) when both frames have an azimuth, else nullopt.
 std::optional<double> MeasuredTurn(const QueryFrame& from, const QueryFrame& to);

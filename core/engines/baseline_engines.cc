@@ -7,14 +7,15 @@
 
 #include "core/base/angles.h"
 #include "core/descriptor/similarity.h"
+#include "core/engines/windowed_engine.h"
 
 namespace orbit {
 namespace {
 
-class BaselineEngine final : public RecognitionEngine {
+class BaselineEngine final : public WindowedEngine {
  public:
   BaselineEngine(BaselineMethod method, const EngineOptions& options)
-      : RecognitionEngine(Name(method), options), method_(method) {}
+      : WindowedEngine(Name(method), options), method_(method) {}
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {

@@ -9,6 +9,7 @@
 
 #include "core/base/angles.h"
 #include "core/descriptor/similarity.h"
+#include "core/engines/windowed_engine.h"
 
 namespace orbit {
 
@@ -92,10 +93,10 @@ HoughPath BestHoughPath(std::span<const std::vector<HoughEntry>> entries,
 
 namespace {
 
-class HoughVoter final : public RecognitionEngine {
+class HoughVoter final : public WindowedEngine {
  public:
   HoughVoter(HoughVariant variant, const EngineOptions& options)
-      : RecognitionEngine(Name(variant), options), variant_(variant) {}
+      : WindowedEngine(Name(variant), options), variant_(variant) {}
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {

@@ -15,6 +15,7 @@
 #include "core/engines/sector_similarity_table.h"
 #include "core/index/similarity_rows.h"
 #include "core/descriptor/similarity.h"
+#include "core/engines/windowed_engine.h"
 
 namespace orbit {
 namespace {
@@ -315,10 +316,10 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
 // "A window of bounds"). An object decoded for the first time gets its emissions for the older
 // frames from its own sector sums (SectorSimilarityTable::ComputeObject: the same values to the
 // last bit).
-class OrientationHmm final : public RecognitionEngine {
+class OrientationHmm final : public WindowedEngine {
  public:
   explicit OrientationHmm(const EngineOptions& options)
-      : RecognitionEngine("hmm", options),
+      : WindowedEngine("hmm", options),
         states_(options.hmm_states),
         sectors_(EqualSectors(states_)),
         unknown_turn_(UnknownTurnTransitions(sectors_)),

@@ -1,4 +1,4 @@
-// The product's default recognition pipeline, defined once (issue 11): the descriptor variant a
+// The product's default recognition pipeline, defined once (docs/design.md#product-pipeline): the descriptor variant a
 // device describes its frames in and a server keeps its models in, the engine a session runs
 // when it asks for none, and that engine's options. `orbit serve` takes its defaults from here,
 // the client library describes frames in its server's variant, and `orbit eval --methods
@@ -11,7 +11,7 @@
 #include <string_view>
 
 #include "core/descriptor/descriptor.h"
-#include "core/engines/recognition_engine.h"
+#include "core/engines/engine_options.h"
 
 namespace orbit {
 

@@ -31,7 +31,7 @@ int Enroll(const orbit::Connection& connection, orbit::CaptureReader& capture,
 }
 
 int Recognize(const orbit::Connection& connection, orbit::CaptureReader& capture) {
-  orbit::SessionOptions options;
+  orbit::RecognitionOptions options;
   options.top_k = 1;
   options.on_update = [](const orbit::v1::SessionUpdate& update) {
     std::cout << "frame " << update.frame_index();

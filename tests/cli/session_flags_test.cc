@@ -6,7 +6,7 @@
 namespace orbit::cli {
 namespace {
 
-SessionOptions Parse(std::vector<std::string> arguments) {
+RecognitionOptions Parse(std::vector<std::string> arguments) {
   CLI::App app;
   SessionFlags flags;
   AddSessionFlags(app, flags);
@@ -14,21 +14,21 @@ SessionOptions Parse(std::vector<std::string> arguments) {
   std::vector<const char*> argv;
   for (const std::string& a : arguments) argv.push_back(a.c_str());
   app.parse(static_cast<int>(argv.size()), argv.data());
-  return ToSessionOptions(flags);
+  return ToRecognitionOptions(flags);
 }
 
 TEST(SessionFlagsTest, LeftOutFlagsTakeTheServersDefaults) {
-  const SessionOptions options = Parse({});
+  const RecognitionOptions options = Parse({});
   EXPECT_EQ(options.rejection, v1::REJECTION_UNSPECIFIED);
   EXPECT_FALSE(options.false_accept_rate.has_value());
   EXPECT_FALSE(options.threshold.has_value());
 }
 
 TEST(SessionFlagsTest, TheRejectionRuleAndItsTargetReachTheSession) {
-  const SessionOptions calibrated = Parse({"--rejection", "calibrated", "--false-accept-rate", "0.02"});
+  const RecognitionOptions calibrated = Parse({"--rejection", "calibrated", "--false-accept-rate", "0.02"});
   EXPECT_EQ(calibrated.rejection, v1::REJECTION_CALIBRATED);
   EXPECT_EQ(calibrated.false_accept_rate, 0.02);
-  const SessionOptions th = Parse({"--rejection", "th", "--threshold", "1.5"});
+  const RecognitionOptions th = Parse({"--rejection", "th", "--threshold", "1.5"});
   EXPECT_EQ(th.rejection, v1::REJECTION_TH);
   EXPECT_EQ(th.threshold, 1.5);
   EXPECT_THROW(Parse({"--rejection", "strict"}), CLI::ValidationError);

@@ -220,7 +220,7 @@ TEST(RecognitionSession, DeliversUpdatesToACallbackInOrderAndResetsNumbering) {
 
   std::mutex mutex;
   std::vector<v1::SessionUpdate> received;
-  SessionOptions options;
+  RecognitionOptions options;
   options.on_update = [&](const v1::SessionUpdate& update) {
     std::lock_guard lock(mutex);
     received.push_back(update);
@@ -251,7 +251,7 @@ TEST(RecognitionSession, AServerRefusalEndsTheSessionWithItsStatus) {
   EnrollCoilObjects(connection, 1, 1);
 
   // Another variant than the server's: INVALID_ARGUMENT, reported by Close and by later pushes.
-  SessionOptions full;
+  RecognitionOptions full;
   full.variant = DescriptorVariant::kCeddFull;
   auto session = RecognitionSession::Open(connection, full);
   EXPECT_FALSE(session->NextUpdate().has_value());
@@ -264,11 +264,11 @@ TEST(RecognitionSession, AServerRefusalEndsTheSessionWithItsStatus) {
   // others.
   auto too_many = RecognitionSession::Open(connection, testing::TopK(101));
   EXPECT_EQ(too_many->Close().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  SessionOptions wide;
+  RecognitionOptions wide;
   wide.window = 65;
   auto too_wide = RecognitionSession::Open(connection, wide);
   EXPECT_EQ(too_wide->Close().error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  SessionOptions big_hmm;
+  RecognitionOptions big_hmm;
   big_hmm.engine = v1::ENGINE_HMM;
   big_hmm.window = 64;
   big_hmm.hmm_states = 360;
@@ -336,7 +336,7 @@ TEST(RecognitionSession, GivesUpWithUnavailableWhenTheServerStaysDown) {
   ServerProcess server;
   const Connection connection(testing::At(server.address()));
   EnrollCoilObjects(connection, 1, 1);
-  SessionOptions impatient;
+  RecognitionOptions impatient;
   impatient.reconnect_timeout = std::chrono::milliseconds(1500);
   auto session = RecognitionSession::Open(connection, impatient);
   session->Push(CoilImage(1, 5), 5);

@@ -9,6 +9,8 @@
 #include <cmath>
 #include <future>
 #include <limits>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -146,16 +148,17 @@ TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   frame.set_elevation_deg(INFINITY);
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.elevation_deg must be a finite number");
   frame.clear_elevation_deg();
-  for (const double sigma : {-1.0, 255.5, kNaN}) {
+  for (const auto& [sigma, text] : {std::pair{-1.0, "-1"}, {255.5, "255.5"}, {kNaN, "nan"}}) {
     frame.mutable_quality()->set_noise_sigma(sigma);
     ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
-                  "frame.quality.noise_sigma must be in [0, 255] grey levels");
+                  std::string("frame.quality.noise_sigma must be in [0, 255] grey levels, got ") +
+                      text);
   }
   frame.mutable_quality()->set_noise_sigma(3);
-  for (const double blur : {-0.5, 1.5, kNaN}) {
+  for (const auto& [blur, text] : {std::pair{-0.5, "-0.5"}, {1.5, "1.5"}, {kNaN, "nan"}}) {
     frame.mutable_quality()->set_blur(blur);
     ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
-                  "frame.quality.blur must be in [0, 1]");
+                  std::string("frame.quality.blur must be in [0, 1], got ") + text);
   }
   frame.clear_quality();
   frame.clear_cedd();

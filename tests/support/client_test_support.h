@@ -56,8 +56,8 @@ inline ConnectionOptions At(const std::string& address,
 }
 
 // Session options with the server's defaults but `top_k` candidates.
-inline SessionOptions TopK(int top_k) {
-  SessionOptions options;
+inline RecognitionOptions TopK(int top_k) {
+  RecognitionOptions options;
   options.top_k = top_k;
   return options;
 }

@@ -17,6 +17,7 @@
 #include "core/descriptor/distortion.h"
 #include "core/descriptor/noise_estimate.h"
 #include "core/engines/product_pipeline.h"
+#include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/descriptor/view_description.h"

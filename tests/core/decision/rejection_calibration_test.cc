@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
 #include "tests/support/coil_models.h"
 

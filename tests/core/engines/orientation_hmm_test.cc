@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include "core/index/indexed_object.h"
+#include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
 #include "core/index/view_index.h"
 #include "tests/support/coil_models.h"
@@ -221,7 +222,7 @@ TEST(OrientationHmmTest, SharpnessOutsideItsRangeIsRefused) {
               options.hmm_sharpness = kMaxHmmSharpness + 1;
               ValidateEngineOptions(options);
             }),
-            "engine option hmm_sharpness must be in 0..5");
+            "engine option hmm_sharpness must be in 0..5, got 6");
 }
 
 // An object none of whose views shares a bin with the frames has TC 0 with every state: its

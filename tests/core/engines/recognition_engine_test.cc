@@ -1,5 +1,7 @@
 #include "core/engines/recognition_engine.h"
 
+#include "core/engines/engine_registry.h"
+
 #include <algorithm>
 #include <cmath>
 #include <functional>
@@ -66,24 +68,6 @@ void ExpectSameUpdate(const FrameUpdate& a, const FrameUpdate& b, const std::str
   }
   EXPECT_EQ(a.decision, b.decision) << what;
   EXPECT_EQ(a.move, b.move) << what;
-}
-
-TEST(RecognitionEngineTest, FactoryKnowsTheSevenEnginesAndChecksOptions) {
-  ASSERT_EQ(EngineNames().size(), 7u);
-  for (const std::string_view name : EngineNames()) EXPECT_EQ(CreateEngine(name)->name(), name);
-  EXPECT_THROW(CreateEngine("vci-x"), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("vci", {.window = 0}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("vci", {.window = 65}), std::invalid_argument);
-  EXPECT_NO_THROW(CreateEngine("vci", {.window = 64}));
-  EXPECT_THROW(CreateEngine("hmm", {.hmm_states = 0}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("eis", {.threshold = 0}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("vci", {.orientation_weight = -1}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("vci", {.orientation_weight = 1001}), std::invalid_argument);
-  EXPECT_NO_THROW(CreateEngine("vci", {.orientation_weight = 1000}));
-  EXPECT_THROW(CreateEngine("vci", {.list_length = 0}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("hmm", {.nearest_view_weight = -0.1}), std::invalid_argument);
-  EXPECT_THROW(CreateEngine("hmm", {.nearest_view_weight = 1.1}), std::invalid_argument);
-  EXPECT_NO_THROW(CreateEngine("hmm", {.nearest_view_weight = 1}));
 }
 
 // Every engine names the right object of ten from four frames it has never seen (views 5
