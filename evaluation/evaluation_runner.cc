@@ -9,7 +9,6 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "client/image_file.h"
 #include "core/base/angles.h"
+#include "core/base/mutex.h"
 #include "core/descriptor/cedd.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/base/seeded_random.h"
@@ -314,9 +314,9 @@ class EnginePool {
     product_options_.false_accept_rate = options.false_accept_rate;
   }
 
-  Engines Take() {
+  Engines Take() ABSL_LOCKS_EXCLUDED(mutex_) {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(&mutex_);
       if (!idle_.empty()) {
         Engines engines = std::move(idle_.back());
         idle_.pop_back();
@@ -332,8 +332,8 @@ class EnginePool {
     return engines;
   }
 
-  void Give(Engines engines) {
-    std::lock_guard<std::mutex> lock(mutex_);
+  void Give(Engines engines) ABSL_LOCKS_EXCLUDED(mutex_) {
+    MutexLock lock(&mutex_);
     idle_.push_back(std::move(engines));
   }
 
@@ -341,8 +341,8 @@ class EnginePool {
   const std::vector<std::string>& methods_;
   const EngineOptions options_;
   EngineOptions product_options_;
-  std::mutex mutex_;
-  std::vector<Engines> idle_;  // guarded by mutex_
+  Mutex mutex_;
+  std::vector<Engines> idle_ ABSL_GUARDED_BY(mutex_);
 };
 
 // The index a trial of known object `object` queries: every model, the object's own without
