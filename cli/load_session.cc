@@ -22,7 +22,7 @@ void LoadSession::Start(v1::Recognition::Stub& stub, const Connection& connectio
   connection.PrepareStreamingCall(context_);
   stub.async()->Session(&context_, this);
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     *queued_.emplace_back().mutable_open() = open;
   }
   StartRead(&update_);
@@ -46,7 +46,7 @@ bool LoadSession::SendFrame(std::int64_t k, Clock::time_point due) {
   frame->set_timestamp_us(
       std::chrono::duration_cast<std::chrono::microseconds>(due - shared_.clock.start).count());
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     if (done_ || closing_) return false;
     queued_.push_back(std::move(request));
     ++sent_;
@@ -58,7 +58,7 @@ bool LoadSession::SendFrame(std::int64_t k, Clock::time_point due) {
 
 void LoadSession::CloseWrites() {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     closing_ = true;
   }
   WriteNext();
@@ -66,7 +66,7 @@ void LoadSession::CloseWrites() {
 
 void LoadSession::Cancel() {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     cancelled_ = true;
   }
   context_.TryCancel();
@@ -76,7 +76,7 @@ void LoadSession::WriteNext() {
   bool write = false;
   bool half_close = false;
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     if (writing_ || done_) return;
     if (!queued_.empty()) {
       writing_request_ = std::move(queued_.front());
@@ -92,7 +92,7 @@ void LoadSession::WriteNext() {
 
 void LoadSession::OnWriteDone(bool ok) {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     writing_ = false;
     // A failed write: the stream has ended; OnDone brings its status. Nothing more is written.
     if (!ok) {
@@ -112,7 +112,7 @@ void LoadSession::OnReadDone(bool ok) {
       std::chrono::duration_cast<std::chrono::microseconds>(now - due).count();
   std::int64_t answered = 0;
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     bool enrolling = shared_.enrolling.load() > 0;
     if (!sent_while_enrolling_.empty()) {
       enrolling = enrolling || sent_while_enrolling_.front();
@@ -130,19 +130,22 @@ void LoadSession::OnReadDone(bool ok) {
 }
 
 void LoadSession::OnDone(const grpc::Status& status) {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   status_ = status;
   done_ = true;
-  ended_.notify_all();
+  // Under the lock: once WaitDone sees done_, the session may be destroyed.
+  ended_.SignalAll();
 }
 
 bool LoadSession::WaitDone(Clock::time_point deadline) {
-  std::unique_lock lock(mutex_);
-  return ended_.wait_until(lock, deadline, [this] { return done_; });
+  MutexLock lock(&mutex_);
+  while (!done_ && ended_.WaitUntil(&mutex_, deadline)) {
+  }
+  return done_;
 }
 
 void LoadSession::AddTo(LoadReport& report, Clock::time_point& last_update) const {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   report.frames_sent += static_cast<std::uint64_t>(sent_);
   report.frames_answered += static_cast<std::uint64_t>(answered_);
   report.round_trip.Merge(round_trip_);

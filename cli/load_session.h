@@ -20,10 +20,8 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <deque>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -32,6 +30,7 @@
 #include "cli/latency_histogram.h"
 #include "cli/load_report.h"
 #include "client/connection.h"
+#include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 
@@ -73,38 +72,39 @@ class LoadSession final
   // Opens the stream with `open` as its first message. `connection` and `stub` must outlive
   // the stream.
   void Start(v1::Recognition::Stub& stub, const Connection& connection,
-             const v1::SessionOptions& open);
+             const v1::SessionOptions& open) ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Queues frame k (the k-th view from the session's first, the azimuth advancing a lap every
   // turntable.size() frames) whose round trip counts from `due`. False once the stream has
   // ended or CloseWrites was called. Any thread.
-  bool SendFrame(std::int64_t k, Clock::time_point due);
+  bool SendFrame(std::int64_t k, Clock::time_point due) ABSL_LOCKS_EXCLUDED(mutex_);
 
   // No more frames: the stream is half-closed once the queued frames are written; the server
   // then answers them and ends the stream.
-  void CloseWrites();
+  void CloseWrites() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Ends the stream now; frames not yet answered stay unanswered, and the CANCELLED status
   // this causes is counted as a cancelled session, not as an error of the server.
-  void Cancel();
+  void Cancel() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Waits until the stream has ended (OnDone) or `deadline` passes; true when it has ended.
   // The session may be destroyed only after it has ended.
-  bool WaitDone(Clock::time_point deadline);
+  bool WaitDone(Clock::time_point deadline) ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Adds this session's frames, round trips, processing times and final status to `report`,
   // and raises `last_update` to its last update's arrival. REQUIRES: the stream has ended.
-  void AddTo(LoadReport& report, Clock::time_point& last_update) const;
+  void AddTo(LoadReport& report, Clock::time_point& last_update) const
+      ABSL_LOCKS_EXCLUDED(mutex_);
 
-  void OnWriteDone(bool ok) override;
-  void OnReadDone(bool ok) override;
+  void OnWriteDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;
+  void OnReadDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;
   void OnWritesDoneDone(bool) override {}
-  void OnDone(const grpc::Status& status) override;
+  void OnDone(const grpc::Status& status) ABSL_LOCKS_EXCLUDED(mutex_) override;
 
  private:
-  // Starts the next write (or the half-close) if none is in flight. Called without mutex_
+  // Starts the next write (or the half-close) if none is in flight. Never called with mutex_
   // held: a reaction may run inside a Start* call.
-  void WriteNext();
+  void WriteNext() ABSL_LOCKS_EXCLUDED(mutex_);
 
   const std::vector<TurntableView>& turntable_;
   const std::size_t first_view_;
@@ -116,23 +116,26 @@ class LoadSession final
   grpc::ClientContext context_;
   v1::SessionUpdate update_;  // the read in flight; touched by the read reactions only
 
-  mutable std::mutex mutex_;
-  std::condition_variable ended_;
-  std::deque<v1::SessionRequest> queued_;  // frames (and first the open) not yet written
-  v1::SessionRequest writing_request_;     // the write in flight
-  bool writing_ = false;
-  bool closing_ = false;       // CloseWrites called
-  bool writes_done_ = false;   // the half-close was started
-  bool done_ = false;          // OnDone called
-  bool cancelled_ = false;     // Cancel called
-  grpc::Status status_;
-  std::int64_t sent_ = 0;
-  std::int64_t answered_ = 0;
-  std::deque<bool> sent_while_enrolling_;  // one per frame sent and not yet answered
-  LatencyHistogram round_trip_;
-  LatencyHistogram processing_;
-  LatencyHistogram round_trip_enrolling_;
-  Clock::time_point last_update_;
+  mutable Mutex mutex_;
+  CondVar ended_;
+  // Frames (and first the open) not yet written.
+  std::deque<v1::SessionRequest> queued_ ABSL_GUARDED_BY(mutex_);
+  // The write in flight: gRPC reads it, unlocked, until OnWriteDone.
+  v1::SessionRequest writing_request_ ABSL_GUARDED_BY(mutex_);
+  bool writing_ ABSL_GUARDED_BY(mutex_) = false;
+  bool closing_ ABSL_GUARDED_BY(mutex_) = false;      // CloseWrites called
+  bool writes_done_ ABSL_GUARDED_BY(mutex_) = false;  // the half-close was started
+  bool done_ ABSL_GUARDED_BY(mutex_) = false;         // OnDone called
+  bool cancelled_ ABSL_GUARDED_BY(mutex_) = false;    // Cancel called
+  grpc::Status status_ ABSL_GUARDED_BY(mutex_);
+  std::int64_t sent_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::int64_t answered_ ABSL_GUARDED_BY(mutex_) = 0;
+  // One per frame sent and not yet answered.
+  std::deque<bool> sent_while_enrolling_ ABSL_GUARDED_BY(mutex_);
+  LatencyHistogram round_trip_ ABSL_GUARDED_BY(mutex_);
+  LatencyHistogram processing_ ABSL_GUARDED_BY(mutex_);
+  LatencyHistogram round_trip_enrolling_ ABSL_GUARDED_BY(mutex_);
+  Clock::time_point last_update_ ABSL_GUARDED_BY(mutex_);
 };
 
 }  // namespace orbit

@@ -8,13 +8,11 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <fstream>
 #include <iostream>
 #include <iterator>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <thread>
@@ -36,6 +34,7 @@
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
 #include "core/descriptor/cedd.h"
+#include "core/base/mutex.h"
 #include "core/base/parallel_for.h"
 #include "evaluation/dataset.h"
 
@@ -201,20 +200,25 @@ class ProgressLine {
       : thread_([this, &clock, &answered, duration] { Draw(clock, answered, duration); }) {}
   ~ProgressLine() {
     {
-      std::lock_guard lock(mutex_);
+      MutexLock lock(&mutex_);
       stop_ = true;
     }
-    stopped_.notify_all();
+    stopped_.SignalAll();
     thread_.join();
   }
 
  private:
-  void Draw(const LoadClock& clock, const std::atomic<std::uint64_t>& answered, double duration) {
-    std::unique_lock lock(mutex_);
+  void Draw(const LoadClock& clock, const std::atomic<std::uint64_t>& answered, double duration)
+      ABSL_LOCKS_EXCLUDED(mutex_) {
+    MutexLock lock(&mutex_);
     bool drawn = false;
     std::uint64_t previous = 0;
     Clock::time_point previous_time = clock.start;
-    while (!stopped_.wait_for(lock, std::chrono::milliseconds(500), [this] { return stop_; })) {
+    for (;;) {
+      const Clock::time_point next_draw = Clock::now() + std::chrono::milliseconds(500);
+      while (!stop_ && stopped_.WaitUntil(&mutex_, next_draw)) {
+      }
+      if (stop_) break;
       const Clock::time_point now = Clock::now();
       if (now < clock.start) continue;
       const double elapsed = std::chrono::duration<double>(now - clock.start).count();
@@ -233,9 +237,9 @@ class ProgressLine {
     if (drawn) std::cerr << "\r\x1b[K" << std::flush;
   }
 
-  std::mutex mutex_;
-  std::condition_variable stopped_;
-  bool stop_ = false;
+  Mutex mutex_;
+  CondVar stopped_;
+  bool stop_ ABSL_GUARDED_BY(mutex_) = false;
   std::thread thread_;
 };
 

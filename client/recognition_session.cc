@@ -61,16 +61,18 @@ std::unique_ptr<RecognitionSession> RecognitionSession::Open(const Connection& c
   const v1::ServerInfoResponse info = ModelsClient(connection).ServerInfo();
   std::unique_ptr<RecognitionSession> session(
       new RecognitionSession(connection, std::move(options), info));
+  Stream* stream = nullptr;
   {
-    std::lock_guard write_lock(session->write_mu_);
+    MutexLock write_lock(&session->write_mu_);
     if (!session->StartStream()) {
       const grpc::Status status = session->stream_->Finish();
       ThrowIfError("Session", status.ok() ? grpc::Status(grpc::StatusCode::UNAVAILABLE,
                                                          "the server ended the session at once")
                                           : status);
     }
+    stream = session->stream_.get();
   }
-  session->reader_ = std::thread(&RecognitionSession::ReadUpdates, session.get());
+  session->reader_ = std::thread(&RecognitionSession::ReadUpdates, session.get(), stream);
   return session;
 }
 
@@ -86,11 +88,11 @@ RecognitionSession::RecognitionSession(const Connection& connection, Recognition
 RecognitionSession::~RecognitionSession() {
   if (!reader_.joinable()) return;
   {
-    std::lock_guard state_lock(state_mu_);
+    MutexLock state_lock(&state_mu_);
     cancelled_ = true;  // stops a reconnection in progress
   }
   {
-    std::lock_guard write_lock(write_mu_);
+    MutexLock write_lock(&write_mu_);
     context_->TryCancel();
   }
   reader_.join();
@@ -130,11 +132,11 @@ std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& cedd,
 }
 
 std::int64_t RecognitionSession::Send(v1::Frame frame) {
-  std::lock_guard write_lock(write_mu_);
+  MutexLock write_lock(&write_mu_);
   v1::SessionRequest request;
   std::int64_t index = 0;
   {
-    std::lock_guard state_lock(state_mu_);
+    MutexLock state_lock(&state_mu_);
     ThrowIfEnded("Push");
     index = next_index_++;
     *request.mutable_frame() = frame;
@@ -147,9 +149,9 @@ std::int64_t RecognitionSession::Send(v1::Frame frame) {
 }
 
 void RecognitionSession::Reset() {
-  std::lock_guard write_lock(write_mu_);
+  MutexLock write_lock(&write_mu_);
   {
-    std::lock_guard state_lock(state_mu_);
+    MutexLock state_lock(&state_mu_);
     ThrowIfEnded("Reset");
     ++epoch_;
     next_index_ = 0;
@@ -161,8 +163,8 @@ void RecognitionSession::Reset() {
 }
 
 std::optional<v1::SessionUpdate> RecognitionSession::NextUpdate() {
-  std::unique_lock state_lock(state_mu_);
-  state_changed_.wait(state_lock, [this] { return !updates_.empty() || ended_; });
+  MutexLock state_lock(&state_mu_);
+  while (updates_.empty() && !ended_) state_changed_.Wait(&state_mu_);
   if (updates_.empty()) return std::nullopt;
   v1::SessionUpdate update = std::move(updates_.front());
   updates_.pop_front();
@@ -171,43 +173,47 @@ std::optional<v1::SessionUpdate> RecognitionSession::NextUpdate() {
 
 grpc::Status RecognitionSession::Close() {
   {
-    std::lock_guard write_lock(write_mu_);
+    MutexLock write_lock(&write_mu_);
     if (!closing_) {
       closing_ = true;
       stream_->WritesDone();
     }
   }
   if (reader_.joinable()) reader_.join();
-  std::lock_guard state_lock(state_mu_);
+  MutexLock state_lock(&state_mu_);
   return final_status_;
 }
 
 int RecognitionSession::reconnections() const {
-  std::lock_guard state_lock(state_mu_);
+  MutexLock state_lock(&state_mu_);
   return reconnections_;
 }
 
-void RecognitionSession::ReadUpdates() {
+void RecognitionSession::ReadUpdates(Stream* stream) {
   for (;;) {
     v1::SessionUpdate update;
-    while (stream_->Read(&update)) Deliver(std::move(update));
+    while (stream->Read(&update)) Deliver(std::move(update));
 
-    std::lock_guard write_lock(write_mu_);
+    MutexLock write_lock(&write_mu_);
     grpc::Status status = stream_->Finish();
     bool unanswered = false;
     bool cancelled = false;
     {
-      std::lock_guard state_lock(state_mu_);
+      MutexLock state_lock(&state_mu_);
       cancelled = cancelled_;
+      const std::uint64_t epoch = epoch_;
       unanswered = std::any_of(in_flight_.begin(), in_flight_.end(),
-                               [this](const SentFrame& f) { return f.epoch == epoch_; });
+                               [epoch](const SentFrame& f) { return f.epoch == epoch; });
     }
     // A device that has closed its side only needs the stream back for frames still owed.
     const bool reconnect = IsTransient(status) && !cancelled &&
                            options_.reconnect_timeout.count() > 0 && (!closing_ || unanswered);
     if (reconnect) {
       status = Reopen();
-      if (status.ok()) continue;
+      if (status.ok()) {
+        stream = stream_.get();
+        continue;
+      }
     }
     End(status);
     return;
@@ -216,7 +222,7 @@ void RecognitionSession::ReadUpdates() {
 
 void RecognitionSession::Deliver(v1::SessionUpdate update) {
   {
-    std::lock_guard state_lock(state_mu_);
+    MutexLock state_lock(&state_mu_);
     // The server answers every frame once, in order (recognition.proto); an update beyond the
     // frames sent would break that contract and is ignored.
     if (in_flight_.empty()) return;
@@ -230,7 +236,7 @@ void RecognitionSession::Deliver(v1::SessionUpdate update) {
     }
     if (!options_.on_update) {
       updates_.push_back(std::move(update));
-      state_changed_.notify_all();
+      state_changed_.SignalAll();
       return;
     }
   }
@@ -242,7 +248,7 @@ grpc::Status RecognitionSession::Reopen() {
   grpc::Status last(grpc::StatusCode::UNAVAILABLE, "connection lost");
   while (Clock::now() < deadline) {
     {
-      std::lock_guard state_lock(state_mu_);
+      MutexLock state_lock(&state_mu_);
       if (cancelled_) return grpc::Status(grpc::StatusCode::CANCELLED, "session cancelled");
     }
     const auto left =
@@ -256,7 +262,7 @@ grpc::Status RecognitionSession::Reopen() {
     // of this epoch still unanswered.
     std::vector<v1::SessionRequest> replay;
     {
-      std::lock_guard state_lock(state_mu_);
+      MutexLock state_lock(&state_mu_);
       std::deque<SentFrame> again;
       for (const SentFrame& f : window_) {
         again.push_back(SentFrame{f.index, f.epoch, false, f.frame});
@@ -275,7 +281,7 @@ grpc::Status RecognitionSession::Reopen() {
     }
     if (written) {
       if (closing_) stream_->WritesDone();
-      std::lock_guard state_lock(state_mu_);
+      MutexLock state_lock(&state_mu_);
       ++reconnections_;
       return grpc::Status::OK;
     }
@@ -300,10 +306,10 @@ void RecognitionSession::ThrowIfEnded(const char* call) const {
 }
 
 void RecognitionSession::End(const grpc::Status& status) {
-  std::lock_guard state_lock(state_mu_);
+  MutexLock state_lock(&state_mu_);
   ended_ = true;
   final_status_ = status;
-  state_changed_.notify_all();
+  state_changed_.SignalAll();
 }
 
 }  // namespace orbit

@@ -32,12 +32,10 @@
 #pragma once
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -45,6 +43,7 @@
 
 #include "client/connection.h"
 #include "client/frame_quality.h"
+#include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
@@ -104,25 +103,27 @@ class RecognitionSession {
   std::int64_t Push(const cv::Mat& image, std::optional<double> azimuth_deg,
                     std::optional<cv::Rect> region = std::nullopt,
                     std::optional<std::int64_t> timestamp_us = std::nullopt,
-                    std::optional<FrameQuality> quality = std::nullopt);
+                    std::optional<FrameQuality> quality = std::nullopt)
+      ABSL_LOCKS_EXCLUDED(write_mu_);
 
   // Sends a descriptor computed elsewhere, in variant(). As Push otherwise.
   std::int64_t PushDescriptor(const DescriptorValues& cedd, std::optional<double> azimuth_deg,
                               std::optional<std::int64_t> timestamp_us = std::nullopt,
-                              std::optional<FrameQuality> quality = std::nullopt);
+                              std::optional<FrameQuality> quality = std::nullopt)
+      ABSL_LOCKS_EXCLUDED(write_mu_);
 
   // Starts over on another object: the server forgets every frame and the next frame gets
   // index 0. Updates of frames pushed before still arrive.
-  void Reset();
+  void Reset() ABSL_LOCKS_EXCLUDED(write_mu_);
 
   // Blocks until the next update (frame_index in the device's numbering) and returns it, or
   // nullopt once the session has ended and every received update was returned.
-  std::optional<v1::SessionUpdate> NextUpdate();
+  std::optional<v1::SessionUpdate> NextUpdate() ABSL_LOCKS_EXCLUDED(state_mu_);
 
   // Tells the server no more frames come, waits until every frame pushed has its update (or
   // the session fails) and returns the final status: OK when the server ended the session
   // cleanly. Updates still queued remain readable with NextUpdate(). Idempotent.
-  grpc::Status Close();
+  grpc::Status Close() ABSL_LOCKS_EXCLUDED(write_mu_, state_mu_);
 
   DescriptorVariant variant() const { return variant_; }
   int window() const { return window_size_; }
@@ -130,7 +131,7 @@ class RecognitionSession {
   // (ServerInfo.limits.max_frames_per_second); 0 when the server states none.
   std::chrono::microseconds min_frame_interval() const { return replay_interval_; }
   // How many times the stream was reopened after a dropped connection.
-  int reconnections() const;
+  int reconnections() const ABSL_LOCKS_EXCLUDED(state_mu_);
 
  private:
   // A frame sent on the current stream and awaiting its update.
@@ -141,21 +142,23 @@ class RecognitionSession {
     v1::Frame frame;
   };
 
+  using Stream = grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>;
+
   RecognitionSession(const Connection& connection, RecognitionOptions options,
                      const v1::ServerInfoResponse& info);
-  // REQUIRES: write_mu_ held. Starts a stream and sends the open message; false when the write
-  // failed (the stream's Finish() says why).
-  bool StartStream();
-  std::int64_t Send(v1::Frame frame);
-  void ReadUpdates();
-  void Deliver(v1::SessionUpdate update);
-  // REQUIRES: write_mu_ held. Opens a new stream and replays; OK on success, else the status to
-  // end the session with.
-  grpc::Status Reopen();
-  void End(const grpc::Status& status);
-  // REQUIRES: write_mu_ and state_mu_ held. Throws RpcError when the session has ended,
-  // std::logic_error after Close().
-  void ThrowIfEnded(const char* call) const;
+  // Starts a stream and sends the open message; false when the write failed (the stream's
+  // Finish() says why).
+  bool StartStream() ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mu_);
+  std::int64_t Send(v1::Frame frame) ABSL_LOCKS_EXCLUDED(write_mu_);
+  // The reader thread's loop, from `stream`, the stream Open() started. Only this thread
+  // replaces stream_ afterwards (Reopen), so it reads from the stream it holds without a lock.
+  void ReadUpdates(Stream* stream) ABSL_LOCKS_EXCLUDED(write_mu_);
+  void Deliver(v1::SessionUpdate update) ABSL_LOCKS_EXCLUDED(state_mu_);
+  // Opens a new stream and replays; OK on success, else the status to end the session with.
+  grpc::Status Reopen() ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mu_) ABSL_LOCKS_EXCLUDED(state_mu_);
+  void End(const grpc::Status& status) ABSL_LOCKS_EXCLUDED(state_mu_);
+  // Throws RpcError when the session has ended, std::logic_error after Close().
+  void ThrowIfEnded(const char* call) const ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mu_, state_mu_);
 
   const Connection& connection_;
   const RecognitionOptions options_;
@@ -164,23 +167,26 @@ class RecognitionSession {
   const std::chrono::microseconds replay_interval_;  // paces replays to the server's frame limit
   std::unique_ptr<v1::Recognition::Stub> stub_;
 
-  // Serialises writes to the stream and its replacement; taken before state_mu_.
-  std::mutex write_mu_;
-  std::unique_ptr<grpc::ClientContext> context_;
-  std::unique_ptr<grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>> stream_;
-  bool closing_ = false;  // WritesDone sent (or to send after a reconnection)
+  // Serialises writes to the stream and its replacement.
+  Mutex write_mu_;
+  std::unique_ptr<grpc::ClientContext> context_ ABSL_GUARDED_BY(write_mu_);
+  std::unique_ptr<Stream> stream_ ABSL_GUARDED_BY(write_mu_);
+  // WritesDone sent (or to send after a reconnection).
+  bool closing_ ABSL_GUARDED_BY(write_mu_) = false;
 
-  mutable std::mutex state_mu_;
-  std::condition_variable state_changed_;
-  std::deque<SentFrame> in_flight_;  // in the order the server answers them
-  std::deque<SentFrame> window_;     // the last window_size_ answered frames of this epoch
-  std::deque<v1::SessionUpdate> updates_;
-  std::int64_t next_index_ = 0;
-  std::uint64_t epoch_ = 0;
-  int reconnections_ = 0;
-  bool ended_ = false;
-  bool cancelled_ = false;
-  grpc::Status final_status_;
+  mutable Mutex state_mu_ ABSL_ACQUIRED_AFTER(write_mu_);
+  CondVar state_changed_;
+  // In the order the server answers them.
+  std::deque<SentFrame> in_flight_ ABSL_GUARDED_BY(state_mu_);
+  // The last window_size_ answered frames of this epoch.
+  std::deque<SentFrame> window_ ABSL_GUARDED_BY(state_mu_);
+  std::deque<v1::SessionUpdate> updates_ ABSL_GUARDED_BY(state_mu_);
+  std::int64_t next_index_ ABSL_GUARDED_BY(state_mu_) = 0;
+  std::uint64_t epoch_ ABSL_GUARDED_BY(state_mu_) = 0;
+  int reconnections_ ABSL_GUARDED_BY(state_mu_) = 0;
+  bool ended_ ABSL_GUARDED_BY(state_mu_) = false;
+  bool cancelled_ ABSL_GUARDED_BY(state_mu_) = false;
+  grpc::Status final_status_ ABSL_GUARDED_BY(state_mu_);
 
   std::thread reader_;
 };

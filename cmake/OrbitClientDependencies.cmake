@@ -29,6 +29,9 @@ if(NOT TARGET flann::flann)
     INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
 endif()
 
+# Abseil's thread-safety annotations (core/base/mutex.h) are a header of libabsl-dev, which
+# Debian's libgrpc++-dev depends on, in the default include path: nothing to find or link.
+
 find_package(Threads REQUIRED)
 # gRPC and Protobuf (Debian ships gRPC's CMake config; Protobuf is found by CMake's module).
 find_package(Protobuf REQUIRED)

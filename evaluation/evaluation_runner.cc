@@ -9,7 +9,6 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -17,6 +16,7 @@
 
 #include "client/image_file.h"
 #include "core/base/angles.h"
+#include "core/base/mutex.h"
 #include "core/descriptor/cedd.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/base/seeded_random.h"
@@ -339,9 +339,9 @@ class EnginePool {
     for (const std::string& name : methods) methods_.push_back(ResolveMethod(name, options));
   }
 
-  Engines Take() {
+  Engines Take() ABSL_LOCKS_EXCLUDED(mutex_) {
     {
-      std::lock_guard<std::mutex> lock(mutex_);
+      MutexLock lock(&mutex_);
       if (!idle_.empty()) {
         Engines engines = std::move(idle_.back());
         idle_.pop_back();
@@ -355,15 +355,15 @@ class EnginePool {
     return engines;
   }
 
-  void Give(Engines engines) {
-    std::lock_guard<std::mutex> lock(mutex_);
+  void Give(Engines engines) ABSL_LOCKS_EXCLUDED(mutex_) {
+    MutexLock lock(&mutex_);
     idle_.push_back(std::move(engines));
   }
 
  private:
   std::vector<Method> methods_;
-  std::mutex mutex_;
-  std::vector<Engines> idle_;  // guarded by mutex_
+  Mutex mutex_;
+  std::vector<Engines> idle_ ABSL_GUARDED_BY(mutex_);
 };
 
 // The index a trial of known object `object` queries: every model, the object's own without

@@ -9,6 +9,7 @@ packages=(
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libopencv-video-dev libopencv-videoio-dev libopencv-contrib-dev  # captures, object tracking
   libcli11-dev nlohmann-json3-dev libsqlite3-dev libpq-dev
+  libabsl-dev  # thread-safety annotations, header only (core/base/mutex.h)
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
   libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)

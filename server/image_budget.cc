@@ -235,18 +235,18 @@ grpc::Status CheckImageBudget(const ImageHeader& header, std::int64_t max_pixels
 DecodeSlots::DecodeSlots(int slots) : capacity_(slots), free_(slots) {}
 
 DecodeSlots::Slot DecodeSlots::Acquire() {
-  std::unique_lock lock(mutex_);
-  freed_.wait(lock, [this] { return free_ > 0; });
+  MutexLock lock(&mutex_);
+  while (free_ <= 0) freed_.Wait(&mutex_);
   --free_;
   return Slot(this);
 }
 
 void DecodeSlots::Release() {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     ++free_;
   }
-  freed_.notify_one();
+  freed_.Signal();
 }
 
 DecodeSlots::Slot& DecodeSlots::Slot::operator=(Slot&& other) noexcept {

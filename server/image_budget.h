@@ -16,12 +16,12 @@
 // server's attack surface.
 #pragma once
 
-#include <condition_variable>
 #include <cstdint>
-#include <mutex>
 #include <string_view>
 
 #include <grpcpp/grpcpp.h>
+
+#include "core/base/mutex.h"
 
 namespace orbit::server {
 
@@ -108,18 +108,18 @@ class DecodeSlots {
   DecodeSlots& operator=(const DecodeSlots&) = delete;
 
   // Waits until a slot is free, then holds it.
-  Slot Acquire();
+  Slot Acquire() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // The number of slots, held or free.
   int capacity() const { return capacity_; }
 
  private:
-  void Release();
+  void Release() ABSL_LOCKS_EXCLUDED(mutex_);
 
   const int capacity_;
-  std::mutex mutex_;
-  std::condition_variable freed_;
-  int free_;  // guarded by mutex_
+  Mutex mutex_;
+  CondVar freed_;
+  int free_ ABSL_GUARDED_BY(mutex_);
 };
 
 // The decode slots every image decoded by this process goes through: one per core

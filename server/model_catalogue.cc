@@ -26,7 +26,7 @@ ModelCatalogue::ModelCatalogue(ModelStore& store, DescriptorVariant variant,
       write_seconds_(write_seconds) {}
 
 void ModelCatalogue::Load() {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   index_->ReplaceAll(LoadModels(store_, variant()));
 }
 
@@ -35,7 +35,7 @@ ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
     throw std::invalid_argument("enrollment variant " + std::string(VariantName(enrollment.variant)) +
                                 " differs from the server's " + std::string(VariantName(variant())));
   }
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   const Clock::time_point start = Clock::now();
   const ObjectId id = store_.Enroll(enrollment);
   ObserveWrite(write_seconds_.enroll, start);
@@ -44,7 +44,7 @@ ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
 
 ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>& views,
                                        const std::vector<std::string>& thumbnails) {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   const Clock::time_point start = Clock::now();
   store_.AddViews(id, views, thumbnails);
   ObserveWrite(write_seconds_.add_views, start);
@@ -52,7 +52,7 @@ ObjectSummary ModelCatalogue::AddViews(ObjectId id, const std::vector<ModelView>
 }
 
 ObjectSummary ModelCatalogue::Delete(ObjectId id) {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   std::optional<StoredObject> object = store_.Get(id);
   if (!object) throw ObjectNotFound(id);
   const Clock::time_point start = Clock::now();
@@ -63,7 +63,7 @@ ObjectSummary ModelCatalogue::Delete(ObjectId id) {
 }
 
 bool ModelCatalogue::Reload(ObjectId id) {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   std::optional<StoredObject> stored = store_.Get(id);
   if (!stored) return index_->Remove(id);
   ObjectModel model{.id = id,

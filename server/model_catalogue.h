@@ -10,11 +10,11 @@
 #pragma once
 
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "core/base/mutex.h"
 #include "core/index/view_index.h"
 #include "server/server_metrics.h"
 #include "storage/model_store.h"
@@ -33,16 +33,17 @@ class ModelCatalogue {
   // published as one snapshot in place of whatever the index held. Throws StoreError
   // kIncompatible when the store holds an object of another variant (naming it), and as
   // ModelStore::LoadAll; the index is then unchanged.
-  void Load();
+  void Load() ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // Each throws as the ModelStore method of the same name (StoreError kNotFound for an unknown
   // id), std::invalid_argument when the enrollment's variant is not the catalogue's, and
   // StoreError kNotFound when another user of the store deleted the object before it could be
   // read back. Return the object as stored.
-  ObjectSummary Enroll(const Enrollment& enrollment);
+  ObjectSummary Enroll(const Enrollment& enrollment) ABSL_LOCKS_EXCLUDED(write_mutex_);
   ObjectSummary AddViews(ObjectId id, const std::vector<ModelView>& views,
-                         const std::vector<std::string>& thumbnails);
-  ObjectSummary Delete(ObjectId id);
+                         const std::vector<std::string>& thumbnails)
+      ABSL_LOCKS_EXCLUDED(write_mutex_);
+  ObjectSummary Delete(ObjectId id) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // Makes the index agree with the store about object `id` after another writer changed it
   // (a replica following the change log: server/model_change_follower.h): publishes the stored
@@ -50,7 +51,7 @@ class ModelCatalogue {
   // already holds exactly what is stored (this server's own writes, replayed), so sessions and
   // the rejection calibration redo nothing for them. Returns true when the index changed.
   // Throws StoreError as ModelStore::Get (the index is then unchanged).
-  bool Reload(ObjectId id);
+  bool Reload(ObjectId id) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   std::shared_ptr<const ViewIndexSnapshot> Snapshot() const { return index_->Snapshot(); }
 
@@ -66,13 +67,15 @@ class ModelCatalogue {
  private:
   // Re-reads one object from the store and publishes it in the index in one snapshot; returns
   // its summary. Throws StoreError kNotFound (after dropping it from the index) when it is gone.
-  // REQUIRES: write_mutex_ held.
-  ObjectSummary Reindex(ObjectId id);
+  ObjectSummary Reindex(ObjectId id) ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   ModelStore& store_;
   std::unique_ptr<ViewIndex> index_;
   const StoreWriteHistograms write_seconds_;
-  std::mutex write_mutex_;
+  // Held across a store write and the index change that follows it, so that the index takes the
+  // changes in the store's order. Guards no field: store_ and index_ are thread-safe, and their
+  // own locks are taken inside this one.
+  Mutex write_mutex_;
 };
 
 }  // namespace orbit::server

@@ -38,21 +38,24 @@ ModelChangeFollower::ModelChangeFollower(PostgresModelStore& store, std::string 
 
 ModelChangeFollower::~ModelChangeFollower() {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     stop_ = true;
   }
-  wake_.notify_all();
+  wake_.SignalAll();
   thread_.join();
 }
 
 bool ModelChangeFollower::Stopping() {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   return stop_;
 }
 
 bool ModelChangeFollower::SleepFor(milliseconds duration) {
-  std::unique_lock lock(mutex_);
-  return !wake_.wait_for(lock, duration, [this] { return stop_; });
+  const Clock::time_point deadline = Clock::now() + duration;
+  MutexLock lock(&mutex_);
+  while (!stop_ && wake_.WaitUntil(&mutex_, deadline)) {
+  }
+  return !stop_;
 }
 
 void ModelChangeFollower::CatchUp() {

@@ -17,13 +17,12 @@
 
 #include <atomic>
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <functional>
-#include <mutex>
 #include <string>
 #include <thread>
 
+#include "core/base/mutex.h"
 #include "storage/model_change.h"
 
 namespace orbit {
@@ -71,8 +70,8 @@ class ModelChangeFollower {
   // Applies every change after applied_seq_; returns when the log has no more.
   void CatchUp();
   // Sleeps up to `duration`; false when asked to stop meanwhile.
-  bool SleepFor(std::chrono::milliseconds duration);
-  bool Stopping();
+  bool SleepFor(std::chrono::milliseconds duration) ABSL_LOCKS_EXCLUDED(mutex_);
+  bool Stopping() ABSL_LOCKS_EXCLUDED(mutex_);
 
   PostgresModelStore& store_;
   const std::string conninfo_;
@@ -81,9 +80,9 @@ class ModelChangeFollower {
   std::atomic<std::int64_t> applied_seq_;
   std::atomic<std::int64_t> changes_applied_{0};
 
-  std::mutex mutex_;
-  std::condition_variable wake_;
-  bool stop_ = false;  // guarded by mutex_
+  Mutex mutex_;
+  CondVar wake_;
+  bool stop_ ABSL_GUARDED_BY(mutex_) = false;
   std::thread thread_;
 };
 

@@ -177,8 +177,12 @@ std::string OrbitServer::metrics_address() const {
 
 void OrbitServer::SweepIdleSessions() {
   const auto timeout = std::chrono::seconds(config_.limits.idle_timeout_seconds);
-  std::unique_lock lock(sweeper_mutex_);
-  while (!sweeper_wake_.wait_for(lock, std::chrono::milliseconds(250), [this] { return stopping_; })) {
+  MutexLock lock(&sweeper_mutex_);
+  for (;;) {
+    const auto next_sweep = std::chrono::steady_clock::now() + std::chrono::milliseconds(250);
+    while (!stopping_ && sweeper_wake_.WaitUntil(&sweeper_mutex_, next_sweep)) {
+    }
+    if (stopping_) return;
     registry_->CloseIdle(std::chrono::steady_clock::now() - timeout,
                          config_.limits.idle_timeout_seconds);
   }
@@ -190,10 +194,10 @@ void OrbitServer::Shutdown() {
     server_->GetHealthCheckService()->Shutdown();  // every service NOT_SERVING, for good
     registry_->CloseAll({grpc::StatusCode::UNAVAILABLE, "the server is shutting down"});
     {
-      std::lock_guard lock(sweeper_mutex_);
+      MutexLock lock(&sweeper_mutex_);
       stopping_ = true;
     }
-    sweeper_wake_.notify_all();
+    sweeper_wake_.SignalAll();
     sweeper_.join();
     server_->Shutdown(std::chrono::system_clock::now() +
                       std::chrono::seconds(config_.shutdown_grace_seconds));

@@ -15,14 +15,14 @@
 #pragma once
 
 #include <atomic>
-#include <condition_variable>
 #include <memory>
-#include <mutex>
+#include <mutex>  // std::once_flag
 #include <string>
 #include <thread>
 
 #include <grpcpp/grpcpp.h>
 
+#include "core/base/mutex.h"
 #include "server/access_control.h"
 #include "server/server_config.h"
 #include "server/serving_gate.h"
@@ -68,10 +68,10 @@ class OrbitServer {
   // Health goes NOT_SERVING, new sessions are refused, open sessions end with UNAVAILABLE, and
   // gRPC stops after letting calls finish for up to shutdown_grace_seconds; the metrics endpoint
   // stops before the workers do.
-  void Shutdown();
+  void Shutdown() ABSL_LOCKS_EXCLUDED(sweeper_mutex_);
 
  private:
-  void SweepIdleSessions();
+  void SweepIdleSessions() ABSL_LOCKS_EXCLUDED(sweeper_mutex_);
   // Health of every service: SERVING when `fit`, NOT_SERVING otherwise.
   void SetServing(bool fit);
 
@@ -92,9 +92,9 @@ class OrbitServer {
   std::unique_ptr<grpc::Server> server_;
   int port_ = 0;
 
-  std::mutex sweeper_mutex_;
-  std::condition_variable sweeper_wake_;
-  bool stopping_ = false;
+  Mutex sweeper_mutex_;  // held by the sweeper while it closes idle sessions
+  CondVar sweeper_wake_;
+  bool stopping_ ABSL_GUARDED_BY(sweeper_mutex_) = false;
   std::thread sweeper_;
   std::once_flag shutdown_once_;
   // With a PostgreSQL store: follows what other replicas write. Uses the catalogue and the

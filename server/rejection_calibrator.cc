@@ -26,41 +26,68 @@ bool RecalibrationDue(std::uint64_t changes, int calibrated_objects, double wait
 
 RejectionCalibrator::~RejectionCalibrator() {
   {
-    std::lock_guard lock(mutex_);
+    MutexLock lock(&mutex_);
     stop_ = true;
   }
-  wake_.notify_all();
+  wake_.SignalAll();
+  done_.SignalAll();
   thread_.join();
 }
 
 std::shared_ptr<const RejectionCalibration> RejectionCalibrator::For(
     const std::shared_ptr<const ViewIndexSnapshot>& current) {
-  std::unique_lock lock(mutex_);
+  MutexLock lock(&mutex_);
   // Snapshot serials grow with every publication, so a larger one is a newer model set.
   if (current->serial() > calibrated_serial_ &&
       (requested_ == nullptr || current->serial() > requested_->serial())) {
     if (requested_ == nullptr) first_requested_ = std::chrono::steady_clock::now();
     requested_ = current;
-    wake_.notify_one();
+    wake_.Signal();
   }
   // With no calibration at all yet (the server started with fewer than two objects), the first
   // one is worth the wait: every decision would be UNDECIDED without it.
   if (!calibration_->calibrated() && current->object_count() >= 2) {
-    done_.wait(lock, [&] { return calibrated_serial_ >= current->serial() || stop_; });
+    while (!CalibratedFor(*current)) done_.Wait(&mutex_);
   }
   return calibration_;
 }
 
+bool RejectionCalibrator::CalibratedFor(const ViewIndexSnapshot& snapshot) const {
+  return calibrated_serial_ >= snapshot.serial() || stop_;
+}
+
 void RejectionCalibrator::TEST_WaitFor(const ViewIndexSnapshot& snapshot) {
-  std::unique_lock lock(mutex_);
-  done_.wait(lock, [&] { return calibrated_serial_ >= snapshot.serial() || stop_; });
+  MutexLock lock(&mutex_);
+  while (!CalibratedFor(snapshot)) done_.Wait(&mutex_);
 }
 
 bool RejectionCalibrator::TEST_WaitFor(const ViewIndexSnapshot& snapshot,
                                        std::chrono::milliseconds timeout) {
-  std::unique_lock lock(mutex_);
-  return done_.wait_for(lock, timeout,
-                        [&] { return calibrated_serial_ >= snapshot.serial() || stop_; });
+  const auto deadline = std::chrono::steady_clock::now() + timeout;
+  MutexLock lock(&mutex_);
+  while (!CalibratedFor(snapshot) && done_.WaitUntil(&mutex_, deadline)) {
+  }
+  return CalibratedFor(snapshot);
+}
+
+bool RejectionCalibrator::RequestDue() const {
+  const std::chrono::duration<double> waited = std::chrono::steady_clock::now() - first_requested_;
+  return RecalibrationDue(requested_->serial() - calibrated_serial_, calibrated_objects_,
+                          waited.count(), calibration_->calibrated());
+}
+
+std::shared_ptr<const ViewIndexSnapshot> RejectionCalibrator::NextDue() {
+  MutexLock lock(&mutex_);
+  while (!stop_ && requested_ == nullptr) wake_.Wait(&mutex_);
+  if (stop_) return nullptr;
+  // A change too small to matter waits for more, or for its time.
+  const auto deadline = first_requested_ + std::chrono::seconds(kMaxRecalibrationDelaySeconds);
+  while (!stop_ && !RequestDue() && wake_.WaitUntil(&mutex_, deadline)) {
+  }
+  if (stop_) return nullptr;
+  std::shared_ptr<const ViewIndexSnapshot> snapshot = std::move(requested_);
+  requested_ = nullptr;
+  return snapshot;
 }
 
 void RejectionCalibrator::Run() {
@@ -69,32 +96,18 @@ void RejectionCalibrator::Run() {
   // scheduler slices (docs/results/load.md, "At 1000 objects with the product default, again").
   // Sessions keep the previous calibration meanwhile.
   RunThisThreadOnIdleTime();
-  std::unique_lock lock(mutex_);
-  const auto due = [this] {
-    const std::chrono::duration<double> waited =
-        std::chrono::steady_clock::now() - first_requested_;
-    return RecalibrationDue(requested_->serial() - calibrated_serial_, calibrated_objects_,
-                            waited.count(), calibration_->calibrated());
-  };
-  while (true) {
-    wake_.wait(lock, [this] { return stop_ || requested_ != nullptr; });
-    if (stop_) return;
-    // A change too small to matter waits for more, or for its time.
-    if (!due()) {
-      wake_.wait_until(lock, first_requested_ + std::chrono::seconds(kMaxRecalibrationDelaySeconds),
-                       [&] { return stop_ || due(); });
-      if (stop_) return;
-    }
-    const std::shared_ptr<const ViewIndexSnapshot> snapshot = std::move(requested_);
-    requested_ = nullptr;
-    lock.unlock();
+  for (;;) {
+    const std::shared_ptr<const ViewIndexSnapshot> snapshot = NextDue();
+    if (snapshot == nullptr) return;
     auto calibration = std::make_shared<const RejectionCalibration>(
         RejectionCalibration::FromIndex(*snapshot, options_));
-    lock.lock();
-    calibration_ = std::move(calibration);
-    calibrated_serial_ = snapshot->serial();
-    calibrated_objects_ = static_cast<int>(snapshot->object_count());
-    done_.notify_all();
+    {
+      MutexLock lock(&mutex_);
+      calibration_ = std::move(calibration);
+      calibrated_serial_ = snapshot->serial();
+      calibrated_objects_ = static_cast<int>(snapshot->object_count());
+    }
+    done_.SignalAll();
   }
 }
 

@@ -18,12 +18,11 @@
 #pragma once
 
 #include <chrono>
-#include <condition_variable>
 #include <cstdint>
 #include <memory>
-#include <mutex>
 #include <thread>
 
+#include "core/base/mutex.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/index/view_index.h"
 
@@ -55,27 +54,34 @@ class RejectionCalibrator {
   // recalibration of `current` in the background, and waits for it only when there is no
   // calibration yet (the server started with fewer than two objects) and `current` can have one.
   std::shared_ptr<const RejectionCalibration> For(
-      const std::shared_ptr<const ViewIndexSnapshot>& current);
+      const std::shared_ptr<const ViewIndexSnapshot>& current) ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Waits until the calibration in use was computed from `snapshot` or a later one (tests).
   // Tests only. The first form waits as long as it takes (a change that is not due yet waits up
   // to kMaxRecalibrationDelaySeconds); the second at most `timeout`, and says whether it got there.
-  void TEST_WaitFor(const ViewIndexSnapshot& snapshot);
-  bool TEST_WaitFor(const ViewIndexSnapshot& snapshot, std::chrono::milliseconds timeout);
+  void TEST_WaitFor(const ViewIndexSnapshot& snapshot) ABSL_LOCKS_EXCLUDED(mutex_);
+  bool TEST_WaitFor(const ViewIndexSnapshot& snapshot, std::chrono::milliseconds timeout)
+      ABSL_LOCKS_EXCLUDED(mutex_);
 
  private:
-  void Run();
+  void Run() ABSL_LOCKS_EXCLUDED(mutex_);
+  // Waits until a recalibration is due and takes its snapshot off requested_; null once stopped.
+  std::shared_ptr<const ViewIndexSnapshot> NextDue() ABSL_LOCKS_EXCLUDED(mutex_);
+  // RecalibrationDue for requested_, now. REQUIRES: requested_ is not null.
+  bool RequestDue() const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
+  // Whether the calibration in use was computed from `snapshot` or a later one, or stop_.
+  bool CalibratedFor(const ViewIndexSnapshot& snapshot) const ABSL_EXCLUSIVE_LOCKS_REQUIRED(mutex_);
 
   const CalibrationOptions options_;
-  std::mutex mutex_;
-  std::condition_variable wake_;   // a request or stop
-  std::condition_variable done_;   // a recalibration finished
-  std::shared_ptr<const RejectionCalibration> calibration_;  // guarded by mutex_
-  std::uint64_t calibrated_serial_ = 0;                       // guarded by mutex_
-  int calibrated_objects_ = 0;                                // guarded by mutex_
-  std::shared_ptr<const ViewIndexSnapshot> requested_;        // guarded by mutex_; null: none
-  std::chrono::steady_clock::time_point first_requested_;     // guarded by mutex_: pending since
-  bool stop_ = false;                                         // guarded by mutex_
+  Mutex mutex_;
+  CondVar wake_;  // a request or stop
+  CondVar done_;  // a recalibration finished
+  std::shared_ptr<const RejectionCalibration> calibration_ ABSL_GUARDED_BY(mutex_);
+  std::uint64_t calibrated_serial_ ABSL_GUARDED_BY(mutex_) = 0;
+  int calibrated_objects_ ABSL_GUARDED_BY(mutex_) = 0;
+  std::shared_ptr<const ViewIndexSnapshot> requested_ ABSL_GUARDED_BY(mutex_);  // null: none
+  std::chrono::steady_clock::time_point first_requested_ ABSL_GUARDED_BY(mutex_);  // pending since
+  bool stop_ ABSL_GUARDED_BY(mutex_) = false;
   std::thread thread_;
 };
 

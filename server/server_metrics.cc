@@ -4,13 +4,13 @@
 #include <prometheus/text_serializer.h>
 
 #include <functional>
-#include <mutex>
 #include <sstream>
 #include <string>
 #include <utility>
 
 #include "api/engine_names.h"
 #include "api/status_code_name.h"
+#include "core/base/mutex.h"
 #include "server/model_catalogue.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
@@ -51,13 +51,13 @@ prometheus::Family<prometheus::Histogram>& AddHistogram(prometheus::Registry& re
 class ServerMetrics::WatchedGauges final : public prometheus::Collectable {
  public:
   void Add(const std::string& name, const std::string& help, prometheus::Labels labels,
-           std::function<double()> read) {
-    std::lock_guard lock(mutex_);
+           std::function<double()> read) ABSL_LOCKS_EXCLUDED(mutex_) {
+    MutexLock lock(&mutex_);
     gauges_.push_back({name, help, std::move(labels), std::move(read)});
   }
 
-  std::vector<prometheus::MetricFamily> Collect() const override {
-    std::lock_guard lock(mutex_);
+  std::vector<prometheus::MetricFamily> Collect() const ABSL_LOCKS_EXCLUDED(mutex_) override {
+    MutexLock lock(&mutex_);
     std::vector<prometheus::MetricFamily> families;
     for (const Watched& gauge : gauges_) {
       if (families.empty() || families.back().name != gauge.name) {
@@ -77,8 +77,8 @@ class ServerMetrics::WatchedGauges final : public prometheus::Collectable {
     prometheus::Labels labels;
     std::function<double()> read;  // thread-safe and cheap: a scrape waits for it
   };
-  mutable std::mutex mutex_;
-  std::vector<Watched> gauges_;  // guarded by mutex_; a family's gauges are added together
+  mutable Mutex mutex_;
+  std::vector<Watched> gauges_ ABSL_GUARDED_BY(mutex_);  // a family's gauges are added together
 };
 
 ServerMetrics::ServerMetrics()

@@ -31,93 +31,102 @@ SessionReactor::SessionReactor(const SessionEnvironment& environment,
   // lock held, so taking the registry's lock under mutex_ would invert that order. Close may
   // therefore run before the lock below is taken; it finishes the stream, and no read starts.
   const grpc::Status admitted = env_.registry.Add(this);
-  std::lock_guard lock(mutex_);
-  if (!admitted.ok()) {  // the session limit, or the server is shutting down
-    Refuse(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
-                         ? RefusalReason::kShuttingDown
-                         : RefusalReason::kMaxSessions);
-    return;
+  StreamOp op;
+  {
+    MutexLock lock(&mutex_);
+    if (!admitted.ok()) {  // the session limit, or the server is shutting down
+      op = Refuse(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
+                                ? RefusalReason::kShuttingDown
+                                : RefusalReason::kMaxSessions);
+    } else {
+      registered_ = true;
+      if (!finished_) op = ReadNext();
+    }
   }
-  registered_ = true;
-  if (!finished_) ReadNext();
+  Perform(op);
 }
 
 void SessionReactor::OnReadDone(bool ok) {
-  std::unique_lock lock(mutex_);
-  if (finished_) return;
-  if (!ok) {  // the device closed its side (or the call broke): a clean end
-    FinishOnce(grpc::Status::OK);
-    return;
+  StreamOp op;
+  std::optional<FrameTask> task;
+  {
+    MutexLock lock(&mutex_);
+    if (finished_) return;
+    if (!ok) {  // the device closed its side (or the call broke): a clean end
+      op = FinishOnce(grpc::Status::OK);
+    } else if (pending_close_) {  // Close() came while this read was starting
+      op = Refuse(*pending_close_, pending_reason_);
+    } else {
+      const Clock::time_point now = Clock::now();
+      const Clock::time_point previous_read_done = previous_read_done_;
+      previous_read_done_ = now;
+      switch (request_.kind_case()) {
+        case v1::SessionRequest::kOpen:
+          op = HandleOpen(request_.open());
+          break;
+        case v1::SessionRequest::kReset:
+          if (!engine_) {
+            op = Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
+                        RefusalReason::kInvalidField);
+            break;
+          }
+          engine_->Reset();
+          op = ReadNext();
+          break;
+        case v1::SessionRequest::kFrame:
+          op = HandleFrame(now, previous_read_done, &task);
+          break;
+        default:
+          op = Refuse({grpc::StatusCode::INVALID_ARGUMENT,
+                       "empty request: set one of open, frame or reset"},
+                      RefusalReason::kInvalidField);
+      }
+    }
   }
-  const Clock::time_point now = Clock::now();
-  const Clock::time_point previous_read_done = previous_read_done_;
-  previous_read_done_ = now;
-  switch (request_.kind_case()) {
-    case v1::SessionRequest::kOpen:
-      HandleOpen(request_.open());
-      return;
-    case v1::SessionRequest::kReset:
-      if (!engine_) {
-        Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
-               RefusalReason::kInvalidField);
-        return;
-      }
-      engine_->Reset();
-      ReadNext();
-      return;
-    case v1::SessionRequest::kFrame:
-      if (HandleFrame(now, previous_read_done)) {
-        lock.unlock();
-        Process(std::move(*request_.mutable_frame()), now);
-      }
-      return;
-    default:
-      Refuse({grpc::StatusCode::INVALID_ARGUMENT, "empty request: set one of open, frame or reset"},
-             RefusalReason::kInvalidField);
+  if (!task) {
+    Perform(op);
+  } else if (task->frame.image().empty()) {
+    Process(std::move(*task));
+  } else {
+    env_.bulk_pool.Post([this, task = std::move(*task)]() mutable { Process(std::move(task)); });
   }
 }
 
-void SessionReactor::HandleOpen(const v1::SessionOptions& options) {
+SessionReactor::StreamOp SessionReactor::HandleOpen(const v1::SessionOptions& options) {
   if (engine_) {
-    Refuse({grpc::StatusCode::INVALID_ARGUMENT, "`open` may be sent only once"},
-           RefusalReason::kInvalidField);
-    return;
+    return Refuse({grpc::StatusCode::INVALID_ARGUMENT, "`open` may be sent only once"},
+                  RefusalReason::kInvalidField);
   }
   SessionSettings settings;
   const grpc::Status resolved = ResolveSessionSettings(
       options, env_.defaults, env_.catalogue.variant(), env_.limits, &settings);
   if (!resolved.ok()) {
-    Refuse(resolved, ReasonOfCheck(resolved, RefusalReason::kSessionLimit));
-    return;
+    return Refuse(resolved, ReasonOfCheck(resolved, RefusalReason::kSessionLimit));
   }
   engine_ = CreateSessionEngine(settings);
   frame_metrics_ = env_.metrics.ForEngine(settings.engine);
-  ReadNext();
+  return ReadNext();
 }
 
-bool SessionReactor::HandleFrame(Clock::time_point received,
-                                 Clock::time_point previous_read_done) {
+SessionReactor::StreamOp SessionReactor::HandleFrame(Clock::time_point received,
+                                                     Clock::time_point previous_read_done,
+                                                     std::optional<FrameTask>* task) {
   if (!engine_) {
-    Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
-           RefusalReason::kInvalidField);
-    return false;
+    return Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
+                  RefusalReason::kInvalidField);
   }
   if (!rate_limit_.Take(received, previous_read_done, read_started_)) {
-    Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED, rate_limit_.RefusalMessage()},
-           RefusalReason::kFrameRate);
-    return false;
+    return Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED, rate_limit_.RefusalMessage()},
+                  RefusalReason::kFrameRate);
   }
   last_activity_ = received.time_since_epoch().count();
   busy_ = true;
-  if (request_.frame().image().empty()) return true;  // processed by the caller, unlocked
-  env_.bulk_pool.Post([this, frame = std::move(*request_.mutable_frame()), received]() mutable {
-    Process(std::move(frame), received);
-  });
-  return false;
+  *task = FrameTask{std::move(*request_.mutable_frame()), received, engine_.get(), frame_metrics_};
+  return {};
 }
 
-void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
-  // The engine is used only here and only while busy_, so never concurrently.
+void SessionReactor::Process(FrameTask task) {
+  const v1::Frame& frame = task.frame;
   QueryFrame query;
   grpc::Status status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
   RefusalReason reason = ReasonOfCheck(status, RefusalReason::kImageBudget);
@@ -125,73 +134,89 @@ void SessionReactor::Process(v1::Frame frame, Clock::time_point received) {
   if (status.ok()) {
     try {
       const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-      engine_->SetCalibration(env_.calibrator.For(index));
-      update = ToSessionUpdate(engine_->Observe(index, query), *index);
+      task.engine->SetCalibration(env_.calibrator.For(index));
+      update = ToSessionUpdate(task.engine->Observe(index, query), *index);
     } catch (const std::exception& e) {
       status = StatusFromException(e);
       reason = RefusalReasonOf(e);
     }
   }
   if (frame.has_timestamp_us()) update.set_timestamp_us(frame.timestamp_us());
-  const Clock::duration spent = Clock::now() - received;
+  const Clock::duration spent = Clock::now() - task.received;
   update.set_processing_time_us(
       std::chrono::duration_cast<std::chrono::microseconds>(spent).count());
   if (status.ok()) {
-    frame_metrics_.Record(frame.image().empty() ? FrameInput::kCedd : FrameInput::kImage, spent);
+    task.metrics.Record(frame.image().empty() ? FrameInput::kCedd : FrameInput::kImage, spent);
   }
 
-  std::lock_guard lock(mutex_);
-  if (!status.ok() || pending_close_) {
-    busy_ = false;
-    if (!status.ok()) {
-      Refuse(status, reason);
+  StreamOp op;
+  {
+    MutexLock lock(&mutex_);
+    if (!status.ok() || pending_close_) {
+      busy_ = false;
+      op = !status.ok() ? Refuse(status, reason) : Refuse(*pending_close_, pending_reason_);
     } else {
-      Refuse(*pending_close_, pending_reason_);
+      update_ = std::move(update);
+      write_started_ = Clock::now();
+      op.kind = StreamOp::Kind::kWrite;
     }
-    return;
   }
-  update_ = std::move(update);
-  write_started_ = Clock::now();
-  StartWrite(&update_);
+  Perform(op);
 }
 
 void SessionReactor::OnWriteDone(bool ok) {
-  std::lock_guard lock(mutex_);
-  busy_ = false;
-  write_started_.reset();
-  if (!ok) {
-    // The device went away, or stopped reading and Close cancelled the call: then the refusal
-    // is Close's (the idle timeout, the shutdown), though the device sees CANCELLED.
-    if (pending_close_ && !finished_) {
-      env_.metrics.CountRefusal(pending_close_->error_code(), pending_reason_);
+  StreamOp op;
+  {
+    MutexLock lock(&mutex_);
+    busy_ = false;
+    write_started_.reset();
+    if (!ok) {
+      // The device went away, or stopped reading and Close cancelled the call: then the refusal
+      // is Close's (the idle timeout, the shutdown), though the device sees CANCELLED.
+      if (pending_close_ && !finished_) {
+        env_.metrics.CountRefusal(pending_close_->error_code(), pending_reason_);
+      }
+      op = FinishOnce({grpc::StatusCode::CANCELLED, "the device stopped receiving updates"});
+    } else {
+      op = ReadNext();  // or the pending close
     }
-    FinishOnce({grpc::StatusCode::CANCELLED, "the device stopped receiving updates"});
-  } else if (pending_close_) {
-    Refuse(*pending_close_, pending_reason_);
-  } else {
-    ReadNext();
   }
+  Perform(op);
 }
 
 void SessionReactor::Close(const grpc::Status& status) {
-  std::lock_guard lock(mutex_);
-  if (finished_) return;
-  if (busy_) {
-    if (!pending_close_) {
-      pending_close_ = status;
-      pending_reason_ = ReasonOfClose(status);
+  StreamOp op;
+  {
+    MutexLock lock(&mutex_);
+    if (finished_) return;
+    if (busy_ || reads_starting_ > 0) {
+      // Applied once the frame in hand is written, or once the read being started has.
+      if (!pending_close_) {
+        pending_close_ = status;
+        pending_reason_ = ReasonOfClose(status);
+      }
+      // The device has not taken its update for a long while: it has stopped reading, and the
+      // write would wait for it forever. Cancelling completes the write (not ok) and ends the
+      // call, which frees the slot.
+      if (write_started_ && Clock::now() - *write_started_ >= kStalledWrite) {
+        op.kind = StreamOp::Kind::kCancel;
+      }
+    } else {
+      // A read is outstanding; it completes with ok = false.
+      op = Refuse(status, ReasonOfClose(status));
     }
-    // The device has not taken its update for a long while: it has stopped reading, and the
-    // write would wait for it forever. Cancelling completes the write (not ok) and ends the
-    // call, which frees the slot.
-    if (write_started_ && Clock::now() - *write_started_ >= kStalledWrite) context_->TryCancel();
-    return;
   }
-  Refuse(status, ReasonOfClose(status));  // a read is outstanding; it completes with ok = false
+  // The registry's lock, held by the caller, keeps OnDone from deleting the reactor meanwhile.
+  Perform(op);
 }
 
 void SessionReactor::OnDone() {
-  if (registered_) env_.registry.Remove(this);
+  bool registered = false;
+  {
+    MutexLock lock(&mutex_);
+    registered = registered_;
+  }
+  if (registered) env_.registry.Remove(this);
   delete this;
 }
 
@@ -199,21 +224,52 @@ std::chrono::steady_clock::time_point SessionReactor::last_activity() const {
   return Clock::time_point(Clock::duration(last_activity_.load()));
 }
 
-void SessionReactor::ReadNext() {
+SessionReactor::StreamOp SessionReactor::ReadNext() {
+  if (finished_) return {};
+  if (pending_close_) return Refuse(*pending_close_, pending_reason_);
   read_started_ = Clock::now();
-  StartRead(&request_);
+  ++reads_starting_;
+  return {.kind = StreamOp::Kind::kRead, .status = {}};
 }
 
-void SessionReactor::FinishOnce(const grpc::Status& status) {
-  if (finished_) return;
+SessionReactor::StreamOp SessionReactor::AfterReadStarted() {
+  MutexLock lock(&mutex_);
+  --reads_starting_;
+  if (reads_starting_ > 0 || busy_ || !pending_close_) return {};
+  return Refuse(*pending_close_, pending_reason_);
+}
+
+SessionReactor::StreamOp SessionReactor::FinishOnce(const grpc::Status& status) {
+  if (finished_) return {};
   finished_ = true;
-  Finish(status);
+  return {.kind = StreamOp::Kind::kFinish, .status = status};
 }
 
-void SessionReactor::Refuse(const grpc::Status& status, RefusalReason reason) {
-  if (finished_) return;
+SessionReactor::StreamOp SessionReactor::Refuse(const grpc::Status& status, RefusalReason reason) {
+  if (finished_) return {};
   env_.metrics.CountRefusal(status.error_code(), reason);
-  FinishOnce(status);
+  return FinishOnce(status);
+}
+
+void SessionReactor::Perform(const StreamOp& op) {
+  switch (op.kind) {
+    case StreamOp::Kind::kNone:
+      return;
+    case StreamOp::Kind::kRead:
+      StartRead(&request_);
+      // The reactor is still there: kRead comes from a reaction or the constructor (StreamOp).
+      Perform(AfterReadStarted());
+      return;
+    case StreamOp::Kind::kWrite:
+      StartWrite(&update_);
+      return;
+    case StreamOp::Kind::kFinish:
+      Finish(op.status);
+      return;
+    case StreamOp::Kind::kCancel:
+      context_->TryCancel();
+      return;
+  }
 }
 
 }  // namespace orbit::server

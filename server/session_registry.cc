@@ -5,7 +5,7 @@
 namespace orbit::server {
 
 grpc::Status SessionRegistry::Add(RegisteredSession* session) {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   if (closed_) return {grpc::StatusCode::UNAVAILABLE, "the server is shutting down"};
   if (static_cast<int>(sessions_.size()) >= max_sessions_) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,
@@ -17,13 +17,13 @@ grpc::Status SessionRegistry::Add(RegisteredSession* session) {
 }
 
 void SessionRegistry::Remove(RegisteredSession* session) {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   sessions_.erase(session);
 }
 
 void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
                                 int idle_timeout_seconds) {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   for (RegisteredSession* session : sessions_) {
     if (session->last_activity() < cutoff) {
       session->Close({grpc::StatusCode::DEADLINE_EXCEEDED,
@@ -34,13 +34,13 @@ void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
 }
 
 void SessionRegistry::CloseAll(const grpc::Status& status) {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   closed_ = true;
   for (RegisteredSession* session : sessions_) session->Close(status);
 }
 
 int SessionRegistry::size() const {
-  std::lock_guard lock(mutex_);
+  MutexLock lock(&mutex_);
   return static_cast<int>(sessions_.size());
 }
 

@@ -3,32 +3,34 @@
 namespace orbit {
 
 void CheckpointGate::EnterRead() {
-  std::unique_lock lock(mutex_);
-  changed_.wait(lock, [this] { return !exclusive_; });
+  MutexLock lock(&mutex_);
+  while (exclusive_) changed_.Wait(&mutex_);
   ++reads_in_flight_;
 }
 
 void CheckpointGate::LeaveRead() {
-  std::lock_guard lock(mutex_);
-  if (--reads_in_flight_ == 0) changed_.notify_all();
+  MutexLock lock(&mutex_);
+  if (--reads_in_flight_ == 0) changed_.SignalAll();
 }
 
 void CheckpointGate::RunExclusive(const std::function<void()>& section) {
   {
-    std::unique_lock lock(mutex_);
-    changed_.wait(lock, [this] { return !exclusive_; });
+    MutexLock lock(&mutex_);
+    while (exclusive_) changed_.Wait(&mutex_);
     exclusive_ = true;
-    changed_.wait(lock, [this] { return reads_in_flight_ == 0; });
+    while (reads_in_flight_ != 0) changed_.Wait(&mutex_);
   }
   struct Reopen {  // lets reads in again however `section` ends
     CheckpointGate& gate;
-    ~Reopen() {
-      std::lock_guard lock(gate.mutex_);
-      gate.exclusive_ = false;
-      gate.changed_.notify_all();
-    }
+    ~Reopen() { gate.EndExclusive(); }
   } reopen{*this};
   section();
+}
+
+void CheckpointGate::EndExclusive() {
+  MutexLock lock(&mutex_);
+  exclusive_ = false;
+  changed_.SignalAll();
 }
 
 }  // namespace orbit

@@ -11,27 +11,30 @@
 // Thread-safe.
 #pragma once
 
-#include <condition_variable>
 #include <functional>
-#include <mutex>
+
+#include "core/base/mutex.h"
 
 namespace orbit {
 
 class CheckpointGate {
  public:
   // Brackets one read. EnterRead waits while an exclusive section is pending or running.
-  void EnterRead();
-  void LeaveRead();
+  void EnterRead() ABSL_LOCKS_EXCLUDED(mutex_);
+  void LeaveRead() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Runs `section` once no read is in flight, holding new reads back until it returns.
   // REQUIRES: the calling thread is not inside a read.
-  void RunExclusive(const std::function<void()>& section);
+  void RunExclusive(const std::function<void()>& section) ABSL_LOCKS_EXCLUDED(mutex_);
 
  private:
-  std::mutex mutex_;
-  std::condition_variable changed_;
-  int reads_in_flight_ = 0;
-  bool exclusive_ = false;  // pending or running
+  // Lets reads in again and wakes the waiters.
+  void EndExclusive() ABSL_LOCKS_EXCLUDED(mutex_);
+
+  Mutex mutex_;  // never held while `section` runs
+  CondVar changed_;
+  int reads_in_flight_ ABSL_GUARDED_BY(mutex_) = 0;
+  bool exclusive_ ABSL_GUARDED_BY(mutex_) = false;  // pending or running
 };
 
 }  // namespace orbit

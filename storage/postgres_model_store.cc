@@ -92,7 +92,7 @@ class PostgresModelStore::Lease {
   explicit Lease(PostgresModelStore& store) : store_(store) {
     for (;;) {
       {
-        std::lock_guard lock(store_.pool_mutex_);
+        MutexLock lock(&store_.pool_mutex_);
         if (store_.idle_.empty()) break;
         connection_ = std::move(store_.idle_.back());
         store_.idle_.pop_back();
@@ -107,7 +107,7 @@ class PostgresModelStore::Lease {
   }
   ~Lease() {
     if (!connection_->Reusable()) return;  // closed here; the next call connects afresh
-    std::lock_guard lock(store_.pool_mutex_);
+    MutexLock lock(&store_.pool_mutex_);
     if (store_.idle_.size() < static_cast<std::size_t>(store_.options_.max_idle_connections)) {
       store_.idle_.push_back(std::move(connection_));
     }
@@ -147,7 +147,7 @@ ObjectId PostgresModelStore::Enroll(const Enrollment& enrollment) {
   ValidateViews(enrollment.views, enrollment.thumbnails);
   ValidateMetadata(enrollment.metadata);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
@@ -173,7 +173,7 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
                                   const std::vector<std::string>& thumbnails) {
   ValidateViews(views, thumbnails);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
@@ -229,7 +229,7 @@ void PostgresModelStore::InsertViews(PostgresConnection& connection, ObjectId id
 }
 
 void PostgresModelStore::Delete(ObjectId id) {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
@@ -245,7 +245,7 @@ void PostgresModelStore::Delete(ObjectId id) {
 void PostgresModelStore::Rename(ObjectId id, std::string_view new_name) {
   ValidateObjectName(new_name);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);

@@ -31,10 +31,10 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
+#include "core/base/mutex.h"
 #include "storage/model_change.h"
 #include "storage/model_store.h"
 
@@ -64,11 +64,12 @@ class PostgresModelStore final : public ModelStore {
   PostgresModelStore(const PostgresModelStore&) = delete;
   PostgresModelStore& operator=(const PostgresModelStore&) = delete;
 
-  ObjectId Enroll(const Enrollment& enrollment) override;
+  ObjectId Enroll(const Enrollment& enrollment) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
   void AddViews(ObjectId id, const std::vector<ModelView>& views,
-                const std::vector<std::string>& thumbnails = {}) override;
-  void Delete(ObjectId id) override;
-  void Rename(ObjectId id, std::string_view new_name) override;
+                const std::vector<std::string>& thumbnails = {})
+      ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  void Delete(ObjectId id) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  void Rename(ObjectId id, std::string_view new_name) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
   std::vector<ObjectSummary> List(const ListRequest& request) override;
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
@@ -97,16 +98,20 @@ class PostgresModelStore final : public ModelStore {
 
   void InsertViews(PostgresConnection& connection, ObjectId id,
                    const std::vector<ModelView>& views,
-                   const std::vector<std::string>& thumbnails);
+                   const std::vector<std::string>& thumbnails)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   const std::string conninfo_;
   const std::string target_;
   const PostgresModelStoreOptions options_;
 
-  std::mutex write_mutex_;  // one writer in this process
+  // One writer in this process, from its first statement to its COMMIT. Guards no field: what it
+  // serialises is the use of the database.
+  Mutex write_mutex_;
 
-  std::mutex pool_mutex_;  // guards idle_
-  std::vector<std::unique_ptr<PostgresConnection>> idle_;
+  // Held only to take or give back a connection (a write takes one while holding write_mutex_).
+  Mutex pool_mutex_ ABSL_ACQUIRED_AFTER(write_mutex_);
+  std::vector<std::unique_ptr<PostgresConnection>> idle_ ABSL_GUARDED_BY(pool_mutex_);
 };
 
 }  // namespace orbit

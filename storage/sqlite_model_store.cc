@@ -107,7 +107,7 @@ class SqliteModelStore::Reader {
   explicit Reader(SqliteModelStore& store) : store_(store) {
     store_.checkpoint_gate_.EnterRead();
     {
-      std::lock_guard lock(store_.readers_mutex_);
+      MutexLock lock(&store_.readers_mutex_);
       if (!store_.idle_readers_.empty()) {
         connection_ = std::move(store_.idle_readers_.back());
         store_.idle_readers_.pop_back();
@@ -125,7 +125,7 @@ class SqliteModelStore::Reader {
   }
   ~Reader() {
     {
-      std::lock_guard lock(store_.readers_mutex_);
+      MutexLock lock(&store_.readers_mutex_);
       if (store_.idle_readers_.size() < kMaxIdleReaders) {
         store_.idle_readers_.push_back(std::move(connection_));
       }
@@ -192,7 +192,7 @@ ObjectId SqliteModelStore::Enroll(const Enrollment& enrollment) {
   ValidateViews(enrollment.views, enrollment.thumbnails);
   ValidateMetadata(enrollment.metadata);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
   if (const std::optional<ObjectId> owner = FindId(*writer_, enrollment.name)) {
     throw NameTaken(enrollment.name, *owner);
@@ -219,7 +219,7 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
                                 const std::vector<std::string>& thumbnails) {
   ValidateViews(views, thumbnails);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
   {
     StatementLease count = writer_->Prepare(
@@ -273,7 +273,7 @@ void SqliteModelStore::InsertViews(ObjectId id, const std::vector<ModelView>& vi
 }
 
 void SqliteModelStore::Delete(ObjectId id) {
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
   {
     // The views go with it: ON DELETE CASCADE (foreign_keys is on).
@@ -288,7 +288,7 @@ void SqliteModelStore::Delete(ObjectId id) {
 void SqliteModelStore::Rename(ObjectId id, std::string_view new_name) {
   ValidateObjectName(new_name);
 
-  std::lock_guard lock(write_mutex_);
+  MutexLock lock(&write_mutex_);
   SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
   if (const std::optional<ObjectId> owner = FindId(*writer_, new_name)) {
     if (*owner == id) return;  // already so named
@@ -320,8 +320,8 @@ void SqliteModelStore::CommitWrite(SqliteTransaction& transaction) {
   if (wal_pages_ < kEscalateCheckpointFactor * options_.checkpoint_pages) return;
   // Readers kept the log from being recycled for too long: drain this store's readers, copy
   // everything and cut the log to zero bytes (storage/checkpoint_gate.h has the why).
-  checkpoint_gate_.RunExclusive([this] {
-    sqlite3* db = writer_->handle();
+  sqlite3* const db = writer_->handle();
+  checkpoint_gate_.RunExclusive([this, db] {
     sqlite3_busy_timeout(db, static_cast<int>(kCheckpointReaderWait.count()));
     sqlite3_wal_checkpoint_v2(db, "main", SQLITE_CHECKPOINT_TRUNCATE, nullptr, nullptr);
     sqlite3_busy_timeout(db, static_cast<int>(options_.busy_timeout.count()));

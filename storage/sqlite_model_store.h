@@ -14,9 +14,9 @@
 #include <chrono>
 #include <filesystem>
 #include <memory>
-#include <mutex>
 #include <vector>
 
+#include "core/base/mutex.h"
 #include "storage/checkpoint_gate.h"
 #include "storage/model_store.h"
 
@@ -51,11 +51,12 @@ class SqliteModelStore final : public ModelStore {
   SqliteModelStore(const SqliteModelStore&) = delete;
   SqliteModelStore& operator=(const SqliteModelStore&) = delete;
 
-  ObjectId Enroll(const Enrollment& enrollment) override;
+  ObjectId Enroll(const Enrollment& enrollment) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
   void AddViews(ObjectId id, const std::vector<ModelView>& views,
-                const std::vector<std::string>& thumbnails = {}) override;
-  void Delete(ObjectId id) override;
-  void Rename(ObjectId id, std::string_view new_name) override;
+                const std::vector<std::string>& thumbnails = {})
+      ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  void Delete(ObjectId id) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  void Rename(ObjectId id, std::string_view new_name) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
   std::vector<ObjectSummary> List(const ListRequest& request) override;
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
@@ -68,21 +69,24 @@ class SqliteModelStore final : public ModelStore {
   class Reader;  // a pooled read connection, returned to the pool when it goes out of scope
 
   void InsertViews(ObjectId id, const std::vector<ModelView>& views,
-                   const std::vector<std::string>& thumbnails);
+                   const std::vector<std::string>& thumbnails)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
   // Commits a write and, when the log has grown enough, checkpoints it.
-  // REQUIRES: write_mutex_ held.
-  void CommitWrite(SqliteTransaction& transaction);
+  void CommitWrite(SqliteTransaction& transaction) ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   const std::filesystem::path file_;
   const SqliteModelStoreOptions options_;
 
-  std::mutex write_mutex_;  // one writer: guards wal_pages_ and writer_
-  int wal_pages_ = 0;  // pages in the write-ahead log after the last commit (writer_'s WAL hook)
-  std::unique_ptr<SqliteConnection> writer_;  // declared after wal_pages_: its hook points there
+  Mutex write_mutex_;  // one writer, from its BEGIN to its checkpoint
+  // Pages in the write-ahead log after the last commit: written by writer_'s WAL hook, which
+  // runs inside a commit.
+  int wal_pages_ ABSL_GUARDED_BY(write_mutex_) = 0;
+  // Declared after wal_pages_: its hook points there.
+  std::unique_ptr<SqliteConnection> writer_ ABSL_GUARDED_BY(write_mutex_);
 
   CheckpointGate checkpoint_gate_;  // every read is inside it
-  std::mutex readers_mutex_;        // guards idle_readers_
-  std::vector<std::unique_ptr<SqliteConnection>> idle_readers_;
+  Mutex readers_mutex_;             // held only to take or give back a connection
+  std::vector<std::unique_ptr<SqliteConnection>> idle_readers_ ABSL_GUARDED_BY(readers_mutex_);
 };
 
 }  // namespace orbit

@@ -5,19 +5,28 @@
 #include <algorithm>
 #include <atomic>
 #include <exception>
-#include <mutex>
 #include <thread>
 #include <vector>
 
+#include "core/base/mutex.h"
+
 namespace orbit {
+namespace {
+
+// What the threads of one ParallelFor share besides the next task's number.
+struct Outcome {
+  Mutex mutex;  // also serialises on_done
+  std::exception_ptr error ABSL_GUARDED_BY(mutex);
+  std::size_t done ABSL_GUARDED_BY(mutex) = 0;
+};
+
+}  // namespace
 
 void ParallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& task,
                  const std::function<void(std::size_t done)>& on_done) {
   std::atomic<std::size_t> next{0};
   std::atomic<bool> failed{false};
-  std::mutex mutex;  // guards error, done and on_done
-  std::exception_ptr error;
-  std::size_t done = 0;
+  Outcome outcome;
   const auto worker = [&] {
     while (!failed.load()) {
       const std::size_t i = next.fetch_add(1);
@@ -25,14 +34,14 @@ void ParallelFor(std::size_t count, int threads, const std::function<void(std::s
       try {
         task(i);
       } catch (...) {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (!error) error = std::current_exception();
+        MutexLock lock(&outcome.mutex);
+        if (!outcome.error) outcome.error = std::current_exception();
         failed = true;
         return;
       }
-      std::lock_guard<std::mutex> lock(mutex);
-      ++done;
-      if (on_done) on_done(done);
+      MutexLock lock(&outcome.mutex);
+      ++outcome.done;
+      if (on_done) on_done(outcome.done);
     }
   };
   const std::size_t wanted = static_cast<std::size_t>(std::max(threads, 1));
@@ -41,6 +50,11 @@ void ParallelFor(std::size_t count, int threads, const std::function<void(std::s
   for (std::size_t t = 0; t < extra; ++t) pool.emplace_back(worker);
   worker();
   for (std::thread& thread : pool) thread.join();
+  std::exception_ptr error;
+  {
+    MutexLock lock(&outcome.mutex);
+    error = outcome.error;
+  }
   if (error) std::rethrow_exception(error);
 }
 

@@ -141,7 +141,7 @@ int IndexedObject::NearestView(double azimuth) const {
 
 const SectorViews& IndexedObject::Sectors(int count) const {
   if (count < 1) throw std::invalid_argument("sector count must be at least 1");
-  std::lock_guard<std::mutex> lock(sectors_mutex_);
+  MutexLock lock(&sectors_mutex_);
   std::unique_ptr<const SectorViews>& entry = sectors_[count];
   if (!entry) entry = std::make_unique<const SectorViews>(ComputeSectorViews(model_, count));
   return *entry;

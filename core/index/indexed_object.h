@@ -11,10 +11,10 @@
 #include <cstdint>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <utility>
 #include <vector>
 
+#include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
 #include "core/index/object_model.h"
 #include "core/index/view_bins.h"
@@ -83,7 +83,7 @@ class IndexedObject {
 
   // Sector views for `count` sectors, computed on first use and cached.
   // Throws std::invalid_argument when count < 1.
-  const SectorViews& Sectors(int count) const;
+  const SectorViews& Sectors(int count) const ABSL_LOCKS_EXCLUDED(sectors_mutex_);
 
  private:
   ObjectModel model_;
@@ -91,8 +91,10 @@ class IndexedObject {
   std::vector<double> sorted_azimuths_;
   std::vector<std::int32_t> squared_norms_;
   ViewBins view_bins_;
-  mutable std::mutex sectors_mutex_;
-  mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_;
+  mutable Mutex sectors_mutex_;
+  // An entry, once made, is never changed nor removed: Sectors() returns it unlocked.
+  mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_
+      ABSL_GUARDED_BY(sectors_mutex_);
 };
 
 }  // namespace orbit

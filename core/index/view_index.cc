@@ -278,7 +278,7 @@ std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored
 
 std::shared_ptr<const void> ViewIndexSnapshot::Derived(
     DerivedKey key, const std::function<std::shared_ptr<const void>()>& build) const {
-  const std::lock_guard lock(derived_mutex_);
+  MutexLock lock(&derived_mutex_);
   std::shared_ptr<const void>& derived = derived_[key];
   if (!derived) derived = build();
   return derived;
@@ -380,7 +380,7 @@ std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(std::vector<ObjectM
 }
 
 void ViewIndex::ReplaceAll(std::vector<ObjectModel> models) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  MutexLock write_lock(&write_mutex_);
   Publish(BuildAll(std::move(models)));
 }
 
@@ -427,7 +427,7 @@ bool MarkDeleted(std::vector<SegmentState>& segments, ObjectId id,
 }  // namespace
 
 void ViewIndex::Add(ObjectModel model) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  MutexLock write_lock(&write_mutex_);
   const std::shared_ptr<const ViewIndexSnapshot> base = Snapshot();
   if (base->Find(model.id) != nullptr) {
     throw std::invalid_argument("an object with id " + std::to_string(model.id) +
@@ -439,7 +439,7 @@ void ViewIndex::Add(ObjectModel model) {
 }
 
 void ViewIndex::Replace(ObjectModel model) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  MutexLock write_lock(&write_mutex_);
   // Validated before anything changes: a refused model leaves the index as it was.
   std::shared_ptr<const IndexedObject> object = Prepare(std::move(model), variant_);
   std::vector<SegmentState> segments = Snapshot()->segments_;
@@ -449,7 +449,7 @@ void ViewIndex::Replace(ObjectModel model) {
 }
 
 bool ViewIndex::Remove(ObjectId id) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  MutexLock write_lock(&write_mutex_);
   std::vector<SegmentState> segments = Snapshot()->segments_;
   if (!MarkDeleted(segments, id, options_)) return false;
   Publish(std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments)));
@@ -457,12 +457,12 @@ bool ViewIndex::Remove(ObjectId id) {
 }
 
 std::shared_ptr<const ViewIndexSnapshot> ViewIndex::Snapshot() const {
-  std::lock_guard<std::mutex> lock(publish_mutex_);
+  MutexLock lock(&publish_mutex_);
   return current_;
 }
 
 void ViewIndex::PrepareSnapshotsWith(SnapshotPreparation prepare) {
-  std::lock_guard<std::mutex> write_lock(write_mutex_);
+  MutexLock write_lock(&write_mutex_);
   prepare_ = std::move(prepare);
 }
 
@@ -474,7 +474,7 @@ void ViewIndex::Publish(std::shared_ptr<const ViewIndexSnapshot> next) {
       // A head start only (PrepareSnapshotsWith): the change itself must not be lost.
     }
   }
-  std::lock_guard<std::mutex> lock(publish_mutex_);
+  MutexLock lock(&publish_mutex_);
   current_ = std::move(next);
 }
 

@@ -32,12 +32,12 @@
 #include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string_view>
 #include <unordered_map>
 #include <utility>
 #include <vector>
 
+#include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
 #include "core/index/indexed_object.h"
 #include "core/index/object_model.h"
@@ -87,23 +87,23 @@ class ViewIndex {
   // Adds one object. Snapshots taken before are unchanged.
   // Throws std::invalid_argument when the model's variant is not the index's, when its id is
   // already present, when it has no views, or when a view is invalid (as above).
-  void Add(ObjectModel model);
+  void Add(ObjectModel model) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // Puts `model` in place of the object with its id (adds it when there is none), published as
   // one snapshot: no snapshot ever lacks the object or holds both versions. Snapshots taken
   // before are unchanged. Throws as Add() for an invalid model, changing nothing.
-  void Replace(ObjectModel model);
+  void Replace(ObjectModel model) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // Puts `models` in place of every object, built in one pass as the constructor builds them
   // and published as one snapshot (a server loading its store while it already listens).
   // Throws as that constructor, except that `models` may be empty, changing nothing.
-  void ReplaceAll(std::vector<ObjectModel> models);
+  void ReplaceAll(std::vector<ObjectModel> models) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // Removes the object; returns false (and changes nothing) when no object has this id.
-  bool Remove(ObjectId id);
+  bool Remove(ObjectId id) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   // The index as it is now. Never null; cheap (no copy of views).
-  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const;
+  std::shared_ptr<const ViewIndexSnapshot> Snapshot() const ABSL_LOCKS_EXCLUDED(publish_mutex_);
 
   // Work done on every new snapshot before it is published, on the writer's thread (Add,
   // Replace, ReplaceAll, Remove), given the snapshot it replaces: for what readers derive from a
@@ -112,23 +112,25 @@ class ViewIndex {
   // throws, the snapshot is published all the same and readers derive what is missing.
   using SnapshotPreparation =
       std::function<void(const ViewIndexSnapshot& next, const ViewIndexSnapshot& previous)>;
-  void PrepareSnapshotsWith(SnapshotPreparation prepare);
+  void PrepareSnapshotsWith(SnapshotPreparation prepare) ABSL_LOCKS_EXCLUDED(write_mutex_);
 
   DescriptorVariant variant() const { return variant_; }
   const ViewIndexOptions& options() const { return options_; }
 
  private:
-  // Runs prepare_ on `next`, then makes it the current snapshot. REQUIRES write_mutex_ held.
-  void Publish(std::shared_ptr<const ViewIndexSnapshot> next);
+  // Runs prepare_ on `next`, then makes it the current snapshot.
+  void Publish(std::shared_ptr<const ViewIndexSnapshot> next)
+      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_) ABSL_LOCKS_EXCLUDED(publish_mutex_);
   // A snapshot holding exactly `models` (validated as the constructor does).
   std::shared_ptr<const ViewIndexSnapshot> BuildAll(std::vector<ObjectModel> models) const;
 
   const DescriptorVariant variant_;
   const ViewIndexOptions options_;
-  std::mutex write_mutex_;             // serialises Add/Remove
-  mutable std::mutex publish_mutex_;   // guards current_ (held only to copy the pointer)
-  std::shared_ptr<const ViewIndexSnapshot> current_;
-  SnapshotPreparation prepare_;        // guarded by write_mutex_
+  Mutex write_mutex_;  // serialises the writers
+  // Held only to copy or replace the pointer, so Snapshot() never waits for a writer's build.
+  mutable Mutex publish_mutex_ ABSL_ACQUIRED_AFTER(write_mutex_);
+  std::shared_ptr<const ViewIndexSnapshot> current_ ABSL_GUARDED_BY(publish_mutex_);
+  SnapshotPreparation prepare_ ABSL_GUARDED_BY(write_mutex_);
 };
 
 // An object's place in a snapshot: its data and the slots of its views in the arrays filled by
@@ -196,8 +198,9 @@ class ViewIndexSnapshot {
   // the snapshot's life; every later call returns the same object. A caller that arrives during
   // a build waits for it. `key` names the derivation and its parameter, e.g. {"sectors", 8}.
   using DerivedKey = std::pair<std::string_view, std::int64_t>;
-  std::shared_ptr<const void> Derived(DerivedKey key,
-                                      const std::function<std::shared_ptr<const void>()>& build) const;
+  std::shared_ptr<const void> Derived(
+      DerivedKey key, const std::function<std::shared_ptr<const void>()>& build) const
+      ABSL_LOCKS_EXCLUDED(derived_mutex_);
 
  private:
   std::vector<ViewMatch> SearchKdTree(const DescriptorValues& query, int count) const;
@@ -215,8 +218,9 @@ class ViewIndexSnapshot {
   std::size_t view_count_ = 0;
   std::size_t slot_count_ = 0;
   std::uint64_t serial_ = 0;
-  mutable std::mutex derived_mutex_;
-  mutable std::map<DerivedKey, std::shared_ptr<const void>> derived_;
+  mutable Mutex derived_mutex_;  // held through a build, so that it runs once
+  mutable std::map<DerivedKey, std::shared_ptr<const void>> derived_
+      ABSL_GUARDED_BY(derived_mutex_);
 
   friend class ViewIndex;
 };

@@ -4,11 +4,11 @@
 
 #include <functional>
 #include <map>
-#include <mutex>
 #include <string>
 #include <vector>
 
 #include "client/image_file.h"
+#include "core/base/mutex.h"
 #include "core/descriptor/cedd.h"
 #include "core/index/object_model.h"
 #include "tests/support/test_data.h"
@@ -17,9 +17,9 @@ namespace orbit::testing {
 
 // Object N of COIL-100 (1..100) with its 72 views (azimuths 0, 5, ..., 355); id = N, name objN.
 inline const ObjectModel& CoilObject(int number) {
-  static std::mutex mutex;
-  static std::map<int, ObjectModel> cache;
-  std::lock_guard<std::mutex> lock(mutex);
+  static Mutex mutex;
+  static std::map<int, ObjectModel> cache;  // guarded by mutex (a function's static)
+  MutexLock lock(&mutex);
   auto [it, inserted] = cache.try_emplace(number);
   if (inserted) {
     ObjectModel& model = it->second;
