@@ -35,7 +35,8 @@ function(_orbit_layers_below target out)
 endfunction()
 
 # Called once every target exists: writes the table (one line per layer: folder|prefix|the
-# prefixes it may include) and the target orbit_layer_check, which every layer's build waits for.
+# prefixes it may include) and the target orbit_layer_check, which every layer's build waits for;
+# and orbit_libraries, which builds every layer.
 function(orbit_check_layers)
   get_property(layers GLOBAL PROPERTY ORBIT_LAYERS)
   set(table "")
@@ -63,4 +64,7 @@ function(orbit_check_layers)
   foreach(layer IN LISTS layers)
     add_dependencies(${layer} orbit_layer_check)
   endforeach()
+  # Every layer's library and nothing else (scripts/test.sh's thread safety build).
+  add_custom_target(orbit_libraries)
+  add_dependencies(orbit_libraries ${layers})
 endfunction()

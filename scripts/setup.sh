@@ -6,6 +6,7 @@ set -euo pipefail
 
 packages=(
   build-essential cmake ninja-build pkg-config git clang libclang-rt-14-dev
+  clang-format  # the layout check of scripts/format.sh
   libopencv-core-dev libopencv-imgproc-dev libopencv-imgcodecs-dev
   libopencv-video-dev libopencv-videoio-dev libopencv-contrib-dev  # captures, object tracking
   libcli11-dev nlohmann-json3-dev libsqlite3-dev libpq-dev

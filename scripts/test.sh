@@ -12,9 +12,7 @@ cd "$(dirname "$0")/.."
 ./scripts/build.sh
 cmake -S . -B build-tsa -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=None \
   -DORBIT_THREAD_SAFETY=ON >/dev/null
-cmake --build build-tsa --parallel "$(nproc)" --target orbit_base orbit_descriptor orbit_index \
-  orbit_decision orbit_engines orbit_storage orbit_api orbit_client orbit_evaluation orbit_server \
-  orbit_cli
+cmake --build build-tsa --parallel "$(nproc)" --target orbit_libraries
 (cd build && ctest --output-on-failure --parallel "$(nproc)" --timeout 900)
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DORBIT_FUZZ=ON >/dev/null

@@ -7,7 +7,7 @@
 #include "api/conversion.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"
-#include "server/session_engine.h"
+#include "server/frame_answer.h"
 #include "server/unary_call.h"
 
 namespace orbit::server {
@@ -53,30 +53,20 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
                                  " frames per Recognize call; stream longer sequences"},
                             RefusalReason::kRequestSize);
     }
-    SessionSettings settings;
-    grpc::Status status = ResolveSessionSettings(request->options(), env_.defaults,
-                                                 env_.catalogue.variant(), env_.limits, &settings);
-    if (!status.ok()) {
-      return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kSessionLimit));
+    OpenedSession session;
+    RefusalReason reason = RefusalReason::kInternal;
+    if (grpc::Status opened = OpenSession(request->options(), env_, &session, &reason);
+        !opened.ok()) {
+      return metrics.Refuse(opened, reason);
     }
-    const std::unique_ptr<RecognitionEngine> engine = CreateSessionEngine(settings);
-    const FrameMetrics frame_metrics = metrics.ForEngine(settings.engine);
+    // The batch is answered on the catalogue as it was when the call began.
     const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
     for (const v1::Frame& frame : request->frames()) {
-      const Clock::time_point start = Clock::now();
-      QueryFrame query;
-      status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
-      if (!status.ok()) {
-        return metrics.Refuse(status, ReasonOfCheck(status, RefusalReason::kImageBudget));
+      if (grpc::Status answered = AnswerFrame(frame, Clock::now(), index, env_, session,
+                                              response->add_updates(), &reason);
+          !answered.ok()) {
+        return metrics.Refuse(answered, reason);
       }
-      v1::SessionUpdate* update = response->add_updates();
-      engine->SetCalibration(env_.calibrator.For(index));
-      *update = ToSessionUpdate(engine->Observe(index, query), *index);
-      if (frame.has_timestamp_us()) update->set_timestamp_us(frame.timestamp_us());
-      const Clock::duration spent = Clock::now() - start;
-      update->set_processing_time_us(
-          std::chrono::duration_cast<std::chrono::microseconds>(spent).count());
-      frame_metrics.Record(frame.image().empty() ? FrameInput::kCedd : FrameInput::kImage, spent);
     }
     return grpc::Status::OK;
   });

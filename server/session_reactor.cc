@@ -65,12 +65,12 @@ void SessionReactor::OnReadDone(bool ok) {
           op = HandleOpen(request_.open());
           break;
         case v1::SessionRequest::kReset:
-          if (!engine_) {
+          if (!session_.engine) {
             op = Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
                         RefusalReason::kInvalidField);
             break;
           }
-          engine_->Reset();
+          session_.engine->Reset();
           op = ReadNext();
           break;
         case v1::SessionRequest::kFrame:
@@ -93,25 +93,21 @@ void SessionReactor::OnReadDone(bool ok) {
 }
 
 SessionReactor::StreamOp SessionReactor::HandleOpen(const v1::SessionOptions& options) {
-  if (engine_) {
+  if (session_.engine) {
     return Refuse({grpc::StatusCode::INVALID_ARGUMENT, "`open` may be sent only once"},
                   RefusalReason::kInvalidField);
   }
-  SessionSettings settings;
-  const grpc::Status resolved = ResolveSessionSettings(
-      options, env_.defaults, env_.catalogue.variant(), env_.limits, &settings);
-  if (!resolved.ok()) {
-    return Refuse(resolved, ReasonOfCheck(resolved, RefusalReason::kSessionLimit));
+  RefusalReason reason = RefusalReason::kInternal;
+  if (grpc::Status opened = OpenSession(options, env_, &session_, &reason); !opened.ok()) {
+    return Refuse(opened, reason);
   }
-  engine_ = CreateSessionEngine(settings);
-  frame_metrics_ = env_.metrics.ForEngine(settings.engine);
   return ReadNext();
 }
 
 SessionReactor::StreamOp SessionReactor::HandleFrame(Clock::time_point received,
                                                      Clock::time_point previous_read_done,
                                                      std::optional<FrameTask>* task) {
-  if (!engine_) {
+  if (!session_.engine) {
     return Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
                   RefusalReason::kInvalidField);
   }
@@ -121,33 +117,15 @@ SessionReactor::StreamOp SessionReactor::HandleFrame(Clock::time_point received,
   }
   last_activity_ = received.time_since_epoch().count();
   busy_ = true;
-  *task = FrameTask{std::move(*request_.mutable_frame()), received, engine_.get(), frame_metrics_};
+  *task = FrameTask{std::move(*request_.mutable_frame()), received, &session_};
   return {};
 }
 
 void SessionReactor::Process(FrameTask task) {
-  const v1::Frame& frame = task.frame;
-  QueryFrame query;
-  grpc::Status status = ToQueryFrame(frame, env_.catalogue.variant(), env_.limits, &query);
-  RefusalReason reason = ReasonOfCheck(status, RefusalReason::kImageBudget);
   v1::SessionUpdate update;
-  if (status.ok()) {
-    try {
-      const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-      task.engine->SetCalibration(env_.calibrator.For(index));
-      update = ToSessionUpdate(task.engine->Observe(index, query), *index);
-    } catch (const std::exception& e) {
-      status = StatusFromException(e);
-      reason = RefusalReasonOf(e);
-    }
-  }
-  if (frame.has_timestamp_us()) update.set_timestamp_us(frame.timestamp_us());
-  const Clock::duration spent = Clock::now() - task.received;
-  update.set_processing_time_us(
-      std::chrono::duration_cast<std::chrono::microseconds>(spent).count());
-  if (status.ok()) {
-    task.metrics.Record(frame.image().empty() ? FrameInput::kCedd : FrameInput::kImage, spent);
-  }
+  RefusalReason reason = RefusalReason::kInternal;
+  const grpc::Status status = AnswerFrame(task.frame, task.received, env_.catalogue.Snapshot(),
+                                          env_, *task.session, &update, &reason);
 
   StreamOp op;
   {

@@ -26,25 +26,14 @@
 #include "server/refusal_reason.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
+#include "server/frame_answer.h"
 #include "server/session_engine.h"
+#include "server/session_environment.h"
 #include "server/session_registry.h"
 #include "server/session_settings.h"
 #include "server/worker_pool.h"
 
 namespace orbit::server {
-
-// What every session of a server shares.
-struct SessionEnvironment {
-  ModelCatalogue& catalogue;
-  RejectionCalibrator& calibrator;  // the calibrated rule's thresholds for the catalogue's index
-  WorkerPool& pool;       // Recognize calls of descriptors (a session's run in its reactions)
-  WorkerPool& bulk_pool;  // image frames (decoding), so they never delay descriptor frames
-  SessionRegistry& registry;
-  const ServerLimits& limits;
-  const SessionSettings& defaults;
-  ServerMetrics& metrics;
-  const ServingGate& gate;  // closed until the index is loaded: sessions refused UNAVAILABLE
-};
 
 class SessionReactor final
     : public grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>,
@@ -80,13 +69,12 @@ class SessionReactor final
     grpc::Status status;  // kFinish's
   };
 
-  // A frame to process: taken from the request under mutex_, processed without it. The engine
+  // A frame to process: taken from the request under mutex_, processed without it. The session
   // is used only by the frame in hand (busy_), so never concurrently.
   struct FrameTask {
     v1::Frame frame;
     Clock::time_point received;
-    RecognitionEngine* engine = nullptr;
-    FrameMetrics metrics;
+    OpenedSession* session = nullptr;
   };
 
   // Each handles the request just read.
@@ -121,8 +109,8 @@ class SessionReactor final
   // while the read or the write is outstanding, when no reaction touches them.
   v1::SessionRequest request_ ABSL_GUARDED_BY(mutex_);
   v1::SessionUpdate update_ ABSL_GUARDED_BY(mutex_);
-  std::unique_ptr<RecognitionEngine> engine_ ABSL_GUARDED_BY(mutex_);  // set by the open request
-  FrameMetrics frame_metrics_ ABSL_GUARDED_BY(mutex_);  // of the engine_'s engine, set with it
+  // Set by the open request: its engine is null until then.
+  OpenedSession session_ ABSL_GUARDED_BY(mutex_);
   bool registered_ ABSL_GUARDED_BY(mutex_) = false;
   // A frame is being processed or its update written.
   bool busy_ ABSL_GUARDED_BY(mutex_) = false;
