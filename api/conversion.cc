@@ -8,26 +8,19 @@ namespace orbit {
 
 v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
   switch (variant) {
-    case DescriptorVariant::kCeddLire:
-      return v1::CEDD_LIRE;
-    case DescriptorVariant::kCeddFull:
-      return v1::CEDD_FULL;
-    case DescriptorVariant::kCeddRobust:
-      return v1::CEDD_ROBUST;
+    case DescriptorVariant::kCeddLire: return v1::CEDD_LIRE;
+    case DescriptorVariant::kCeddFull: return v1::CEDD_FULL;
+    case DescriptorVariant::kCeddRobust: return v1::CEDD_ROBUST;
   }
   return v1::DESCRIPTOR_VARIANT_UNSPECIFIED;
 }
 
 DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
   switch (variant) {
-    case v1::CEDD_LIRE:
-      return DescriptorVariant::kCeddLire;
-    case v1::CEDD_FULL:
-      return DescriptorVariant::kCeddFull;
-    case v1::CEDD_ROBUST:
-      return DescriptorVariant::kCeddRobust;
-    default:
-      throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
+    case v1::CEDD_LIRE: return DescriptorVariant::kCeddLire;
+    case v1::CEDD_FULL: return DescriptorVariant::kCeddFull;
+    case v1::CEDD_ROBUST: return DescriptorVariant::kCeddRobust;
+    default: throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
   }
 }
 
@@ -35,12 +28,9 @@ std::string ProtoVariantName(v1::DescriptorVariant variant) {
   switch (variant) {
     case v1::CEDD_LIRE:
     case v1::CEDD_FULL:
-    case v1::CEDD_ROBUST:
-      return std::string(VariantName(FromProtoVariant(variant)));
-    case v1::DESCRIPTOR_VARIANT_UNSPECIFIED:
-      return "unspecified";
-    default:
-      return "unknown (" + std::to_string(variant) + ")";
+    case v1::CEDD_ROBUST: return std::string(VariantName(FromProtoVariant(variant)));
+    case v1::DESCRIPTOR_VARIANT_UNSPECIFIED: return "unspecified";
+    default: return "unknown (" + std::to_string(variant) + ")";
   }
 }
 
@@ -61,12 +51,9 @@ v1::View ToProtoView(const ModelView& view, const std::string& thumbnail) {
 
 v1::Decision ToProtoDecision(Decision decision) {
   switch (decision) {
-    case Decision::kAccept:
-      return v1::DECISION_ACCEPT;
-    case Decision::kUnknown:
-      return v1::DECISION_UNKNOWN;
-    case Decision::kUndecided:
-      return v1::DECISION_UNDECIDED;
+    case Decision::kAccept: return v1::DECISION_ACCEPT;
+    case Decision::kUnknown: return v1::DECISION_UNKNOWN;
+    case Decision::kUndecided: return v1::DECISION_UNDECIDED;
   }
   return v1::DECISION_UNSPECIFIED;
 }
@@ -79,11 +66,13 @@ v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,
     out->set_from_deg(gap.from);
     out->set_to_deg(gap.to);
   }
-  for (const double azimuth : feedback.redundant_azimuths) report.add_redundant_azimuths_deg(azimuth);
+  for (const double azimuth : feedback.redundant_azimuths)
+    report.add_redundant_azimuths_deg(azimuth);
   for (const Confusion& confusion : feedback.confusable) {
     v1::ConfusableObject* out = report.add_confusable();
     out->set_id(confusion.object);
-    if (const IndexedObject* object = index.Find(confusion.object)) out->set_name(object->model().name);
+    if (const IndexedObject* object = index.Find(confusion.object))
+      out->set_name(object->model().name);
     out->set_similarity(confusion.similarity);
     out->set_closer_views(confusion.closer_views);
   }
@@ -96,23 +85,17 @@ v1::Rejection ToProtoRejection(RejectionRule rule) {
 
 std::optional<RejectionRule> FromProtoRejection(v1::Rejection rule) {
   switch (rule) {
-    case v1::REJECTION_TH:
-      return RejectionRule::kTypicalDistance;
-    case v1::REJECTION_CALIBRATED:
-      return RejectionRule::kCalibrated;
-    default:
-      return std::nullopt;
+    case v1::REJECTION_TH: return RejectionRule::kTypicalDistance;
+    case v1::REJECTION_CALIBRATED: return RejectionRule::kCalibrated;
+    default: return std::nullopt;
   }
 }
 
 v1::Move ToProtoMove(SuggestedMove move) {
   switch (move) {
-    case SuggestedMove::kNone:
-      return v1::MOVE_NONE;
-    case SuggestedMove::kLeft:
-      return v1::MOVE_LEFT;
-    case SuggestedMove::kRight:
-      return v1::MOVE_RIGHT;
+    case SuggestedMove::kNone: return v1::MOVE_NONE;
+    case SuggestedMove::kLeft: return v1::MOVE_LEFT;
+    case SuggestedMove::kRight: return v1::MOVE_RIGHT;
   }
   return v1::MOVE_UNSPECIFIED;
 }

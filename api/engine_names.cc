@@ -3,8 +3,8 @@
 #include <cctype>
 #include <stdexcept>
 
-#include "core/engines/product_pipeline.h"
 #include "core/engines/engine_registry.h"
+#include "core/engines/product_pipeline.h"
 
 namespace orbit {
 

@@ -3,10 +3,10 @@
 //
 // Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
 // The product's budgets: product-describe/640x480, the device side of the product
-// pipeline on one frame (core/engines/product_pipeline.h: cedd-robust), at most 6x bgr2gray/640x480;
-// product-enroll-view/128x128, what enrolling one view costs (descriptor, its distorted copies
-// and typical distance: DescribeView), under 10 ms.
-// Run: build/orbit_bench --benchmark_filter='cedd|bgr2gray|noise-estimate|product-'
+// pipeline on one frame (core/engines/product_pipeline.h: cedd-robust), at most 6x
+// bgr2gray/640x480; product-enroll-view/128x128, what enrolling one view costs (descriptor, its
+// distorted copies and typical distance: DescribeView), under 10 ms. Run: build/orbit_bench
+// --benchmark_filter='cedd|bgr2gray|noise-estimate|product-'
 
 #include <benchmark/benchmark.h>
 
@@ -22,8 +22,8 @@
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/noise_estimate.h"
-#include "core/engines/product_pipeline.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
 
 namespace orbit {
 namespace {

@@ -21,25 +21,23 @@
 
 #include <unistd.h>
 
+#include "bench/bench_data.h"
 #include "client/connection.h"
 #include "client/enroller.h"
 #include "client/image_file.h"
 #include "client/recognition_session.h"
-#include "bench/bench_data.h"
 #include "core/descriptor/cedd.h"
 #include "server/orbit_server.h"
 
 namespace orbit {
 namespace {
 
-std::filesystem::path CoilDir() {
-  return bench::DataDir() / "coil-100";
-}
+std::filesystem::path CoilDir() { return bench::DataDir() / "coil-100"; }
 
 cv::Mat Coil(int object, int azimuth) {
-  return ReadImageFile((CoilDir() / ("obj" + std::to_string(object) + "__" +
-                                     std::to_string(azimuth) + ".png"))
-                           .string());
+  return ReadImageFile(
+      (CoilDir() / ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+          .string());
 }
 
 // One server for every benchmark here, enrolled once.

@@ -41,11 +41,11 @@
 
 #include "bench/bench_data.h"
 #include "client/image_file.h"
-#include "core/descriptor/cedd.h"
-#include "core/engines/product_pipeline.h"
-#include "core/engines/engine_registry.h"
-#include "core/engines/recognition_engine.h"
 #include "core/decision/rejection_calibration.h"
+#include "core/descriptor/cedd.h"
+#include "core/engines/engine_registry.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
 #include "core/engines/sector_similarity_table.h"
 #include "core/index/view_index.h"
 
@@ -116,7 +116,8 @@ class SyntheticObjects {
     // Values 1..7 with COIL-100's proportions (53% ones, 20% twos, ...).
     std::discrete_distribution<int> value({0, 53, 20, 10, 5, 4.5, 5, 2});
     DescriptorValues keyframe{};
-    for (int n = 0; n < 21; ++n) keyframe[bins_(random_)] = static_cast<std::uint8_t>(value(random_));
+    for (int n = 0; n < 21; ++n)
+      keyframe[bins_(random_)] = static_cast<std::uint8_t>(value(random_));
     return keyframe;
   }
 
@@ -136,7 +137,8 @@ SyntheticSet& Synthetic(int objects, SearchMode mode) {
   SyntheticSet& set = sets[{objects, mode}];
   if (!set.index) {
     set.objects = std::make_unique<SyntheticObjects>(objects);
-    set.index = std::make_unique<ViewIndex>(set.objects->Models(), ViewIndexOptions{.search = mode});
+    set.index =
+        std::make_unique<ViewIndex>(set.objects->Models(), ViewIndexOptions{.search = mode});
   }
   return set;
 }
@@ -202,8 +204,7 @@ void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objec
 
 // One frame each of `sessions` sessions in turn, windows full: what a frame costs when many
 // sessions share the server, their per-frame state evicted from the caches by the others'.
-void BM_SessionFrames(benchmark::State& state, std::string engine_name, int objects,
-                      int sessions) {
+void BM_SessionFrames(benchmark::State& state, std::string engine_name, int objects, int sessions) {
   SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
   const auto snapshot = set.index->Snapshot();
   std::vector<std::unique_ptr<RecognitionEngine>> engines;
@@ -270,7 +271,8 @@ void BM_FrameAfterModelChange(benchmark::State& state, std::string engine_name, 
     if (shared_work_done) {
       benchmark::DoNotOptimize(snapshot->ChangeSince(*previous));
       if (engine->name() == "hmm") {
-        benchmark::DoNotOptimize(SectorSimilarityTable::Of(*snapshot, engine->options().hmm_states));
+        benchmark::DoNotOptimize(
+            SectorSimilarityTable::Of(*snapshot, engine->options().hmm_states));
       }
     }
     previous = snapshot;
@@ -358,10 +360,10 @@ int RegisterEngineBenchmarks() {
   for (const char* engine : {"vci", "hmm", "product"}) {
     for (const int sessions : {8, 64, 256}) {
       if (sessions != 64 && std::string(engine) != "product") continue;
-      benchmark::RegisterBenchmark(("session-frame/" + std::string(engine) +
-                                    "/1000/sessions:" + std::to_string(sessions))
-                                       .c_str(),
-                                   BM_SessionFrames, std::string(engine), 1000, sessions)
+      benchmark::RegisterBenchmark(
+          ("session-frame/" + std::string(engine) + "/1000/sessions:" + std::to_string(sessions))
+              .c_str(),
+          BM_SessionFrames, std::string(engine), 1000, sessions)
           ->Unit(benchmark::kMicrosecond);
     }
   }

@@ -213,8 +213,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   std::cerr << "orbit_grpc_floor: listening on " << options.listen << ", " << options.work_us
-            << " us of work per frame over " << options.touch_kb << " KB, "
-            << options.session_kb << " KB of its own per session\n";
+            << " us of work per frame over " << options.touch_kb << " KB, " << options.session_kb
+            << " KB of its own per session\n";
   std::signal(SIGINT, [](int) { stop = true; });
   std::signal(SIGTERM, [](int) { stop = true; });
   while (!stop) std::this_thread::sleep_for(std::chrono::milliseconds(100));

@@ -49,8 +49,8 @@ BENCHMARK(BM_FrameMetrics)->Name("metrics/frame");
 BENCHMARK(BM_FrameMetrics)->Name("metrics/frame")->Threads(2)->UseRealTime();
 
 void BM_HistogramObserve(benchmark::State& state) {
-  prometheus::Histogram histogram({1e-5, 2.5e-5, 5e-5, 1e-4, 2.5e-4, 5e-4, 1e-3, 2.5e-3, 5e-3,
-                                   0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1});
+  prometheus::Histogram histogram({1e-5, 2.5e-5, 5e-5, 1e-4, 2.5e-4, 5e-4, 1e-3, 2.5e-3, 5e-3, 0.01,
+                                   0.025, 0.05, 0.1, 0.25, 0.5, 1});
   std::size_t i = 0;
   for (auto _ : state) {
     histogram.Observe(std::chrono::duration<double>(kSpent[i++ % kSpent.size()]).count());

@@ -1,6 +1,6 @@
-// build/orbit_robustness_ablation: what each step of the canonical frame (core/descriptor/canonical_frame.h)
-// contributes to recognising degraded frames, one step switched on or off at a time
-// (docs/results/robustness.md, "Ablation").
+// build/orbit_robustness_ablation: what each step of the canonical frame
+// (core/descriptor/canonical_frame.h) contributes to recognising degraded frames, one step switched
+// on or off at a time (docs/results/robustness.md, "Ablation").
 //
 //   orbit_robustness_ablation COIL_DIR [OBJECTS] [DISTORTION ...]
 //
@@ -23,10 +23,10 @@
 #include <opencv2/core.hpp>
 
 #include "client/image_file.h"
-#include "core/descriptor/canonical_frame.h"
-#include "core/descriptor/cedd.h"
 #include "core/base/parallel_for.h"
 #include "core/base/seeded_random.h"
+#include "core/descriptor/canonical_frame.h"
+#include "core/descriptor/cedd.h"
 #include "core/descriptor/similarity.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_spec.h"
@@ -56,18 +56,28 @@ std::vector<Configuration> Configurations() {
       {"size + blur 1.5 px + brightness", with(kCanonicalArea, 1.5, true), {}},
       {"**cedd-robust**: size + blur 2 px + brightness", product, {}},
       {"size + blur 2.5 px + brightness", with(kCanonicalArea, 2.5, true), {}},
-      {"none + augmentation (noisy, blurred copy)", with(0, 0, false),
+      {"none + augmentation (noisy, blurred copy)",
+       with(0, 0, false),
        {"gn:var=0.006", "mb:len=10:angle=45"}},
-      {"cedd-robust + augmentation (noisy, blurred copy)", product,
+      {"cedd-robust + augmentation (noisy, blurred copy)",
+       product,
        {"gn:var=0.006", "mb:len=10:angle=45"}},
   };
 }
 
-const std::vector<std::string> kDefaultDistortions = {
-    "df",          "mb:len=5:angle=60", "mb:len=15:angle=20", "mb:len=25:angle=130",
-    "gn:var=0.002", "gn:var=0.012",     "gn:var=0.03",        "jpeg:q=10",
-    "jpeg:q=40",   "gain:0.6",          "gain:1.4",           "lowres:0.5",
-    "mb:len=9:angle=70+gn:var=0.004"};
+const std::vector<std::string> kDefaultDistortions = {"df",
+                                                      "mb:len=5:angle=60",
+                                                      "mb:len=15:angle=20",
+                                                      "mb:len=25:angle=130",
+                                                      "gn:var=0.002",
+                                                      "gn:var=0.012",
+                                                      "gn:var=0.03",
+                                                      "jpeg:q=10",
+                                                      "jpeg:q=40",
+                                                      "gain:0.6",
+                                                      "gain:1.4",
+                                                      "lowres:0.5",
+                                                      "mb:len=9:angle=70+gn:var=0.004"};
 
 struct DescribedView {
   int object = 0;
@@ -102,9 +112,8 @@ std::vector<double> Evaluate(const std::vector<DatasetImage>& images,
     models[i].back().descriptor = Describe(image, configuration.frame);
     for (std::size_t a = 0; a < augmentation.size(); ++a) {
       models[i].push_back(view);
-      models[i].back().descriptor =
-          Describe(ApplyDistortion(image, augmentation[a], MixSeed(7, i * 16 + a)),
-                   configuration.frame);
+      models[i].back().descriptor = Describe(
+          ApplyDistortion(image, augmentation[a], MixSeed(7, i * 16 + a)), configuration.frame);
     }
     if (i % 3 == 0) {
       for (std::size_t d = 0; d < distortions.size(); ++d) {
@@ -113,7 +122,9 @@ std::vector<double> Evaluate(const std::vector<DatasetImage>& images,
       }
     }
     const std::size_t finished = ++done;
-    if (finished % 500 == 0) std::fprintf(stderr, "\r  %s: %zu / %zu images", configuration.name.c_str(), finished, images.size());
+    if (finished % 500 == 0)
+      std::fprintf(stderr, "\r  %s: %zu / %zu images", configuration.name.c_str(), finished,
+                   images.size());
   });
   std::fprintf(stderr, "\n");
   std::vector<DescribedView> views;
@@ -168,7 +179,8 @@ int main(int argc, char** argv) {
     for (const std::string& name : names) distortions.push_back(ParseDistortionSpec(name));
     const std::vector<DatasetImage> images = ListCoil100(argv[1], ParseObjectRange(range));
 
-    std::printf("Objects %s; every third view a query; n = 1, nearest view (eis).\n\n", range.c_str());
+    std::printf("Objects %s; every third view a query; n = 1, nearest view (eis).\n\n",
+                range.c_str());
     std::printf("| configuration |");
     for (const DistortionSpec& d : distortions) std::printf(" %s |", d.name.c_str());
     std::printf(" mean | worst |\n|---|");

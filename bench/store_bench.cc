@@ -126,13 +126,22 @@ void BM_StoreEnroll(benchmark::State& state) {
 }
 
 BENCHMARK(BM_StoreLoad)->Name("store-load")->Arg(1000)->Unit(benchmark::kMillisecond);
-BENCHMARK(BM_StoreLoadAllOpen)->Name("store-loadall-open")->Arg(1000)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_StoreLoadAllOpen)
+    ->Name("store-loadall-open")
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StoreLoadIndex, exact, SearchMode::kExact)
-    ->Name("store-load-index-exact")->Arg(1000)->Unit(benchmark::kMillisecond);
+    ->Name("store-load-index-exact")
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_StoreLoadIndex, kdtree, SearchMode::kKdTree)
-    ->Name("store-load-index-kdtree")->Arg(1000)->Unit(benchmark::kMillisecond);
+    ->Name("store-load-index-kdtree")
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_IndexAddLoop, kdtree, SearchMode::kKdTree)
-    ->Name("index-add-loop-kdtree")->Arg(1000)->Unit(benchmark::kMillisecond);
+    ->Name("index-add-loop-kdtree")
+    ->Arg(1000)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_StoreEnroll)->Name("store-enroll/72")->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -33,8 +33,7 @@ void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments) {
     trackers += (trackers.empty() ? "" : ", ") + std::string(TrackerName(kind));
   }
   // The name is checked by ParseTrackerName when the capture opens.
-  command
-      .add_option("--tracker", arguments.tracker, "the tracker following --box: " + trackers)
+  command.add_option("--tracker", arguments.tracker, "the tracker following --box: " + trackers)
       ->capture_default_str();
 }
 

@@ -56,8 +56,9 @@ int RunDelete(const DeleteOptions& options) {
 void AddDeleteCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<DeleteOptions>();
   CLI::App* command = app.add_subcommand(
-      "delete", "Delete the object NAME and all its views from a model store (--db) or a\n"
-                "server (--server; admin token). Exit status 1 when there is no such object.");
+      "delete",
+      "Delete the object NAME and all its views from a model store (--db) or a\n"
+      "server (--server; admin token). Exit status 1 when there is no such object.");
   AddDatabaseOrServerOptions(*command, options->db, options->network);
   command->add_option("NAME", options->name, "object name")->required();
   command->callback([options, &exit_code] { exit_code = RunDelete(*options); });

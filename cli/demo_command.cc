@@ -30,8 +30,8 @@ struct DemoOptions {
   NetworkOptions network;
   SessionFlags session;
   std::string object = "demo-can";
-  double start = 125;          // first frame's true azimuth, degrees
-  double step = 10;            // the device turns this much between frames
+  double start = 125;  // first frame's true azimuth, degrees
+  double step = 10;    // the device turns this much between frames
   int frames = 8;
   double compass_offset = 73;  // device azimuth = true azimuth + offset
   std::string save_views;      // folder for the rendered images, when given
@@ -99,8 +99,9 @@ int RunDemo(const DemoOptions& options) {
   }
   const grpc::Status status = session->Close();
   if (!status.ok()) throw RpcError("Session", status);
-  std::cout << "\nEvery frame got the server's ranking, a decision (ACCEPT / UNKNOWN / UNDECIDED)\n"
-               "and where to move next. Your own images: orbit enroll --help, orbit recognize --help\n";
+  std::cout
+      << "\nEvery frame got the server's ranking, a decision (ACCEPT / UNKNOWN / UNDECIDED)\n"
+         "and where to move next. Your own images: orbit enroll --help, orbit recognize --help\n";
   return 0;
 }
 
@@ -125,8 +126,9 @@ void AddDemoCommand(CLI::App& app, int& exit_code) {
   command->add_option("--frames", options->frames, "frames to stream")
       ->check(CLI::Range(1, 1000))
       ->capture_default_str();
-  command->add_option("--compass-offset", options->compass_offset,
-                      "added to every azimuth the device reports")
+  command
+      ->add_option("--compass-offset", options->compass_offset,
+                   "added to every azimuth the device reports")
       ->capture_default_str();
   command->add_option("--save-views", options->save_views,
                       "write the rendered images (enrolled views and frames) to this folder");

@@ -2,8 +2,8 @@
 // azimuth, or from a video of a walk around it with the walk's orientation log (docs/capture.md).
 // Descriptors and typical distances are computed here (client/enroller.h).
 #include <iostream>
-#include <sstream>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -49,8 +49,8 @@ int RunEnrollFromVideo(const EnrollOptions& options) {
       options.name, *capture, {.step_deg = options.step, .progress = CaptureProgress()},
       options.metadata);
   const v1::ObjectInfo& object = enrolled.object;
-  std::cout << "enrolled " << object.name() << " (id " << object.id() << ", "
-            << object.view_count() << " views)\n"
+  std::cout << "enrolled " << object.name() << " (id " << object.id() << ", " << object.view_count()
+            << " views)\n"
             << CaptureCoverageText(enrolled.selection, options.step)
             << EnrollmentReportText(object.report());
   return 0;
@@ -72,8 +72,8 @@ int RunEnroll(const EnrollOptions& options) {
   const Connection connection(ToConnectionOptions(options.network));
   Enroller enroller(connection, {.seed = options.seed, .threads = options.threads});
   const v1::ObjectInfo object = enroller.Enroll(options.name, images, options.metadata);
-  std::cout << "enrolled " << object.name() << " (id " << object.id() << ", "
-            << object.view_count() << " views)\n"
+  std::cout << "enrolled " << object.name() << " (id " << object.id() << ", " << object.view_count()
+            << " views)\n"
             << EnrollmentReportText(object.report());
   return 0;
 }
@@ -95,15 +95,17 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
   command->add_option("--azimuth", options->azimuths,
                       "that view's azimuth in degrees (repeat, in the order of --image)");
   AddCaptureOptions(*command, options->capture);
-  command->add_option("--step", options->step,
-                      "with --video: one view per this many degrees of azimuth")
+  command
+      ->add_option("--step", options->step,
+                   "with --video: one view per this many degrees of azimuth")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 180.0));
   command->add_option("--metadata", options->metadata, "a JSON object stored with the object")
       ->capture_default_str();
-  command->add_option("--seed", options->seed,
-                      "base seed of the noisy copies for typical distances (the default stores\n"
-                      "what a server computes from the same images)")
+  command
+      ->add_option("--seed", options->seed,
+                   "base seed of the noisy copies for typical distances (the default stores\n"
+                   "what a server computes from the same images)")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "threads computing descriptors")
       ->check(CLI::Range(1u, 256u));

@@ -1,5 +1,6 @@
-// The enrollment report (core/decision/enrollment_feedback.h, v1::EnrollmentReport) as `orbit enroll`
-// and `orbit import` print it under each enrolled object: indented lines an operator acts on.
+// The enrollment report (core/decision/enrollment_feedback.h, v1::EnrollmentReport) as `orbit
+// enroll` and `orbit import` print it under each enrolled object: indented lines an operator acts
+// on.
 //
 //   coverage: 2 gaps wider than 30 degrees: 100-180 (80), 300-20 (80)
 //   repeats: 3 views add nothing (at 90, 180, 270 degrees)

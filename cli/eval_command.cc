@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/progress_bar.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
 #include "evaluation/evaluation_plot.h"
-#include "evaluation/recognition_report.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
-#include "cli/progress_bar.h"
+#include "evaluation/recognition_report.h"
 
 namespace orbit::cli {
 namespace {
@@ -86,7 +86,8 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   for (const std::string& name : o.variants) options.variants.push_back(*ParseVariant(name));
   options.methods = o.methods;
   options.distortions.clear();
-  for (const std::string& name : o.distortions) options.distortions.push_back(ParseDistortionSpec(name));
+  for (const std::string& name : o.distortions)
+    options.distortions.push_back(ParseDistortionSpec(name));
   for (const DistortionSweep& sweep : Sweeps(o)) {
     options.distortions.insert(options.distortions.end(), sweep.distortions.begin(),
                                sweep.distortions.end());
@@ -130,8 +131,9 @@ int RunEval(const EvalOptions& o) {
               << (unknown.empty() ? "" : ", " + std::to_string(unknown.size()) + " unknown images")
               << ", " << (options.threads > 0 ? options.threads : AvailableCpus()) << " threads\n";
     if (!o.queries.empty() && o.active) {
-      throw std::invalid_argument("--active does not apply to --queries: captured sequences "
-                                  "have their views already");
+      throw std::invalid_argument(
+          "--active does not apply to --queries: captured sequences "
+          "have their views already");
     }
     if (!o.queries.empty() && !unknown.empty()) {
       throw std::invalid_argument(
@@ -187,42 +189,49 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       "are the query (their neighbours within 10 degrees leave the model), unchanged (df),\n"
       "motion-blurred (mb) or noisy (gn), with noisy azimuths; prints the top-1 hit rate per\n"
       "method x distortion x n as Markdown, plus time per query and model memory.");
-  command->add_option("--layout", o->layout, "coil100: a folder of objN__A.png; manifest: a CSV file")
+  command
+      ->add_option("--layout", o->layout, "coil100: a folder of objN__A.png; manifest: a CSV file")
       ->check(CLI::IsMember({"coil100", "manifest"}))
       ->capture_default_str();
   command->add_option("--data", o->data, "the COIL-100 folder (--layout coil100)");
   command->add_option("--manifest", o->manifest,
                       "CSV with columns path,object,azimuth[,elevation]; relative paths resolve "
                       "against its folder (--layout manifest)");
-  command->add_option("--methods", o->methods,
-                      "comma-separated: product (what `orbit serve` runs by default: " +
-                          DescribeProduct() +
-                          "; evaluated on its own variant, added when --variant lacks it) and "
-                          "every engine a server runs (the thesis' seven and vci-hmm, the two "
-                          "together)")
+  command
+      ->add_option(
+          "--methods", o->methods,
+          "comma-separated: product (what `orbit serve` runs by default: " + DescribeProduct() +
+              "; evaluated on its own variant, added when --variant lacks it) and "
+              "every engine a server runs (the thesis' seven and vci-hmm, the two "
+              "together)")
       ->delimiter(',')
       ->check(CLI::IsMember(DefaultMethods()))
       ->capture_default_str();
-  command->add_option("--variant", o->variants, "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust")
+  command
+      ->add_option(
+          "--variant", o->variants,
+          "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust")
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
-  CLI::Option* distortions = command->add_option("--distortions", o->distortions,
-                      "query distortions, comma-separated: df, mb, gn (the protocol's) or "
-                      "mb:len=L:angle=A, gn:var=V, jpeg:q=Q, gain:G, lowres:S, joined by + to "
-                      "combine, e.g. mb:len=9:angle=70+gn:var=0.004")
-      ->delimiter(',')
-      ->check(CLI::Validator(
-          [](std::string& text) {
-            try {
-              ParseDistortionSpec(text);
-            } catch (const std::invalid_argument& e) {
-              return std::string(e.what());
-            }
-            return std::string();
-          },
-          "SPEC"))
-      ->capture_default_str();
+  CLI::Option* distortions =
+      command
+          ->add_option("--distortions", o->distortions,
+                       "query distortions, comma-separated: df, mb, gn (the protocol's) or "
+                       "mb:len=L:angle=A, gn:var=V, jpeg:q=Q, gain:G, lowres:S, joined by + to "
+                       "combine, e.g. mb:len=9:angle=70+gn:var=0.004")
+          ->delimiter(',')
+          ->check(CLI::Validator(
+              [](std::string& text) {
+                try {
+                  ParseDistortionSpec(text);
+                } catch (const std::invalid_argument& e) {
+                  return std::string(e.what());
+                }
+                return std::string();
+              },
+              "SPEC"))
+          ->capture_default_str();
   command
       ->add_option("--sweep", o->sweeps,
                    "distortion strengths to sweep, comma-separated: mb (blur length 5..25 px at "
@@ -250,16 +259,18 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   command->add_option("--seed", o->seed, "seed of every random draw")->capture_default_str();
-  command->add_option("--orientation", o->orientation,
-                      "use: query frames carry the device's azimuth; ignore: they carry none, as "
-                      "from a device without an orientation sensor (the same methods on the "
-                      "descriptors alone)")
+  command
+      ->add_option("--orientation", o->orientation,
+                   "use: query frames carry the device's azimuth; ignore: they carry none, as "
+                   "from a device without an orientation sensor (the same methods on the "
+                   "descriptors alone)")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
-  command->add_option("--quality-reading", o->quality_reading,
-                      "use: query frames carry their measured noise and blur (Frame.quality), as "
-                      "from the client library, and the calibrated rule allows noisy and blurred "
-                      "windows more (core/decision/quality_allowance.h); ignore: they carry none")
+  command
+      ->add_option("--quality-reading", o->quality_reading,
+                   "use: query frames carry their measured noise and blur (Frame.quality), as "
+                   "from the client library, and the calibrated rule allows noisy and blurred "
+                   "windows more (core/decision/quality_allowance.h); ignore: they carry none")
       ->check(CLI::IsMember({"use", "ignore"}))
       ->capture_default_str();
   command->add_option("--objects", o->objects,
@@ -283,15 +294,17 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--threshold", o->threshold, "Th of the accept / unknown rule")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
-  command->add_option("--rejection", o->rejection,
-                      "accept / unknown rule of the thesis' engines: th (their own rule in "
-                      "docs/design.md, --threshold) "
-                      "or calibrated (the product's, --false-accept-rate); the product always "
-                      "uses its own")
+  command
+      ->add_option("--rejection", o->rejection,
+                   "accept / unknown rule of the thesis' engines: th (their own rule in "
+                   "docs/design.md, --threshold) "
+                   "or calibrated (the product's, --false-accept-rate); the product always "
+                   "uses its own")
       ->check(CLI::IsMember({"th", "calibrated"}))
       ->capture_default_str();
-  command->add_option("--false-accept-rate", o->false_accept_rate,
-                      "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
+  command
+      ->add_option("--false-accept-rate", o->false_accept_rate,
+                   "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
       ->check(CLI::Range(1e-6, 1 - 1e-6))
       ->capture_default_str();
   command->add_option("--verdicts", o->verdicts,
@@ -301,11 +314,12 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                     "active vision: after its first two views, each query takes its next view "
                     "--active-step degrees on in the direction its method's latest update "
                     "suggested, instead of at random");
-  command->add_option("--active-policy", o->active_policy,
-                      "with --active, which way each step goes: follow (the method's suggestion), "
-                      "one-way (always the same way: the control that measures the suggestion), "
-                      "oracle (both ways at every step, keeping the path best for the truth: the "
-                      "bound of any left / right suggestion; 2^(n-2) paths per query)")
+  command
+      ->add_option("--active-policy", o->active_policy,
+                   "with --active, which way each step goes: follow (the method's suggestion), "
+                   "one-way (always the same way: the control that measures the suggestion), "
+                   "oracle (both ways at every step, keeping the path best for the truth: the "
+                   "bound of any left / right suggestion; 2^(n-2) paths per query)")
       ->check(CLI::IsMember({"follow", "one-way", "oracle"}))
       ->capture_default_str();
   command->add_option("--active-step", o->active_step, "degrees per step of --active")
@@ -315,7 +329,9 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                       "with --unknown-objects: also draw known queries right and accepted "
                       "against unknown queries accepted as the target false-accept rate sweeps "
                       "0.001..1 (PNG)");
-  command->add_option("--orientation-weight", o->orientation_weight, "w of vci's orientation term, per radian")
+  command
+      ->add_option("--orientation-weight", o->orientation_weight,
+                   "w of vci's orientation term, per radian")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
   command->add_option("--list-length", o->list_length, "N_L: views per VCI retrieval list")
@@ -324,14 +340,16 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--hmm-states", o->hmm_states, "HMM states (azimuth sectors) per object")
       ->check(CLI::Range(1, kMaxHmmStates))
       ->capture_default_str();
-  command->add_option("--hmm-sharpness", o->hmm_sharpness,
-                      "hmm decodes with emissions to the power 2^S (0: the thesis' HMM)")
+  command
+      ->add_option("--hmm-sharpness", o->hmm_sharpness,
+                   "hmm decodes with emissions to the power 2^S (0: the thesis' HMM)")
       ->check(CLI::Range(0, kMaxHmmSharpness))
       ->capture_default_str();
-  command->add_option("--nearest-view-weight", o->nearest_view_weight,
-                      "share of each ranked object's score the thesis' engines take from the "
-                      "window's nearest views (1 - T_EIS) instead of their own (0: the thesis' "
-                      "engines; the product's is its own)")
+  command
+      ->add_option("--nearest-view-weight", o->nearest_view_weight,
+                   "share of each ranked object's score the thesis' engines take from the "
+                   "window's nearest views (1 - T_EIS) instead of their own (0: the thesis' "
+                   "engines; the product's is its own)")
       ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
@@ -340,12 +358,13 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--threads", o->threads, "worker threads (default: every available core)")
       ->check(CLI::NonNegativeNumber);
   command->add_flag("--no-progress", o->no_progress, "no progress bar on stderr");
-  command->add_option("--queries", o->queries,
-                      "CSV of your own query captures, columns path,object,sequence[,azimuth]: "
-                      "each sequence is one query, recognised with its first n frames against "
-                      "the model set of --data/--manifest (all of its images); an object not in "
-                      "the model set is an unknown query; --distortions defaults to df (as "
-                      "captured)")
+  command
+      ->add_option("--queries", o->queries,
+                   "CSV of your own query captures, columns path,object,sequence[,azimuth]: "
+                   "each sequence is one query, recognised with its first n frames against "
+                   "the model set of --data/--manifest (all of its images); an object not in "
+                   "the model set is an unknown query; --distortions defaults to df (as "
+                   "captured)")
       ->check(CLI::ExistingFile);
   command->callback([o, distortions, &exit_code] {
     if (!o->queries.empty() && distortions->count() == 0) o->distortions = {"df"};

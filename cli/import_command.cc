@@ -11,20 +11,20 @@
 #include <thread>
 #include <vector>
 
+#include "api/conversion.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"
 #include "cli/network_options.h"
-#include "api/conversion.h"
+#include "cli/progress_bar.h"
 #include "client/enroller.h"
+#include "client/image_file.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
-#include "evaluation/dataset.h"
-#include "client/image_file.h"
-#include "cli/progress_bar.h"
-#include "core/decision/enrollment_feedback.h"
 #include "core/base/parallel_for.h"
-#include "core/engines/product_pipeline.h"
+#include "core/decision/enrollment_feedback.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
+#include "evaluation/dataset.h"
 #include "storage/model_validation.h"
 #include "storage/sqlite_model_store.h"
 #include "storage/view_index_loading.h"
@@ -45,9 +45,9 @@ struct ImportOptions {
 };
 
 // The model views of one object (its images are positions in `images`), each image described as
-// every enrollment path describes it (core/descriptor/view_description.h: CEDD and typical distance, `seed`
-// the base of the seed rule), on `threads` threads. The numbers depend on the images alone,
-// whatever the thread count.
+// every enrollment path describes it (core/descriptor/view_description.h: CEDD and typical
+// distance, `seed` the base of the seed rule), on `threads` threads. The numbers depend on the
+// images alone, whatever the thread count.
 std::vector<ModelView> ComputeViews(const std::vector<DatasetImage>& images,
                                     const DatasetObject& object, DescriptorVariant variant,
                                     std::uint64_t seed, unsigned threads) {
@@ -79,8 +79,8 @@ ImportTarget StoreTarget(const ImportOptions& options) {
   // The store's variant (a server refuses a store of mixed variants), the product's for a new
   // store, unless --variant says otherwise.
   const std::optional<DescriptorVariant> stored = StoreVariant(*store);
-  target.variant = options.variant.empty() ? stored.value_or(Product().variant)
-                                           : *ParseVariant(options.variant);
+  target.variant =
+      options.variant.empty() ? stored.value_or(Product().variant) : *ParseVariant(options.variant);
   if (stored && *stored != target.variant) {
     throw std::invalid_argument("--variant " + options.variant + " is not the variant of the " +
                                 "objects in " + options.db + " (" +
@@ -187,8 +187,10 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
       "object once it is durable; objects already in the store are skipped, so an interrupted\n"
       "import resumes when run again. Progress goes to stderr.");
   AddDatabaseOrServerOptions(*command, options->db, options->network);
-  command->add_option("--layout", options->layout, "coil100: objN__A.png files in --data;\n"
-                                                   "manifest: a CSV file (--manifest)")
+  command
+      ->add_option("--layout", options->layout,
+                   "coil100: objN__A.png files in --data;\n"
+                   "manifest: a CSV file (--manifest)")
       ->required()
       ->check(CLI::IsMember({"coil100", "manifest"}));
   command->add_option("--data", options->data, "folder of COIL-100 images (--layout coil100)");
@@ -197,14 +199,16 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
                       "manifest: order of first appearance); default: all");
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
-  command->add_option("--variant", options->variant,
-                      "descriptor variant (default: that of the store's objects, " +
-                          std::string(VariantName(Product().variant)) +
-                          " for a new store; with --server, the server's)")
+  command
+      ->add_option("--variant", options->variant,
+                   "descriptor variant (default: that of the store's objects, " +
+                       std::string(VariantName(Product().variant)) +
+                       " for a new store; with --server, the server's)")
       ->check(CLI::IsMember(VariantNames()));
-  command->add_option("--seed", options->seed,
-                      "base seed of the noisy copies for typical distances (the default stores\n"
-                      "what a server or the client library computes from the same images)")
+  command
+      ->add_option("--seed", options->seed,
+                   "base seed of the noisy copies for typical distances (the default stores\n"
+                   "what a server or the client library computes from the same images)")
       ->capture_default_str();
   command->add_option("--threads", options->threads, "threads computing descriptors")
       ->check(CLI::Range(1u, 256u))

@@ -74,14 +74,14 @@ int RunInfo(const InfoOptions& options) {
             << "defaults  engine " << d["engine"].get<std::string>() << ", top-k " << d["top_k"]
             << ", window " << d["window"] << ", w " << d["w"] << ", N_L " << d["list_length"]
             << ", HMM states " << d["hmm_states"] << ", rejection "
-            << d["rejection"].get<std::string>() << " (false-accept rate "
-            << d["false_accept_rate"] << ", threshold " << d["threshold"] << ")\n"
+            << d["rejection"].get<std::string>() << " (false-accept rate " << d["false_accept_rate"]
+            << ", threshold " << d["threshold"] << ")\n"
             << "limits    " << l["max_sessions"] << " sessions, " << l["max_frames_per_second"]
-            << " frames/s per session, window <= " << l["max_window"] << ", messages <= "
-            << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
-            << " views per object, idle timeout " << l["idle_timeout_seconds"] << " s, images <= "
-            << l["max_image_pixels"] << " pixels, HMM window x states <= " << l["max_hmm_cells"]
-            << "\n";
+            << " frames/s per session, window <= " << l["max_window"]
+            << ", messages <= " << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
+            << " views per object, idle timeout " << l["idle_timeout_seconds"]
+            << " s, images <= " << l["max_image_pixels"]
+            << " pixels, HMM window x states <= " << l["max_hmm_cells"] << "\n";
   return 0;
 }
 

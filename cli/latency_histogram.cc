@@ -7,9 +7,9 @@
 namespace orbit {
 namespace {
 
-constexpr int kExactBits = 7;                            // values below 2^7 = 128 are exact
-constexpr std::int64_t kExactLimit = 1 << kExactBits;    // 128
-constexpr std::int64_t kSubBuckets = kExactLimit / 2;    // 64 buckets per power of two above
+constexpr int kExactBits = 7;                          // values below 2^7 = 128 are exact
+constexpr std::int64_t kExactLimit = 1 << kExactBits;  // 128
+constexpr std::int64_t kSubBuckets = kExactLimit / 2;  // 64 buckets per power of two above
 
 }  // namespace
 

@@ -24,8 +24,8 @@ struct ListOptions {
 // output is easy to read and to cut.
 std::string PlainLine(const ObjectSummary& object) {
   return std::to_string(object.id) + " " + object.name + " " +
-         std::string(VariantName(object.variant)) + " " + std::to_string(object.view_count) +
-         " " + object.updated_at;
+         std::string(VariantName(object.variant)) + " " + std::to_string(object.view_count) + " " +
+         object.updated_at;
 }
 
 std::string JsonLine(const ObjectSummary& object) {

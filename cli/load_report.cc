@@ -19,12 +19,9 @@ double Rounded(double value, int decimals) {
 double Ms(double microseconds) { return std::round(microseconds) / 1000.0; }
 
 Json RoundTripJson(const LatencyHistogram& h) {
-  return Json{{"p50", Ms(h.Percentile(50))},
-              {"p90", Ms(h.Percentile(90))},
-              {"p99", Ms(h.Percentile(99))},
-              {"max", Ms(static_cast<double>(h.max()))},
-              {"mean", Ms(h.mean())},
-              {"count", h.count()}};
+  return Json{{"p50", Ms(h.Percentile(50))}, {"p90", Ms(h.Percentile(90))},
+              {"p99", Ms(h.Percentile(99))}, {"max", Ms(static_cast<double>(h.max()))},
+              {"mean", Ms(h.mean())},        {"count", h.count()}};
 }
 
 double Megabytes(std::int64_t bytes) { return Rounded(bytes / 1048576.0, 1); }
@@ -83,8 +80,8 @@ Json LoadReportJson(const LoadReport& report) {
                 {"p99", Rounded(report.processing.Percentile(99), 0)},
                 {"max", report.processing.max()}}}};
   if (report.server_start && report.server_end) {
-    server.update(CpuJson(report.server_end->cpu_seconds - report.server_start->cpu_seconds,
-                          report));
+    server.update(
+        CpuJson(report.server_end->cpu_seconds - report.server_start->cpu_seconds, report));
     server["rss_mb_start"] = Megabytes(report.server_start->rss_bytes);
     server["rss_mb_end"] = Megabytes(report.server_end->rss_bytes);
   }
@@ -128,8 +125,8 @@ std::string LoadReportText(const LoadReport& report) {
                                  : std::string())
       << "\n";
   out << "frames       " << report.frames_sent << " sent, " << report.frames_answered
-      << " answered in " << Format("%.2f", report.elapsed_seconds) << " s: "
-      << Format("%.1f", report.FramesPerSecond()) << " frames/s\n";
+      << " answered in " << Format("%.2f", report.elapsed_seconds)
+      << " s: " << Format("%.1f", report.FramesPerSecond()) << " frames/s\n";
   out << "round trip   " << quantiles(report.round_trip) << "; worst session's p99 "
       << ms(report.worst_session_p99_us) << " ms";
   if (report.sessions_p99_above_5ms > 0) {
@@ -150,8 +147,8 @@ std::string LoadReportText(const LoadReport& report) {
       << " us, p99 " << Format("%.0f", report.processing.Percentile(99)) << " us";
   const Json json = LoadReportJson(report);
   const auto cpu_text = [](const Json& cpu) {
-    return "CPU " + Format("%.2f", cpu["cpu_seconds"].get<double>()) + " s = " +
-           Format("%.1f", cpu["cpu_us_per_frame"].get<double>()) + " us/frame (" +
+    return "CPU " + Format("%.2f", cpu["cpu_seconds"].get<double>()) +
+           " s = " + Format("%.1f", cpu["cpu_us_per_frame"].get<double>()) + " us/frame (" +
            Format("%.1f", cpu["cpu_percent"].get<double>()) + "% of a core)";
   };
   if (json["server"].contains("cpu_seconds")) {

@@ -19,19 +19,19 @@ namespace orbit {
 
 struct LoadReport {
   // What was asked.
-  std::string server;       // HOST:PORT
-  std::string engine;       // the sessions' engine (api/engine_names.h)
-  int sessions = 0;         // sessions asked for
-  int connections = 1;      // TCP connections they share (round robin)
+  std::string server;          // HOST:PORT
+  std::string engine;          // the sessions' engine (api/engine_names.h)
+  int sessions = 0;            // sessions asked for
+  int connections = 1;         // TCP connections they share (round robin)
   std::optional<double> rate;  // frames/s per session (open loop); unset: closed loop
   double duration_seconds = 0;
   bool image_frames = false;  // encoded images instead of descriptors
 
   // What happened. Every duration is in microseconds.
-  double elapsed_seconds = 0;   // the duration, or until the last update if that came later
-  int sessions_opened = 0;      // sessions that received at least one update
-  int sessions_failed = 0;      // sessions refused, or ended with a status other than OK
-  int sessions_cancelled = 0;   // still owed updates when the generator stopped waiting
+  double elapsed_seconds = 0;  // the duration, or until the last update if that came later
+  int sessions_opened = 0;     // sessions that received at least one update
+  int sessions_failed = 0;     // sessions refused, or ended with a status other than OK
+  int sessions_cancelled = 0;  // still owed updates when the generator stopped waiting
   std::uint64_t frames_sent = 0;
   std::uint64_t frames_answered = 0;
   // Round trip of every answered frame: from its scheduled send time (open loop, so a frame
@@ -50,10 +50,10 @@ struct LoadReport {
   bool enrollments_run = false;  // whether enrollments were asked for
   int enrollments_done = 0;
   int enrollments_deleted = 0;  // during the load (--delete-during) or after it
-  bool deleted_during = false;   // --delete-during
+  bool deleted_during = false;  // --delete-during
   int enrollment_views = 0;
-  LatencyHistogram enrollment;               // per successful enrollment call
-  LatencyHistogram round_trip_enrolling;     // frames sent or answered while one ran
+  LatencyHistogram enrollment;            // per successful enrollment call
+  LatencyHistogram round_trip_enrolling;  // frames sent or answered while one ran
 
   // The server process (--server-pid): at the first frame and after the last update, and its
   // resident memory every tenth of the load (seconds from the first frame, bytes), so that a

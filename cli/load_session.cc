@@ -8,8 +8,8 @@
 
 namespace orbit {
 
-LoadSession::LoadSession(int number, const std::vector<TurntableView>& turntable,
-                         bool image_frames, bool closed_loop, const LoadShared& shared)
+LoadSession::LoadSession(int number, const std::vector<TurntableView>& turntable, bool image_frames,
+                         bool closed_loop, const LoadShared& shared)
     : turntable_(turntable),
       first_view_(static_cast<std::size_t>(number) * 7 % turntable.size()),
       compass_offset_(number * 37 % 360),
@@ -107,7 +107,8 @@ void LoadSession::OnWriteDone(bool ok) {
 void LoadSession::OnReadDone(bool ok) {
   if (!ok) return;  // the server ended the stream; OnDone follows
   const Clock::time_point now = Clock::now();
-  const Clock::time_point due = shared_.clock.start + std::chrono::microseconds(update_.timestamp_us());
+  const Clock::time_point due =
+      shared_.clock.start + std::chrono::microseconds(update_.timestamp_us());
   const std::int64_t round_trip_us =
       std::chrono::duration_cast<std::chrono::microseconds>(now - due).count();
   std::int64_t answered = 0;

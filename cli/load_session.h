@@ -59,8 +59,7 @@ struct LoadShared {
   std::atomic<std::uint64_t>& answered;
 };
 
-class LoadSession final
-    : public grpc::ClientBidiReactor<v1::SessionRequest, v1::SessionUpdate> {
+class LoadSession final : public grpc::ClientBidiReactor<v1::SessionRequest, v1::SessionUpdate> {
  public:
   using Clock = std::chrono::steady_clock;
 
@@ -93,8 +92,7 @@ class LoadSession final
 
   // Adds this session's frames, round trips, processing times and final status to `report`,
   // and raises `last_update` to its last update's arrival. REQUIRES: the stream has ended.
-  void AddTo(LoadReport& report, Clock::time_point& last_update) const
-      ABSL_LOCKS_EXCLUDED(mutex_);
+  void AddTo(LoadReport& report, Clock::time_point& last_update) const ABSL_LOCKS_EXCLUDED(mutex_);
 
   void OnWriteDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;
   void OnReadDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;

@@ -33,9 +33,9 @@
 #include "client/models_client.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
-#include "core/descriptor/cedd.h"
 #include "core/base/mutex.h"
 #include "core/base/parallel_for.h"
+#include "core/descriptor/cedd.h"
 #include "evaluation/dataset.h"
 
 namespace orbit::cli {
@@ -57,7 +57,7 @@ struct LoadtestOptions {
   SessionFlags session;
   int sessions = 1;
   int connections = 1;  // TCP connections the sessions share, round robin
-  double rate = 0;  // frames/s per session; 0 with --closed-loop
+  double rate = 0;      // frames/s per session; 0 with --closed-loop
   bool closed_loop = false;
   double duration = 10;  // seconds
   std::string layout = "coil100";
@@ -65,8 +65,8 @@ struct LoadtestOptions {
   std::string manifest;
   std::string objects;  // "": every object of the dataset
   bool image_frames = false;
-  double enroll_every = 0;  // seconds between enrollment starts; 0: back to back
-  int enroll_count = 0;     // 0: as many as fit in the duration (with --enroll-every)
+  double enroll_every = 0;     // seconds between enrollment starts; 0: back to back
+  int enroll_count = 0;        // 0: as many as fit in the duration (with --enroll-every)
   bool delete_during = false;  // delete each enrolled object once the next one is enrolled
   int server_pid = 0;
   bool json = false;
@@ -126,9 +126,8 @@ class LoadEnrollments {
   void Run(const LoadClock& clock, std::atomic<int>& enrolling) {
     const std::string prefix = "loadtest-" + std::to_string(::getpid()) + "-";
     for (int k = 0; count_ == 0 || k < count_; ++k) {
-      const Clock::time_point due =
-          clock.start + std::chrono::duration_cast<Clock::duration>(
-                            std::chrono::duration<double>(every_ * k));
+      const Clock::time_point due = clock.start + std::chrono::duration_cast<Clock::duration>(
+                                                      std::chrono::duration<double>(every_ * k));
       if (due >= clock.end) break;
       std::this_thread::sleep_until(due);
       if (Clock::now() >= clock.end) break;
@@ -137,9 +136,8 @@ class LoadEnrollments {
       const Clock::time_point started = Clock::now();
       try {
         enroller_.EnrollViews(name, views_, R"({"source":"orbit loadtest"})");
-        latency_.Record(std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() -
-                                                                              started)
-                            .count());
+        latency_.Record(
+            std::chrono::duration_cast<std::chrono::microseconds>(Clock::now() - started).count());
         enrolled_.push_back(name);
       } catch (const RpcError& e) {
         ++errors_[std::string(StatusCodeName(e.code()))];
@@ -195,8 +193,7 @@ class LoadEnrollments {
 // in the last half second), redrawn on stderr twice a second while the load runs.
 class ProgressLine {
  public:
-  ProgressLine(const LoadClock& clock, const std::atomic<std::uint64_t>& answered,
-               double duration)
+  ProgressLine(const LoadClock& clock, const std::atomic<std::uint64_t>& answered, double duration)
       : thread_([this, &clock, &answered, duration] { Draw(clock, answered, duration); }) {}
   ~ProgressLine() {
     {
@@ -461,15 +458,15 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   command->add_option("--sessions", options->sessions, "concurrent sessions")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
-  command->add_option("--connections", options->connections,
-                      "TCP connections the sessions are spread over, round robin: 1 (the\n"
-                      "default, as ghz) multiplexes every session on one connection; as many as\n"
-                      "--sessions gives each session its own, as separate devices would")
+  command
+      ->add_option("--connections", options->connections,
+                   "TCP connections the sessions are spread over, round robin: 1 (the\n"
+                   "default, as ghz) multiplexes every session on one connection; as many as\n"
+                   "--sessions gives each session its own, as separate devices would")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   CLI::Option_group* mode = command->add_option_group("mode", "give exactly one");
-  mode->add_option("--rate", options->rate,
-                   "open loop: frames per second per session (no default)")
+  mode->add_option("--rate", options->rate, "open loop: frames per second per session (no default)")
       ->check(CLI::Range(0.001, 100000.0));
   mode->add_flag("--closed-loop", options->closed_loop,
                  "closed loop: each session sends its next frame as soon as the previous\n"
@@ -478,14 +475,16 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   command->add_option("--duration", options->duration, "seconds of load")
       ->check(CLI::Range(0.1, 86400.0))
       ->capture_default_str();
-  command->add_option("--layout", options->layout,
-                      "dataset layout: coil100 (objN__A.png files in --data) or manifest\n"
-                      "(a CSV file, --manifest)")
+  command
+      ->add_option("--layout", options->layout,
+                   "dataset layout: coil100 (objN__A.png files in --data) or manifest\n"
+                   "(a CSV file, --manifest)")
       ->check(CLI::IsMember({"coil100", "manifest"}))
       ->capture_default_str();
-  command->add_option("--data", options->data,
-                      "folder of COIL-100 images (--layout coil100; the default is the shared\n"
-                      "data as seen from the repository root)")
+  command
+      ->add_option("--data", options->data,
+                   "folder of COIL-100 images (--layout coil100; the default is the shared\n"
+                   "data as seen from the repository root)")
       ->capture_default_str();
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
@@ -495,25 +494,30 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
   command->add_flag("--image-frames", options->image_frames,
                     "send each frame as its encoded image file for the server to describe,\n"
                     "instead of a descriptor (default: descriptors)");
-  CLI::Option* enroll_every = command->add_option("--enroll-every", options->enroll_every,
-                      "during the load, start an enrollment of the dataset's first object (all\n"
-                      "its views, e.g. 72 for COIL-100) every this many seconds; each one is\n"
-                      "deleted after the load (default 0: none, or back to back with\n"
-                      "--enroll-count; needs an admin token)")
-      ->check(CLI::Range(0.0, 86400.0));
-  command->add_option("--enroll-count", options->enroll_count,
-                      "enrollments to run during the load (default 0: none, or as many as fit\n"
-                      "with --enroll-every)")
+  CLI::Option* enroll_every =
+      command
+          ->add_option("--enroll-every", options->enroll_every,
+                       "during the load, start an enrollment of the dataset's first object (all\n"
+                       "its views, e.g. 72 for COIL-100) every this many seconds; each one is\n"
+                       "deleted after the load (default 0: none, or back to back with\n"
+                       "--enroll-count; needs an admin token)")
+          ->check(CLI::Range(0.0, 86400.0));
+  command
+      ->add_option("--enroll-count", options->enroll_count,
+                   "enrollments to run during the load (default 0: none, or as many as fit\n"
+                   "with --enroll-every)")
       ->check(CLI::Range(0, 100000));
-  command->add_flag("--delete-during", options->delete_during,
-                    "delete each object enrolled during the load as soon as the next one is\n"
-                    "enrolled, so that the model set gains and loses an object every\n"
-                    "--enroll-every seconds while the sessions run (a soak's churn)")
+  command
+      ->add_flag("--delete-during", options->delete_during,
+                 "delete each object enrolled during the load as soon as the next one is\n"
+                 "enrolled, so that the model set gains and loses an object every\n"
+                 "--enroll-every seconds while the sessions run (a soak's churn)")
       ->needs(enroll_every);
-  command->add_option("--server-pid", options->server_pid,
-                      "process id of the server, on this machine: report its CPU time per frame\n"
-                      "(from /proc/PID/stat) and its resident memory at start, every tenth of the\n"
-                      "load, and end")
+  command
+      ->add_option("--server-pid", options->server_pid,
+                   "process id of the server, on this machine: report its CPU time per frame\n"
+                   "(from /proc/PID/stat) and its resident memory at start, every tenth of the\n"
+                   "load, and end")
       ->check(CLI::Range(1, 1 << 30));
   command->add_flag("--json", options->json,
                     "print one JSON object: frames_per_second, rtt_ms {p50, p90, p99, max,\n"
@@ -521,10 +525,9 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
                     "enrollments (docs/results/load.md)");
   command->callback([options, &exit_code] {
     if (options->connections > options->sessions) {
-      throw CLI::ValidationError("--connections", "must be in 1..--sessions (" +
-                                                      std::to_string(options->sessions) +
-                                                      "), got " +
-                                                      std::to_string(options->connections));
+      throw CLI::ValidationError("--connections",
+                                 "must be in 1..--sessions (" + std::to_string(options->sessions) +
+                                     "), got " + std::to_string(options->connections));
     }
     exit_code = RunLoadtest(*options);
   });

@@ -13,11 +13,13 @@ CLI::Option* AddNetworkOptions(CLI::App& command, NetworkOptions& options, bool 
       ->envname("ORBIT_TOKEN");
   // Not exclusive with --token: a token file named on the command line beats an $ORBIT_TOKEN
   // left in the environment.
-  command.add_option("--token-file", options.token_file,
-                     "file whose first line is the token (wins over --token)")
+  command
+      .add_option("--token-file", options.token_file,
+                  "file whose first line is the token (wins over --token)")
       ->check(CLI::ExistingFile);
-  command.add_option("--tls-ca", options.tls_ca,
-                     "PEM root certificate(s) of the server's certificate: use TLS")
+  command
+      .add_option("--tls-ca", options.tls_ca,
+                  "PEM root certificate(s) of the server's certificate: use TLS")
       ->check(CLI::ExistingFile);
   command.add_option("--tls-server-name", options.tls_server_name,
                      "name on the server's certificate when it differs from HOST");

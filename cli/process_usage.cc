@@ -33,7 +33,8 @@ ProcessUsage ReadProcessUsage(pid_t pid) {
   }
   if (utime < 0 || stime < 0 || rss < 0) throw std::runtime_error("cannot parse " + path);
   ProcessUsage usage;
-  usage.cpu_seconds = static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
+  usage.cpu_seconds =
+      static_cast<double>(utime + stime) / static_cast<double>(::sysconf(_SC_CLK_TCK));
   usage.rss_bytes = rss * static_cast<std::int64_t>(::sysconf(_SC_PAGESIZE));
   return usage;
 }

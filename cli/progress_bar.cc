@@ -41,8 +41,8 @@ std::string ProgressBar::Render(std::string_view stage, std::size_t done, std::s
   if (filled < kBarWidth && done > 0) bar[filled] = '>';
   char percent[8];
   std::snprintf(percent, sizeof percent, "%3d%%", static_cast<int>(fraction * 100));
-  std::string line = std::string(stage) + " [" + bar + "] " + percent + " " +
-                     std::to_string(done) + "/" + std::to_string(total);
+  std::string line = std::string(stage) + " [" + bar + "] " + percent + " " + std::to_string(done) +
+                     "/" + std::to_string(total);
   if (done < total && seconds_left >= 0) line += ", " + Duration(seconds_left) + " left";
   return line;
 }
@@ -59,7 +59,8 @@ void ProgressBar::Update(std::string_view stage, std::size_t done, std::size_t t
   }
   if (now - start_ < delay_) return;
   const double elapsed = std::chrono::duration<double>(now - stage_start_).count();
-  const double left = done > 0 ? elapsed * double(total - std::min(done, total)) / double(done) : -1;
+  const double left =
+      done > 0 ? elapsed * double(total - std::min(done, total)) / double(done) : -1;
   if (terminal_) {
     if (done < total && now - last_draw_ < kRedrawInterval) return;
     last_draw_ = now;

@@ -43,9 +43,9 @@ int RunRecognizeVideo(const RecognizeOptions& options) {
   {
     // Frames the tracker lost are not sent: the frame numbers of the updates count sent frames.
     try {
-      streamed = StreamCapture(*session, *capture,
-                               {.real_time = !options.fast,
-                                .progress = CaptureProgress(::isatty(STDOUT_FILENO) != 1)});
+      streamed = StreamCapture(
+          *session, *capture,
+          {.real_time = !options.fast, .progress = CaptureProgress(::isatty(STDOUT_FILENO) != 1)});
     } catch (const RpcError&) {
       // The session ended early; Close() reports why.
     }
@@ -66,7 +66,8 @@ int RunRecognize(const RecognizeOptions& options) {
     }
     return RunRecognizeVideo(options);
   }
-  if (options.images.empty()) throw std::invalid_argument("give --image F [--azimuth A], or --video");
+  if (options.images.empty())
+    throw std::invalid_argument("give --image F [--azimuth A], or --video");
   // Every image is read before the session opens: a bad file fails the command at once. No
   // --azimuth at all: frames without azimuth, as from a device without an orientation sensor.
   const bool azimuths = !options.azimuths.empty();

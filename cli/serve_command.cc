@@ -29,8 +29,9 @@ struct ServeOptions {
 int RunServe(ServeOptions& o) {
   server::ServerConfig& config = o.config;
   if (o.database.empty() == config.store.empty()) {
-    throw CLI::ValidationError("serve", "give the model store: --db FILE (SQLite) or --store "
-                                        "postgresql://... (PostgreSQL), not both");
+    throw CLI::ValidationError("serve",
+                               "give the model store: --db FILE (SQLite) or --store "
+                               "postgresql://... (PostgreSQL), not both");
   }
   config.database = o.database;
   if (!o.tokens.empty()) config.tokens_file = o.tokens;
@@ -115,8 +116,9 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                 "serve a non-loopback address with no access control (unsafe)");
   cmd->add_option("--variant", o->variant,
                   "descriptor variant of the models and sessions (default: that of the objects "
-                  "in the store; for a new store " + std::string(VariantName(Product().variant)) +
-                  ", the product pipeline: " + DescribeProduct() + ")")
+                  "in the store; for a new store " +
+                      std::string(VariantName(Product().variant)) +
+                      ", the product pipeline: " + DescribeProduct() + ")")
       ->check(CLI::IsMember(VariantNames()))
       ->envname("ORBIT_VARIANT");
   cmd->add_option("--index", o->index, "view search: kdtree (FLANN) or exact (brute force)")
@@ -141,8 +143,7 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "measured on COIL-100 in docs/results/recognition.md")
       ->check(CLI::Range(1e-6, 1 - 1e-6))
       ->capture_default_str();
-  cmd->add_option("--threshold", c.session_defaults.options.threshold,
-                  "Th of the th rule")
+  cmd->add_option("--threshold", c.session_defaults.options.threshold, "Th of the th rule")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
   cmd->add_option("--max-sessions", c.limits.max_sessions, "concurrent sessions")
@@ -177,8 +178,9 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "frames of every session (0: half the cores, at least one)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
-  cmd->add_option("--workers", c.worker_threads, "worker threads for unary calls (Recognize, list, get, delete);\n"
-                 "a session's descriptor frames run on gRPC's threads (0: one per core)")
+  cmd->add_option("--workers", c.worker_threads,
+                  "worker threads for unary calls (Recognize, list, get, delete);\n"
+                  "a session's descriptor frames run on gRPC's threads (0: one per core)")
       ->check(CLI::Range(0, 1024))
       ->capture_default_str();
   cmd->add_option("--metrics-listen", c.metrics_listen,

@@ -9,27 +9,34 @@
 namespace orbit::cli {
 
 void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
-  command.add_option("--engine", flags.engine,
-                     "recognition method (default: the server's, hmm unless it was started "
-                     "otherwise)")
+  command
+      .add_option("--engine", flags.engine,
+                  "recognition method (default: the server's, hmm unless it was started "
+                  "otherwise)")
       ->check(CLI::IsMember(SessionEngineNames()));
-  command.add_option("--top-k", flags.options.top_k, "candidates per update, 1.." + std::to_string(kMaxTopK));
+  command.add_option("--top-k", flags.options.top_k,
+                     "candidates per update, 1.." + std::to_string(kMaxTopK));
   command.add_option("--window", flags.options.window,
                      "W: frames the session remembers, 1.." + std::to_string(kMaxWindow));
   command.add_option("--w", flags.options.orientation_weight,
                      "orientation weight w of the Hough score, per radian, 0.." +
                          std::to_string(static_cast<int>(kMaxOrientationWeight)));
-  command.add_option("--list-length", flags.options.list_length, "N_L: views per retrieval list, 1.." + std::to_string(kMaxListLength));
-  command.add_option("--hmm-states", flags.options.hmm_states, "HMM sectors per object, 1.." + std::to_string(kMaxHmmStates));
-  command.add_option("--rejection", flags.rejection,
-                     "accept / unknown rule: calibrated (a threshold from --false-accept-rate, "
-                     "computed by the server from its model set) or th (the thesis' rule in "
-                     "docs/design.md, --threshold)")
+  command.add_option("--list-length", flags.options.list_length,
+                     "N_L: views per retrieval list, 1.." + std::to_string(kMaxListLength));
+  command.add_option("--hmm-states", flags.options.hmm_states,
+                     "HMM sectors per object, 1.." + std::to_string(kMaxHmmStates));
+  command
+      .add_option("--rejection", flags.rejection,
+                  "accept / unknown rule: calibrated (a threshold from --false-accept-rate, "
+                  "computed by the server from its model set) or th (the thesis' rule in "
+                  "docs/design.md, --threshold)")
       ->check(CLI::IsMember({"calibrated", "th"}));
-  command.add_option("--false-accept-rate", flags.options.false_accept_rate,
-                     "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
+  command
+      .add_option("--false-accept-rate", flags.options.false_accept_rate,
+                  "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
       ->check(CLI::Range(1e-6, 1 - 1e-6));
-  command.add_option("--threshold", flags.options.threshold, "Th of the th rule: accept when T_M / Ttyp <= Th");
+  command.add_option("--threshold", flags.options.threshold,
+                     "Th of the th rule: accept when T_M / Ttyp <= Th");
 }
 
 RecognitionOptions ToRecognitionOptions(const SessionFlags& flags) {

@@ -40,8 +40,8 @@ std::string UpdateLine(const v1::SessionUpdate& update) {
   for (int i = 0; i < update.candidates_size(); ++i) {
     const v1::Candidate& c = update.candidates(i);
     char candidate[64];
-    std::snprintf(candidate, sizeof candidate, " (id %lld) %.3f",
-                  static_cast<long long>(c.id()), c.score());
+    std::snprintf(candidate, sizeof candidate, " (id %lld) %.3f", static_cast<long long>(c.id()),
+                  c.score());
     line += (i == 0 ? " " : ", ") + c.name() + candidate;
   }
   char time[32];
@@ -55,12 +55,9 @@ nlohmann::ordered_json UpdateJson(const v1::SessionUpdate& update) {
     candidates.push_back({{"id", c.id()}, {"name", c.name()}, {"score", c.score()}});
   }
   nlohmann::ordered_json line = {
-      {"frame", update.frame_index()},
-      {"decision", DecisionText(update.decision())},
-      {"confidence", update.confidence()},
-      {"move", MoveText(update.move())},
-      {"candidates", std::move(candidates)},
-      {"processing_time_us", update.processing_time_us()},
+      {"frame", update.frame_index()},       {"decision", DecisionText(update.decision())},
+      {"confidence", update.confidence()},   {"move", MoveText(update.move())},
+      {"candidates", std::move(candidates)}, {"processing_time_us", update.processing_time_us()},
   };
   if (update.has_pose()) {
     line["pose"] = {{"azimuth_deg", update.pose().azimuth_deg()},

@@ -28,9 +28,7 @@ v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
 }
 
 Enroller::Enroller(const Connection& connection, EnrollerOptions options)
-    : connection_(connection),
-      options_(options),
-      stub_(v1::Models::NewStub(connection.channel())) {
+    : connection_(connection), options_(options), stub_(v1::Models::NewStub(connection.channel())) {
   if (options_.threads == 0) throw std::invalid_argument("Enroller needs at least one thread");
 }
 

@@ -32,14 +32,15 @@
 namespace orbit {
 
 // The view the server stores for `image`: DescribeView of the region (or whole image), with
-// `base_seed` in the seed rule of core/descriptor/view_description.h, and the image's azimuth and elevation.
-// Throws std::invalid_argument for an empty image or a region outside it, and as DescribeView.
+// `base_seed` in the seed rule of core/descriptor/view_description.h, and the image's azimuth and
+// elevation. Throws std::invalid_argument for an empty image or a region outside it, and as
+// DescribeView.
 v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
                      std::uint64_t base_seed = kDefaultViewNoiseSeed);
 
 struct EnrollerOptions {
-  // Base of the noise seed rule (core/descriptor/view_description.h); the default stores what the server
-  // would compute from the same images.
+  // Base of the noise seed rule (core/descriptor/view_description.h); the default stores what the
+  // server would compute from the same images.
   std::uint64_t seed = kDefaultViewNoiseSeed;
   unsigned threads = 1;  // threads computing the views
 };

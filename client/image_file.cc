@@ -15,9 +15,10 @@ cv::Mat ReadImageFile(const std::string& path) {
   cv::Mat image = cv::imread(path, cv::IMREAD_UNCHANGED);
   if (image.empty()) throw std::runtime_error(path + ": not an image OpenCV can decode");
   if (image.depth() == CV_16U) image.convertTo(image, CV_8U, 1.0 / 256);
-  if (image.depth() != CV_8U || (image.channels() != 1 && image.channels() != 3 &&
-                                 image.channels() != 4)) {
-    throw std::runtime_error(path + ": unsupported pixel format (need 8 or 16 bits, 1, 3 or 4 channels)");
+  if (image.depth() != CV_8U ||
+      (image.channels() != 1 && image.channels() != 3 && image.channels() != 4)) {
+    throw std::runtime_error(path +
+                             ": unsupported pixel format (need 8 or 16 bits, 1, 3 or 4 channels)");
   }
   return image;
 }

@@ -41,7 +41,8 @@ std::chrono::microseconds ReplayInterval(const v1::ServerInfoResponse& info) {
 
 }  // namespace
 
-v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options, DescriptorVariant variant) {
+v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options,
+                                         DescriptorVariant variant) {
   v1::SessionOptions open;
   open.set_engine(options.engine);
   open.set_top_k(options.top_k);
@@ -113,7 +114,8 @@ std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double
                                       std::optional<std::int64_t> timestamp_us,
                                       std::optional<FrameQuality> quality) {
   // Measured here when the caller did not: the server's accept / unknown rule allows noisy and
-  // blurred frames what noise and blur add (core/decision/quality_allowance.h) only when it knows them.
+  // blurred frames what noise and blur add (core/decision/quality_allowance.h) only when it knows
+  // them.
   if (!quality) quality = MeasureFrameQuality(image, region);
   return PushDescriptor(ExtractCedd(image, variant_, region).values, azimuth_deg, timestamp_us,
                         quality);
@@ -253,8 +255,8 @@ grpc::Status RecognitionSession::Reopen() {
     }
     const auto left =
         std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now());
-    if (!connection_.WaitForConnected(std::clamp(left, std::chrono::milliseconds(1),
-                                                 std::chrono::milliseconds(200)))) {
+    if (!connection_.WaitForConnected(
+            std::clamp(left, std::chrono::milliseconds(1), std::chrono::milliseconds(200)))) {
       continue;
     }
 

@@ -10,11 +10,11 @@
 // Reconnection: when the stream ends with UNAVAILABLE (the server restarted, the network
 // dropped), with a CANCELLED the device did not cause (a server cancelling its calls as it
 // shuts down) or with no status at all (UNKNOWN: a load balancer in front of server replicas
-// lost the one serving the session; docs/scaling.md), and the session was not closed by the device, a new stream is opened with the same
-// options and the session replays the frames still in the window - the last W answered frames,
-// whose updates are not delivered again - then every frame not yet answered. The server thus
-// rebuilds the same window and the updates continue in order, none lost and none repeated,
-// with the frame indices the device was given. Attempts continue for
+// lost the one serving the session; docs/scaling.md), and the session was not closed by the device,
+// a new stream is opened with the same options and the session replays the frames still in the
+// window - the last W answered frames, whose updates are not delivered again - then every frame not
+// yet answered. The server thus rebuilds the same window and the updates continue in order, none
+// lost and none repeated, with the frame indices the device was given. Attempts continue for
 // RecognitionOptions::reconnect_timeout; after that the session ends with UNAVAILABLE. Frames sent
 // before a Reset() and still unanswered when the connection drops are not replayed: the device
 // had started over.
@@ -54,15 +54,15 @@ namespace orbit {
 // unset takes the server's default, ServerInfo's session_defaults; the meaning and ranges are
 // those of v1::SessionOptions, checked by the server), and how the client library runs it.
 struct RecognitionOptions {
-  v1::Engine engine = v1::ENGINE_UNSPECIFIED;  // VCI, HMM, both, or a baseline
-  int top_k = 0;                               // candidates per update
-  int window = 0;                              // W: frames the session remembers
-  std::optional<double> orientation_weight;    // w of the Hough score, per radian
-  int list_length = 0;                         // N_L: views per retrieval list
-  int hmm_states = 0;                          // HMM sectors per object
-  std::optional<double> threshold;             // Th of the accept rule REJECTION_TH
+  v1::Engine engine = v1::ENGINE_UNSPECIFIED;           // VCI, HMM, both, or a baseline
+  int top_k = 0;                                        // candidates per update
+  int window = 0;                                       // W: frames the session remembers
+  std::optional<double> orientation_weight;             // w of the Hough score, per radian
+  int list_length = 0;                                  // N_L: views per retrieval list
+  int hmm_states = 0;                                   // HMM sectors per object
+  std::optional<double> threshold;                      // Th of the accept rule REJECTION_TH
   v1::Rejection rejection = v1::REJECTION_UNSPECIFIED;  // the accept / unknown rule
-  std::optional<double> false_accept_rate;     // REJECTION_CALIBRATED's target, in (0, 1)
+  std::optional<double> false_accept_rate;              // REJECTION_CALIBRATED's target, in (0, 1)
   // The descriptor variant of the frames; unset: the server's. Setting another variant than
   // the server's ends the session with INVALID_ARGUMENT.
   std::optional<DescriptorVariant> variant;
@@ -77,7 +77,8 @@ struct RecognitionOptions {
 
 // The `open` message of a session with `options` whose frames are in `variant`: unset fields
 // stay unset, so the server fills in its defaults.
-v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options, DescriptorVariant variant);
+v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options,
+                                         DescriptorVariant variant);
 
 class RecognitionSession {
  public:

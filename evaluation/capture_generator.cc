@@ -10,8 +10,8 @@
 #include <opencv2/videoio.hpp>
 
 #include "core/base/angles.h"
-#include "core/descriptor/distortion.h"
 #include "core/base/seeded_random.h"
+#include "core/descriptor/distortion.h"
 
 namespace orbit {
 namespace {

@@ -32,7 +32,8 @@ std::string_view Trim(std::string_view text) {
 int ParsePositive(std::string_view digits, std::string_view item) {
   int value = 0;
   const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
-  if (digits.empty() || error == std::errc::invalid_argument || end != digits.data() + digits.size()) {
+  if (digits.empty() || error == std::errc::invalid_argument ||
+      end != digits.data() + digits.size()) {
     throw std::invalid_argument("object selection: \"" + std::string(item) +
                                 "\" is not a number or a range a-b");
   }
@@ -225,8 +226,8 @@ namespace {
 // A CSV file with a header row, as the manifest and the query captures are written: its rows
 // as field maps keyed by column name, with their line numbers. `columns` lists every column
 // allowed, the first `required` of them required; `form` is how messages spell the header
-// (e.g. "path,object,azimuth[,elevation]"), `naming` the same in words. Throws std::runtime_error "FILE:LINE: problem" as
-// ReadManifest documents.
+// (e.g. "path,object,azimuth[,elevation]"), `naming` the same in words. Throws std::runtime_error
+// "FILE:LINE: problem" as ReadManifest documents.
 struct CsvRow {
   int line = 0;
   std::map<std::string, std::string> field;  // only the columns the header has
@@ -253,7 +254,8 @@ std::vector<CsvRow> ReadCsvTable(const std::filesystem::path& csv,
     if (header.empty()) {
       for (const std::string& name : fields) {
         if (std::find(columns.begin(), columns.end(), name) == columns.end()) {
-          throw fail(line_number, "unknown column \"" + name + "\" (the header must name " + naming + ")");
+          throw fail(line_number,
+                     "unknown column \"" + name + "\" (the header must name " + naming + ")");
         }
         if (std::find(header.begin(), header.end(), name) != header.end()) {
           throw fail(line_number, "column \"" + name + "\" appears twice");
@@ -299,8 +301,8 @@ std::optional<double> RowNumber(const CsvRow& row, const std::filesystem::path& 
   const std::string text = found == row.field.end() ? "" : found->second;
   const std::optional<double> value = ParseFiniteNumber(text);
   if (!value) {
-    throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column +
-                             " \"" + text + "\" is not a finite number");
+    throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column + " \"" +
+                             text + "\" is not a finite number");
   }
   return value;
 }
@@ -317,10 +319,9 @@ std::string RowObject(const CsvRow& row, const std::filesystem::path& csv) {
 
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
   std::vector<DatasetImage> images;
-  for (const CsvRow& row : ReadCsvTable(csv, {"path", "object", "azimuth", "elevation"}, 3,
-                                        "path,object,azimuth[,elevation]",
-                                        "path,object,azimuth and optionally elevation",
-                                        "manifest")) {
+  for (const CsvRow& row : ReadCsvTable(
+           csv, {"path", "object", "azimuth", "elevation"}, 3, "path,object,azimuth[,elevation]",
+           "path,object,azimuth and optionally elevation", "manifest")) {
     DatasetImage image;
     image.path = RowPath(row, csv);
     image.object = RowObject(row, csv);
@@ -334,10 +335,9 @@ std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
 
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
   std::vector<CaptureFrame> frames;
-  for (const CsvRow& row : ReadCsvTable(csv, {"path", "object", "sequence", "azimuth"}, 3,
-                                        "path,object,sequence[,azimuth]",
-                                        "path,object,sequence and optionally azimuth",
-                                        "query captures")) {
+  for (const CsvRow& row : ReadCsvTable(
+           csv, {"path", "object", "sequence", "azimuth"}, 3, "path,object,sequence[,azimuth]",
+           "path,object,sequence and optionally azimuth", "query captures")) {
     CaptureFrame frame;
     frame.path = RowPath(row, csv);
     frame.object = RowObject(row, csv);

@@ -45,8 +45,9 @@ std::vector<int> ParseObjectRange(std::string_view text);
 //
 // Throws std::runtime_error naming the folder when it is not a readable directory, when it holds
 // no objN__A.png file, or when a selected object has no image there.
-std::vector<DatasetImage> ListCoil100(const std::filesystem::path& dir,
-                                      const std::optional<std::vector<int>>& objects = std::nullopt);
+std::vector<DatasetImage> ListCoil100(
+    const std::filesystem::path& dir,
+    const std::optional<std::vector<int>>& objects = std::nullopt);
 
 // Reads a manifest: a CSV file whose first row is a header naming the columns path, object,
 // azimuth and optionally elevation, in any order (no other column is allowed). Fields may be

@@ -12,8 +12,8 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
-#include "core/descriptor/distortion.h"
 #include "core/base/seeded_random.h"
+#include "core/descriptor/distortion.h"
 
 namespace orbit {
 namespace {
@@ -58,8 +58,7 @@ class StepParser {
       Fail(std::string(what) + " must be a number in " + range + ", not '" + std::string(token) +
            "'");
     }
-    if (value < low || value > high || (low_open && value == low) ||
-        (high_open && value == high)) {
+    if (value < low || value > high || (low_open && value == low) || (high_open && value == high)) {
       Fail(std::string(what) + " must be in " + range);
     }
     return value;
@@ -77,7 +76,8 @@ class StepParser {
       if (std::find(allowed.begin(), allowed.end(), name) == allowed.end() ||
           equals == std::string_view::npos) {
         std::string list;
-        for (const std::string_view a : allowed) list += (list.empty() ? "" : ", ") + std::string(a) + "=";
+        for (const std::string_view a : allowed)
+          list += (list.empty() ? "" : ", ") + std::string(a) + "=";
         Fail("unknown parameter '" + std::string(param) + "' (" + list + ")");
       }
       if (name == key) {
@@ -113,8 +113,9 @@ class StepParser {
       return {Kind::kJpeg, q, 0};
     }
     if (kind == "gain" || kind == "lowres") {
-      if (params.size() != 1) Fail(std::string("needs one value, e.g. ") + std::string(kind) +
-                                   (kind == "gain" ? ":0.6" : ":0.5"));
+      if (params.size() != 1)
+        Fail(std::string("needs one value, e.g. ") + std::string(kind) +
+             (kind == "gain" ? ":0.6" : ":0.5"));
       if (kind == "gain") return {Kind::kGain, Value("gain", params[0], 0, 10, true, false), 0};
       return {Kind::kLowResolution, Value("lowres", params[0], 0, 1, true, true), 0};
     }

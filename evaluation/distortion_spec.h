@@ -4,7 +4,8 @@
 //
 //   df                       the view as captured
 //   mb                       the protocol's motion blur: mb:len=15:angle=20
-//   mb:len=L:angle=A         MotionBlur (core/descriptor/distortion.h), L in [1, 100] pixels, A degrees;
+//   mb:len=L:angle=A         MotionBlur (core/descriptor/distortion.h), L in [1, 100] pixels, A
+//   degrees;
 //                            either parameter may be left out (15, 20)
 //   gn                       the protocol's noise: gn:var=0.012
 //   gn:var=V                 AddGaussianNoise, V in (0, 1] on the [0, 1] intensity scale

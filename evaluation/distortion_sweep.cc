@@ -16,9 +16,9 @@ namespace {
 struct Axis {
   const char* name;
   const char* strength;
-  double from, to;            // the default range
-  double lowest, highest;     // what the distortion accepts
-  bool whole;                 // strengths rounded to whole numbers
+  double from, to;         // the default range
+  double lowest, highest;  // what the distortion accepts
+  bool whole;              // strengths rounded to whole numbers
 };
 
 constexpr Axis kAxes[] = {
@@ -77,7 +77,8 @@ std::string SeriesName(const EvaluationCell& cell) {
 }
 
 // Per sweep: (series, n) -> hit rate per step, in the order series and n first appear.
-using SweepRows = std::vector<std::pair<std::pair<std::string, int>, std::vector<const EvaluationCell*>>>;
+using SweepRows =
+    std::vector<std::pair<std::pair<std::string, int>, std::vector<const EvaluationCell*>>>;
 
 SweepRows RowsOf(const EvaluationReport& report, const std::vector<DistortionSweep>& sweeps,
                  const DistortionSweep& sweep) {
@@ -86,7 +87,8 @@ SweepRows RowsOf(const EvaluationReport& report, const std::vector<DistortionSwe
     std::size_t step = 0;
     if (SweepOf(sweeps, cell.distortion, &step) != &sweep) continue;
     const std::pair<std::string, int> key{SeriesName(cell), cell.n};
-    auto row = std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == key; });
+    auto row =
+        std::find_if(rows.begin(), rows.end(), [&](const auto& r) { return r.first == key; });
     if (row == rows.end()) {
       rows.push_back({key, std::vector<const EvaluationCell*>(sweep.distortions.size(), nullptr)});
       row = rows.end() - 1;
@@ -109,7 +111,8 @@ DistortionSweep ParseSweep(std::string_view text, int steps) {
   for (const Axis& a : kAxes) {
     if (name == a.name) axis = &a;
   }
-  if (axis == nullptr) Fail(text, "unknown axis \"" + std::string(name) + "\" (mb, gn, jpeg, gain)");
+  if (axis == nullptr)
+    Fail(text, "unknown axis \"" + std::string(name) + "\" (mb, gn, jpeg, gain)");
   double from = axis->from, to = axis->to;
   if (colon != std::string_view::npos) {
     const std::string_view range = text.substr(colon + 1);
@@ -142,8 +145,9 @@ std::string SweepMarkdown(const EvaluationReport& report,
   for (const DistortionSweep& sweep : sweeps) {
     out << "### Sweep: " << sweep.strength << " (hit rate %, top-1)\n\n| method | n |";
     for (std::size_t s = 0; s < sweep.strengths.size(); ++s) {
-      out << " " << (sweep.axis == "mb" ? sweep.distortions[s].name.substr(3)
-                                        : Compact(sweep.strengths[s]))
+      out << " "
+          << (sweep.axis == "mb" ? sweep.distortions[s].name.substr(3)
+                                 : Compact(sweep.strengths[s]))
           << " |";
     }
     out << " worst |\n|---|---:|";
@@ -208,7 +212,8 @@ cv::Mat DrawSweepPlot(const EvaluationReport& report, const std::vector<Distorti
         LineSeries& line = panel.series.emplace_back();
         line.name = key.first;
         for (std::size_t s = 0; s < cells.size(); ++s) {
-          if (cells[s] != nullptr) line.points.emplace_back(sweep.strengths[s], cells[s]->hit_rate());
+          if (cells[s] != nullptr)
+            line.points.emplace_back(sweep.strengths[s], cells[s]->hit_rate());
         }
       }
     }

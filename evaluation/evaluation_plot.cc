@@ -17,7 +17,7 @@ namespace {
 
 constexpr int kPanelWidth = 460;
 constexpr int kPanelHeight = 340;
-constexpr int kMarginLeft = 62;    // room for the y tick labels and the axis label
+constexpr int kMarginLeft = 62;  // room for the y tick labels and the axis label
 constexpr int kMarginRight = 18;
 constexpr int kMarginTop = 34;     // the panel's title
 constexpr int kMarginBottom = 52;  // x tick labels and the axis label
@@ -31,19 +31,17 @@ const cv::Scalar kGrid(225, 225, 225);
 const cv::Scalar kWhite(255, 255, 255);
 
 // Tableau-like palette (BGR), one colour per method; cycles after ten methods.
-const std::array<cv::Scalar, 10> kPalette = {
-    cv::Scalar(180, 119, 31),  cv::Scalar(14, 127, 255),  cv::Scalar(44, 160, 44),
-    cv::Scalar(40, 39, 214),   cv::Scalar(189, 103, 148), cv::Scalar(75, 86, 140),
-    cv::Scalar(194, 119, 227), cv::Scalar(127, 127, 127), cv::Scalar(34, 189, 188),
-    cv::Scalar(207, 190, 23)};
+const std::array<cv::Scalar, 10> kPalette = {cv::Scalar(180, 119, 31),  cv::Scalar(14, 127, 255),
+                                             cv::Scalar(44, 160, 44),   cv::Scalar(40, 39, 214),
+                                             cv::Scalar(189, 103, 148), cv::Scalar(75, 86, 140),
+                                             cv::Scalar(194, 119, 227), cv::Scalar(127, 127, 127),
+                                             cv::Scalar(34, 189, 188),  cv::Scalar(207, 190, 23)};
 
 // Draws marker `shape` (cycled) centred at `p`, so lines stay apart when colours are hard to tell.
 void DrawMarker(cv::Mat& image, cv::Point p, int shape, const cv::Scalar& colour) {
   constexpr int r = 5;
   switch (shape % 5) {
-    case 0:
-      cv::circle(image, p, r, colour, cv::FILLED, cv::LINE_AA);
-      break;
+    case 0: cv::circle(image, p, r, colour, cv::FILLED, cv::LINE_AA); break;
     case 1:
       cv::rectangle(image, p - cv::Point(r - 1, r - 1), p + cv::Point(r - 1, r - 1), colour,
                     cv::FILLED, cv::LINE_AA);
@@ -60,8 +58,7 @@ void DrawMarker(cv::Mat& image, cv::Point p, int shape, const cv::Scalar& colour
       cv::fillConvexPoly(image, diamond, colour, cv::LINE_AA);
       break;
     }
-    default:
-      cv::drawMarker(image, p, colour, cv::MARKER_CROSS, 2 * r + 3, 2, cv::LINE_AA);
+    default: cv::drawMarker(image, p, colour, cv::MARKER_CROSS, 2 * r + 3, 2, cv::LINE_AA);
   }
 }
 
@@ -160,8 +157,8 @@ cv::Mat DrawLineFigure(const LineFigure& figure) {
     PutVertical(image, panel.y_label, {panel_x + 16, (top + bottom) / 2}, 0.45);
 
     for (const LineSeries& line : panel.series) {
-      const int m = static_cast<int>(std::find(series.begin(), series.end(), line.name) -
-                                     series.begin());
+      const int m =
+          static_cast<int>(std::find(series.begin(), series.end(), line.name) - series.begin());
       std::vector<cv::Point> points;
       for (const auto& [x, rate] : line.points) points.push_back({x_of(x), y_of(rate, top)});
       const cv::Scalar& colour = kPalette[m % kPalette.size()];
@@ -174,7 +171,8 @@ cv::Mat DrawLineFigure(const LineFigure& figure) {
   const int legend_left =
       (width - std::min<int>(legend_per_row, static_cast<int>(series.size())) * entry_width) / 2;
   for (std::size_t m = 0; m < series.size(); ++m) {
-    const int row = static_cast<int>(m) / legend_per_row, col = static_cast<int>(m) % legend_per_row;
+    const int row = static_cast<int>(m) / legend_per_row,
+              col = static_cast<int>(m) % legend_per_row;
     const int x = legend_left + col * entry_width;
     const int y = legend_top + row * kLegendRowHeight + kLegendRowHeight / 2;
     const cv::Scalar& colour = kPalette[m % kPalette.size()];
@@ -223,7 +221,8 @@ cv::Mat DrawHitRatePlot(const EvaluationReport& report) {
         if (cell.variant != variant || cell.distortion != distortion) continue;
         auto line = std::find_if(panel.series.begin(), panel.series.end(),
                                  [&](const LineSeries& s) { return s.name == cell.method; });
-        if (line == panel.series.end()) line = panel.series.insert(panel.series.end(), {cell.method, {}});
+        if (line == panel.series.end())
+          line = panel.series.insert(panel.series.end(), {cell.method, {}});
         line->points.emplace_back(cell.n, cell.hit_rate());
       }
     }

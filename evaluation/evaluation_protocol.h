@@ -10,8 +10,8 @@
 //      and each frame's device azimuth is its true azimuth + N(0, kQueryAzimuthNoiseDegrees) +
 //      one offset, uniform in [0, 360), shared by the trial's frames;
 //   4. the query images are the chosen views, unchanged (DF), motion-blurred (MB) or with
-//      Gaussian noise (GN), core/descriptor/distortion.h (evaluation/distortion_spec.h names these and
-//      other distortions for `orbit eval`);
+//      Gaussian noise (GN), core/descriptor/distortion.h (evaluation/distortion_spec.h names these
+//      and other distortions for `orbit eval`);
 //   5. a hit is a top-1 answer naming c (IsTopOneHit).
 // Every random draw comes from TrialSeed(seed, object, n, trial), so a trial is the same for
 // every method, distortion, descriptor variant, index mode and thread count.
@@ -23,8 +23,8 @@
 #include <span>
 #include <vector>
 
-#include "core/index/object_model.h"
 #include "core/engines/recognition_engine.h"
+#include "core/index/object_model.h"
 
 namespace orbit {
 

@@ -44,8 +44,8 @@ template <typename WriteRow>
 void ForEachRow(const std::vector<const EvaluationCell*>& cells, std::size_t n_count,
                 WriteRow write_row) {
   for (std::size_t first = 0; first + n_count <= cells.size(); first += n_count) {
-    write_row(std::vector<const EvaluationCell*>(cells.begin() + first,
-                                                 cells.begin() + first + n_count));
+    write_row(
+        std::vector<const EvaluationCell*>(cells.begin() + first, cells.begin() + first + n_count));
   }
 }
 
@@ -70,8 +70,8 @@ std::string MarkdownReport(const EvaluationReport& report) {
       << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
       << Format("%.1f", report.trial_seconds) << " s.\n\n";
   if (report.query_sequences > 0) {
-    out << "Queries: " << report.query_sequences << " captured sequences, "
-        << report.query_frames << " frames (`--queries`), against every image of the model set; "
+    out << "Queries: " << report.query_sequences << " captured sequences, " << report.query_frames
+        << " frames (`--queries`), against every image of the model set; "
            "a sequence shorter than n is not counted at n.\n\n";
   }
   const EngineOptions& e = report.engine;
@@ -83,8 +83,7 @@ std::string MarkdownReport(const EvaluationReport& report) {
   }
   if (report.active_step > 0) {
     out << " Active vision (`--active`): after the first two views, each next view "
-        << Format("%g", report.active_step)
-        << [&] {
+        << Format("%g", report.active_step) << [&] {
              switch (report.active_policy) {
                case ActivePolicy::kFollowMoves:
                  return " degrees from the latest in the direction the method suggested.";
@@ -118,16 +117,17 @@ std::string MarkdownReport(const EvaluationReport& report) {
     const auto cells = CellsOf(report, memory.variant);
     if (cells.empty()) continue;
     const int trials_per_cell = cells.front()->trials;
-    out << "\n### " << VariantName(memory.variant) << ": hit rate (%), top-1, "
-        << trials_per_cell << " queries per cell\n\n| distortion | method |";
+    out << "\n### " << VariantName(memory.variant) << ": hit rate (%), top-1, " << trials_per_cell
+        << " queries per cell\n\n| distortion | method |";
     for (int n : ns) out << " n=" << n << " |";
     out << " ms/query (n=" << ns.back() << ") |\n|---|---|";
     for (std::size_t i = 0; i <= ns.size(); ++i) out << "---:|";
     out << "\n";
     ForEachRow(cells, ns.size(), [&](const std::vector<const EvaluationCell*>& row) {
-      out << "| " << DistortionLabel(row.front()->distortion) << " | "
-          << row.front()->method << " |";
-      for (const EvaluationCell* cell : row) out << " " << Format("%.1f", 100 * cell->hit_rate()) << " |";
+      out << "| " << DistortionLabel(row.front()->distortion) << " | " << row.front()->method
+          << " |";
+      for (const EvaluationCell* cell : row)
+        out << " " << Format("%.1f", 100 * cell->hit_rate()) << " |";
       out << " " << Format("%.3f", row.back()->ms_per_query()) << " |\n";
     });
 
@@ -140,8 +140,8 @@ std::string MarkdownReport(const EvaluationReport& report) {
     for (std::size_t i = 0; i < ns.size(); ++i) out << "---:|";
     out << "\n";
     ForEachRow(cells, ns.size(), [&](const std::vector<const EvaluationCell*>& row) {
-      out << "| " << DistortionLabel(row.front()->distortion) << " | "
-          << row.front()->method << " |";
+      out << "| " << DistortionLabel(row.front()->distortion) << " | " << row.front()->method
+          << " |";
       for (const EvaluationCell* cell : row) {
         out << " " << Format("%.1f", 100 * cell->accept_rate()) << " / "
             << Format("%.1f", 100 * cell->reject_rate()) << " |";
@@ -158,12 +158,13 @@ void WriteCsv(const EvaluationReport& report, std::ostream& out) {
   if (recognition) out << ",accepted,accept_rate,unknown_trials,rejected,reject_rate";
   out << "\n";
   for (const EvaluationCell& cell : report.cells) {
-    out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion
-        << ',' << cell.n << ',' << cell.trials << ',' << cell.hits << ','
+    out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion << ','
+        << cell.n << ',' << cell.trials << ',' << cell.hits << ','
         << Format("%.4f", cell.hit_rate()) << ',' << Format("%.4f", cell.ms_per_query());
     if (recognition) {
       out << ',' << cell.accepted << ',' << Format("%.4f", cell.accept_rate()) << ','
-          << cell.unknown_trials << ',' << cell.rejected << ',' << Format("%.4f", cell.reject_rate());
+          << cell.unknown_trials << ',' << cell.rejected << ','
+          << Format("%.4f", cell.reject_rate());
     }
     out << "\n";
   }

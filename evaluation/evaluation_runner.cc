@@ -4,8 +4,8 @@
 
 #include <algorithm>
 #include <array>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <map>
 #include <memory>
@@ -17,12 +17,12 @@
 #include "client/image_file.h"
 #include "core/base/angles.h"
 #include "core/base/mutex.h"
-#include "core/descriptor/cedd.h"
-#include "core/decision/rejection_calibration.h"
-#include "core/base/seeded_random.h"
 #include "core/base/parallel_for.h"
-#include "core/engines/product_pipeline.h"
+#include "core/base/seeded_random.h"
+#include "core/decision/rejection_calibration.h"
+#include "core/descriptor/cedd.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
 
 // gperftools' malloc_extension_c.h, when tcmalloc is linked (HeapBytesInUse).
 extern "C" int MallocExtension_GetNumericProperty(const char* property, std::size_t* value)
@@ -98,8 +98,9 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   require(!options.query_lengths.empty(), "no query length n");
   const auto names = EngineNames();
   for (const std::string& method : options.methods) {
-    require(method == kProductMethod || std::find(names.begin(), names.end(), method) != names.end(),
-            "unknown method \"" + method + "\"");
+    require(
+        method == kProductMethod || std::find(names.begin(), names.end(), method) != names.end(),
+        "unknown method \"" + method + "\"");
   }
   for (int n : options.query_lengths) {
     require(n >= 1 && n <= kMaxWindow,
@@ -201,8 +202,8 @@ DescribedImages DescribeImages(const EvaluationDataset& dataset, const Evaluatio
                                int threads) {
   DescribedImages described(dataset.images.size());
   RunStage(described.size(), threads, "descriptors", options, [&](std::size_t i) {
-    described[i] = DescribeImage(*dataset.images[i], i, options.variants, options.distortions,
-                                 options.seed);
+    described[i] =
+        DescribeImage(*dataset.images[i], i, options.variants, options.distortions, options.seed);
   });
   return described;
 }
@@ -283,7 +284,7 @@ struct TrialGrid {
 struct Outcome {
   bool answered = false;  // false: the task asked nothing (a capture shorter than its n)
   QueryVerdict verdict;
-  double seconds = 0;     // wall-clock time in ObserveSequence
+  double seconds = 0;  // wall-clock time in ObserveSequence
 };
 
 // The outcome of `update` for a query whose right answer is object `expected`, or kUnknown
@@ -454,8 +455,7 @@ class ActiveQuery {
   FrameUpdate Extend(Path path, int& latest_view) {
     const std::shared_ptr<const ViewIndexSnapshot> index =
         in_.known ? TrialIndex(*in_.models, in_.object,
-                               {path.views, {}, ExcludedViews(in_.azimuths, path.views)},
-                               in_.index)
+                               {path.views, {}, ExcludedViews(in_.azimuths, path.views)}, in_.index)
                   : in_.full_index;
     const FrameUpdate update = engine_.ObserveSequence(index, path.frames);
     if (static_cast<int>(path.frames.size()) == in_.n) {
@@ -467,23 +467,21 @@ class ActiveQuery {
         return Extend(Step(std::move(path), update.move), latest_view);
       case ActivePolicy::kOneWay:
         return Extend(Step(std::move(path), SuggestedMove::kNone), latest_view);
-      case ActivePolicy::kBestOfBoth:
-        break;
+      case ActivePolicy::kBestOfBoth: break;
     }
     int right_view = 0;
     const FrameUpdate right = Extend(Step(path, SuggestedMove::kRight), right_view);
     int left_view = 0;
     const FrameUpdate left = Extend(Step(std::move(path), SuggestedMove::kLeft), left_view);
-    const bool left_better =
-        ScoreForTruth(left, in_.expected) > ScoreForTruth(right, in_.expected);
+    const bool left_better = ScoreForTruth(left, in_.expected) > ScoreForTruth(right, in_.expected);
     latest_view = left_better ? left_view : right_view;
     return left_better ? left : right;
   }
 
   // `path` with its next view, `move`'s way from its latest.
   Path Step(Path path, SuggestedMove move) const {
-    const int next = NextActiveView(in_.azimuths, path.views.back(), move, in_.step,
-                                    path.direction);
+    const int next =
+        NextActiveView(in_.azimuths, path.views.back(), move, in_.step, path.direction);
     const double azimuth =
         NormaliseAzimuth(in_.azimuths[next] + offset_ + noise_[path.frames.size()]);
     path.views.push_back(next);
@@ -575,18 +573,27 @@ TaskQuery ProtocolQuery(const TrialGrid::Task& t, const EvaluationDataset& datas
     int latest_view = trial.views.back();
     Answer answer;
     if (options.active_step > 0) {
-      ActiveQueryInput active{&models[t.variant].models, t.object, is_known,
-                              is_known ? object_id : 0, models[t.variant].full_index,
-                              azimuths, nullptr, trial_seed, n, options.active_step,
-                              options.active_policy, options.use_orientation, options.index};
+      ActiveQueryInput active{&models[t.variant].models,
+                              t.object,
+                              is_known,
+                              is_known ? object_id : 0,
+                              models[t.variant].full_index,
+                              azimuths,
+                              nullptr,
+                              trial_seed,
+                              n,
+                              options.active_step,
+                              options.active_policy,
+                              options.use_orientation,
+                              options.index};
       active.frame = [&frame, d](int view) { return frame(view, d, std::nullopt); };
       answer.update = ActiveQuery(engine, active).Run(latest_view);
     } else {
       std::vector<QueryFrame> frames;
       for (std::size_t k = 0; k < trial.views.size(); ++k) {
-        frames.push_back(frame(trial.views[k], d,
-                               options.use_orientation ? std::optional<double>(trial.azimuths[k])
-                                                       : std::nullopt));
+        frames.push_back(frame(
+            trial.views[k], d,
+            options.use_orientation ? std::optional<double>(trial.azimuths[k]) : std::nullopt));
       }
       answer.update = engine.ObserveSequence(snapshot, frames);
     }
@@ -715,9 +722,9 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   const std::vector<VariantModels> models = BuildModels(dataset, described, options);
   for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
 
-  const TrialGrid grid{options.variants.size(),     dataset.object_count(),
+  const TrialGrid grid{options.variants.size(),      dataset.object_count(),
                        options.query_lengths.size(), static_cast<std::size_t>(options.trials),
-                       options.distortions.size(),  options.methods.size()};
+                       options.distortions.size(),   options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
   const std::vector<Outcome> outcomes =
       RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
@@ -798,10 +805,10 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
              auto& frame = queries[i - known.size()];
              frame.assign(options.variants.size(), {});
              for (const DistortionSpec& distortion : options.distortions) {
-               const cv::Mat query = distortion.steps.empty()
-                                         ? image
-                                         : ApplyDistortion(image, distortion,
-                                                           ImageNoiseSeed(options.seed, i));
+               const cv::Mat query =
+                   distortion.steps.empty()
+                       ? image
+                       : ApplyDistortion(image, distortion, ImageNoiseSeed(options.seed, i));
                for (std::size_t v = 0; v < options.variants.size(); ++v) {
                  frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
                }
@@ -814,12 +821,12 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
 
   // Step 3: one task per (variant, sequence, n): the sequence's first n frames, asked against
   // the full index; a sequence shorter than n asks nothing.
-  const TrialGrid grid{options.variants.size(),     sequences.size(),
+  const TrialGrid grid{options.variants.size(),      sequences.size(),
                        options.query_lengths.size(), 1,
-                       options.distortions.size(),  options.methods.size()};
+                       options.distortions.size(),   options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
-  const std::vector<Outcome> outcomes = RunTasks(
-      grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
+  const std::vector<Outcome> outcomes =
+      RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
         const CapturedSequence* sequence = &sequences[t.object];
         const int n = options.query_lengths[t.n_slot];
         TaskQuery query;
@@ -829,10 +836,10 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
           std::vector<QueryFrame> frames;
           for (int k = 0; k < n; ++k) {
             const std::size_t f = sequence->frames[static_cast<std::size_t>(k)];
-            frames.push_back(WithReadings(
-                {{options.variants[t.variant], queries[f][t.variant][d]},
-                 options.use_orientation ? captures[f].azimuth : std::nullopt},
-                quality[f][d], options));
+            frames.push_back(
+                WithReadings({{options.variants[t.variant], queries[f][t.variant][d]},
+                              options.use_orientation ? captures[f].azimuth : std::nullopt},
+                             quality[f][d], options));
           }
           return Answer{engine.ObserveSequence(models[t.variant].full_index, frames), {}};
         };

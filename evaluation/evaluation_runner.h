@@ -1,14 +1,14 @@
 // EvaluationRunner: runs the evaluation protocol (evaluation/evaluation_protocol.h,
-// docs/design.md#evaluation-protocol) on a dataset of images and counts hits per method x descriptor variant
-// x distortion x query length n. The engine of `orbit eval`.
+// docs/design.md#evaluation-protocol) on a dataset of images and counts hits per method x
+// descriptor variant x distortion x query length n. The engine of `orbit eval`.
 //
 // What it does, in order:
 //   1. reads every image once and, for each variant, on all threads, describes it as a model
-//      view exactly as every enrollment path does (DescribeImage: core/descriptor/view_description.h,
-//      DescribeView with `seed` as the base of the seed rule: CEDD, motion-blurred copy, typical
-//      distance), and computes its query under each distortion (evaluation/distortion_spec.h),
-//      whose noise is drawn with ImageNoiseSeed(seed, i), so reruns see the same noise. The DF
-//      query is the view's CEDD, the MB query its motion-blurred copy;
+//      view exactly as every enrollment path does (DescribeImage:
+//      core/descriptor/view_description.h, DescribeView with `seed` as the base of the seed rule:
+//      CEDD, motion-blurred copy, typical distance), and computes its query under each distortion
+//      (evaluation/distortion_spec.h), whose noise is drawn with ImageNoiseSeed(seed, i), so reruns
+//      see the same noise. The DF query is the view's CEDD, the MB query its motion-blurred copy;
 //   2. builds each known object's model from its images' model views of step 1, and the index
 //      of all known objects, whose memory the report gives;
 //   3. runs the trials, one task per (variant, object, n, trial), spread over the threads: each
@@ -32,16 +32,16 @@
 #include <vector>
 
 #include "client/frame_quality.h"
+#include "core/base/parallel_for.h"
+#include "core/descriptor/descriptor.h"
+#include "core/engines/engine_registry.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
+#include "core/index/object_model.h"
+#include "core/index/view_index.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_spec.h"
-#include "core/descriptor/descriptor.h"
 #include "evaluation/evaluation_protocol.h"
-#include "core/index/object_model.h"
-#include "core/engines/engine_registry.h"
-#include "core/engines/recognition_engine.h"
-#include "core/base/parallel_for.h"
-#include "core/engines/product_pipeline.h"
-#include "core/index/view_index.h"
 
 namespace orbit {
 
@@ -64,7 +64,6 @@ enum class ActivePolicy {
 std::string_view ActivePolicyName(ActivePolicy policy);
 std::optional<ActivePolicy> ParseActivePolicy(std::string_view name);
 
-
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
   // Engine names (EngineNames()) and kProductMethod, the product pipeline (core/
@@ -84,18 +83,18 @@ struct EvaluationOptions {
   // does not measure them (`--quality-reading ignore`); the calibrated rule then makes no
   // allowance for degraded frames (core/decision/quality_allowance.h).
   bool use_quality_reading = true;
-  std::uint64_t seed = 1;                         // every random draw derives from it
-  // Active vision (`orbit eval --active`, docs/design.md#other-query-modes): 0 for the protocol's random views; else
-  // each query takes the protocol's first two views, then each next view this many degrees
-  // from its latest in the direction the method's latest update suggested (NextActiveView,
-  // evaluation/evaluation_protocol.h), in capture order. Known objects' models lack the views near
-  // every view taken so far, at each step.
+  std::uint64_t seed = 1;  // every random draw derives from it
+  // Active vision (`orbit eval --active`, docs/design.md#other-query-modes): 0 for the protocol's
+  // random views; else each query takes the protocol's first two views, then each next view this
+  // many degrees from its latest in the direction the method's latest update suggested
+  // (NextActiveView, evaluation/evaluation_protocol.h), in capture order. Known objects' models
+  // lack the views near every view taken so far, at each step.
   double active_step = 0;
   // With active_step: which way each step goes (ActivePolicy).
   ActivePolicy active_policy = ActivePolicy::kFollowMoves;
-  ViewIndexOptions index;   // search mode (exact or kd-tree) and FLANN's parameters
-  EngineOptions engine;     // the engines' options; the window is raised to the largest n
-  int threads = 0;          // worker threads; 0: every CPU this process may run on
+  ViewIndexOptions index;  // search mode (exact or kd-tree) and FLANN's parameters
+  EngineOptions engine;    // the engines' options; the window is raised to the largest n
+  int threads = 0;         // worker threads; 0: every CPU this process may run on
   // Called from the worker threads (never concurrently) as work completes: the stage
   // ("descriptors" or "trials"), tasks done and tasks in the stage. May be empty.
   std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;
@@ -123,13 +122,13 @@ struct EvaluationCell {
   DescriptorVariant variant = DescriptorVariant::kCeddLire;
   std::string distortion = "df";  // the DistortionSpec's name
   int n = 0;
-  int trials = 0;           // queries of known objects
-  int hits = 0;             // ... whose top-1 object was right
-  int accepted = 0;         // ... whose top-1 object was right and was accepted (kAccept)
-  int accepted_wrong = 0;   // ... whose top-1 object was wrong and was accepted
-  int unknown_trials = 0;   // queries of unknown objects
-  int rejected = 0;         // ... answered kUnknown
-  double seconds = 0;       // wall-clock time in ObserveSequence over all queries counted here
+  int trials = 0;          // queries of known objects
+  int hits = 0;            // ... whose top-1 object was right
+  int accepted = 0;        // ... whose top-1 object was right and was accepted (kAccept)
+  int accepted_wrong = 0;  // ... whose top-1 object was wrong and was accepted
+  int unknown_trials = 0;  // queries of unknown objects
+  int rejected = 0;        // ... answered kUnknown
+  double seconds = 0;      // wall-clock time in ObserveSequence over all queries counted here
   std::vector<QueryVerdict> verdicts;  // every query counted here, known and unknown
 
   double hit_rate() const { return trials > 0 ? double(hits) / trials : 0; }
@@ -166,15 +165,15 @@ struct EvaluationReport {
   std::size_t query_sequences = 0;
   std::size_t query_frames = 0;
   std::uint64_t seed = 0;
-  int threads = 0;                  // worker threads used
+  int threads = 0;  // worker threads used
   SearchMode search = SearchMode::kExact;
-  bool use_orientation = true;      // as the options said
-  double active_step = 0;           // as the options said
+  bool use_orientation = true;                              // as the options said
+  double active_step = 0;                                   // as the options said
   ActivePolicy active_policy = ActivePolicy::kFollowMoves;  // as the options said
-  ViewIndexOptions index;           // as used
-  EngineOptions engine;             // as used (window raised to the largest n)
-  double descriptor_seconds = 0;    // wall-clock time of step 1
-  double trial_seconds = 0;         // wall-clock time of step 3
+  ViewIndexOptions index;                                   // as used
+  EngineOptions engine;           // as used (window raised to the largest n)
+  double descriptor_seconds = 0;  // wall-clock time of step 1
+  double trial_seconds = 0;       // wall-clock time of step 3
 };
 
 // The seed of the noise of image i's queries (ApplyDistortion's seed).

@@ -93,7 +93,8 @@ std::string ReliabilityMarkdown(const EvaluationReport& report) {
   out << "\n### Reliability of the confidence: every update of known and unknown queries, all "
          "distortions and n (right = a known query whose top-1 object is right)\n";
   for (const std::string& key : order) {
-    out << "\n" << key << "\n\n| confidence | updates | mean confidence | right (%) |\n"
+    out << "\n"
+        << key << "\n\n| confidence | updates | mean confidence | right (%) |\n"
         << "|---|---|---|---|\n";
     for (const ReliabilityBin& bin : Reliability(by_method[key])) {
       if (bin.updates == 0) continue;
@@ -107,11 +108,12 @@ std::string ReliabilityMarkdown(const EvaluationReport& report) {
 }
 
 LineFigure RecognitionCurves(const EvaluationReport& report) {
-  static constexpr double kTargets[] = {0.001, 0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3,
-                                        0.4,   0.5,  0.7,  0.85, 1.0};
+  static constexpr double kTargets[] = {0.001, 0.01, 0.02, 0.05, 0.1,  0.15, 0.2,
+                                        0.3,   0.4,  0.5,  0.7,  0.85, 1.0};
   LineFigure figure;
-  figure.title = "Known queries right and accepted against unknown queries accepted, as the "
-                 "target false-accept rate goes from 0.001 to 1";
+  figure.title =
+      "Known queries right and accepted against unknown queries accepted, as the "
+      "target false-accept rate goes from 0.001 to 1";
   std::map<std::string, std::size_t> panel_of;
   for (const EvaluationCell& cell : report.cells) {
     if (cell.trials == 0 || cell.unknown_trials == 0) continue;
@@ -139,8 +141,9 @@ LineFigure RecognitionCurves(const EvaluationReport& report) {
     figure.panels[at->second].series.push_back(std::move(series));
   }
   if (figure.panels.empty()) {
-    throw std::invalid_argument("the recognition curves need known and unknown queries "
-                                "(orbit eval --unknown-objects)");
+    throw std::invalid_argument(
+        "the recognition curves need known and unknown queries "
+        "(orbit eval --unknown-objects)");
   }
   figure.columns = static_cast<int>(std::min<std::size_t>(figure.panels.size(), 3));
   return figure;

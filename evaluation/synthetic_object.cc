@@ -10,13 +10,13 @@
 namespace orbit {
 namespace {
 
-constexpr int kTexture = 256;          // side of a face texture, pixels
-constexpr double kHalfWidth = 0.8;     // box half-width, cylinder radius
+constexpr int kTexture = 256;       // side of a face texture, pixels
+constexpr double kHalfWidth = 0.8;  // box half-width, cylinder radius
 constexpr double kHalfHeight = 1.0;
 constexpr double kCameraDistance = 5;  // from the object's centre
 constexpr double kElevationDeg = 20;   // the camera looks slightly down
 constexpr double kHalfFieldDeg = 18;
-constexpr int kSupersampling = 2;      // rendered at twice the size, then averaged down
+constexpr int kSupersampling = 2;  // rendered at twice the size, then averaged down
 
 // --- Face textures -----------------------------------------------------------------------
 

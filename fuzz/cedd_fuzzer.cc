@@ -1,5 +1,5 @@
-// Fuzz target: the CEDD extractor (core/descriptor/cedd.h, ExtractCedd) on arbitrary pixels: any size up
-// to 128 x 128 (a COIL-100 image; past LIRE's grid modes at 40 and 80 pixels and the full
+// Fuzz target: the CEDD extractor (core/descriptor/cedd.h, ExtractCedd) on arbitrary pixels: any
+// size up to 128 x 128 (a COIL-100 image; past LIRE's grid modes at 40 and 80 pixels and the full
 // variant's one block per pixel under 40), any type (the three it takes and two it must refuse),
 // either variant, with or without a region (inside the image or not), in a continuous buffer or
 // as a view into a wider one.
@@ -10,8 +10,8 @@
 // there are none).
 //
 // Checked beyond "no crash": only std::invalid_argument is thrown, for the types and regions
-// core/descriptor/cedd.h refuses and no others; the descriptor has the requested variant and values in
-// 0..7; and the CEDD of a region, or of an image held as a view into a wider buffer, equals the
+// core/descriptor/cedd.h refuses and no others; the descriptor has the requested variant and values
+// in 0..7; and the CEDD of a region, or of an image held as a view into a wider buffer, equals the
 // CEDD of a continuous copy of the same pixels.
 #include <cstddef>
 #include <cstdint>
@@ -55,8 +55,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     }
   }
 
-  const bool roi_inside = roi && roi->width > 0 && roi->height > 0 &&
-                          (*roi & cv::Rect(0, 0, width, height)) == *roi;
+  const bool roi_inside =
+      roi && roi->width > 0 && roi->height > 0 && (*roi & cv::Rect(0, 0, width, height)) == *roi;
   const bool accepted = accepted_type && (!roi || roi_inside);
   Descriptor descriptor;
   try {

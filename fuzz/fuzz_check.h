@@ -7,10 +7,10 @@
 
 // A property the code promises, checked on every input: when it fails, the target aborts, which
 // libFuzzer (and the replay driver) report as a crash with this message.
-#define ORBIT_FUZZ_CHECK(condition)                                                        \
-  do {                                                                                     \
-    if (!(condition)) {                                                                    \
+#define ORBIT_FUZZ_CHECK(condition)                                                           \
+  do {                                                                                        \
+    if (!(condition)) {                                                                       \
       std::fprintf(stderr, "%s:%d: fuzz check failed: %s\n", __FILE__, __LINE__, #condition); \
-      std::abort();                                                                        \
-    }                                                                                      \
+      std::abort();                                                                           \
+    }                                                                                         \
   } while (false)

@@ -36,7 +36,8 @@ namespace {
 // A scratch folder of this process, removed at exit.
 const std::filesystem::path& ScratchFolder() {
   static const std::filesystem::path folder = [] {
-    std::string pattern = (std::filesystem::temp_directory_path() / "orbit-manifest-fuzz-XXXXXX").string();
+    std::string pattern =
+        (std::filesystem::temp_directory_path() / "orbit-manifest-fuzz-XXXXXX").string();
     ORBIT_FUZZ_CHECK(mkdtemp(pattern.data()) != nullptr);
     std::atexit([] { std::filesystem::remove_all(ScratchFolder()); });
     return std::filesystem::path(pattern);

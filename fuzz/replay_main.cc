@@ -25,7 +25,8 @@ namespace {
 bool Run(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) return false;
-  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::vector<char> bytes((std::istreambuf_iterator<char>(in)),
+                                std::istreambuf_iterator<char>());
   if (in.bad()) return false;
   // A copy of its own, as libFuzzer gives each input: reads past its end are caught by ASan.
   std::vector<std::uint8_t> input(bytes.begin(), bytes.end());

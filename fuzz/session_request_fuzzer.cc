@@ -83,7 +83,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (!server::ToQueryFrame(frame, kVariant, limits, &query).ok()) return 0;
     ORBIT_FUZZ_CHECK(!query.azimuth || std::isfinite(*query.azimuth));
     ORBIT_FUZZ_CHECK(query.descriptor.variant == kVariant);
-    for (std::uint8_t value : query.descriptor.values) ORBIT_FUZZ_CHECK(value <= kDescriptorMaxValue);
+    for (std::uint8_t value : query.descriptor.values)
+      ORBIT_FUZZ_CHECK(value <= kDescriptorMaxValue);
     FrameUpdate update;
     try {
       update = engine->Observe(index, query);

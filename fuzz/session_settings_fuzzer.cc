@@ -21,7 +21,8 @@
 
 namespace {
 
-bool SameSettings(const orbit::server::SessionSettings& a, const orbit::server::SessionSettings& b) {
+bool SameSettings(const orbit::server::SessionSettings& a,
+                  const orbit::server::SessionSettings& b) {
   const orbit::EngineOptions &x = a.options, &y = b.options;
   return a.engine == b.engine && x.window == y.window && x.list_length == y.list_length &&
          x.orientation_weight == y.orientation_weight && x.hmm_states == y.hmm_states &&

@@ -54,7 +54,8 @@ cv::Mat Picture(int width, int height, int type) {
         int v = (x * 255 / std::max(1, width - 1) + c * 60 + rng.uniform(0, 20)) % 256;
         if (x > width / 3 && x < 2 * width / 3 && y > height / 3 && y < 2 * height / 3) v = 240;
         if (image.depth() == CV_16U) {
-          image.ptr<std::uint16_t>(y)[x * image.channels() + c] = static_cast<std::uint16_t>(v * 257);
+          image.ptr<std::uint16_t>(y)[x * image.channels() + c] =
+              static_cast<std::uint16_t>(v * 257);
         } else {
           image.ptr<std::uint8_t>(y)[x * image.channels() + c] = static_cast<std::uint8_t>(v);
         }
@@ -80,8 +81,8 @@ std::string BigEndian32(std::uint32_t value) {
 
 std::string PngChunk(const std::string& type, const std::string& data) {
   const std::string body = type + data;
-  const auto crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()),
-                         static_cast<uInt>(body.size()));
+  const auto crc =
+      crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size()));
   return BigEndian32(static_cast<std::uint32_t>(data.size())) + body +
          BigEndian32(static_cast<std::uint32_t>(crc));
 }
@@ -129,7 +130,8 @@ void WriteImageSeeds() {
   // Adam7-interlaced 1x1 RGB: only the first pass has a pixel.
   Write(t, "png-interlaced-1x1", HandMadePng(1, 1, 8, 2, 1, std::string("\0\x10\x20\x30", 4)));
 
-  Write(t, "jpeg-colour-16x16", Encode(".jpg", Picture(16, 16, CV_8UC3), {cv::IMWRITE_JPEG_QUALITY, 50}));
+  Write(t, "jpeg-colour-16x16",
+        Encode(".jpg", Picture(16, 16, CV_8UC3), {cv::IMWRITE_JPEG_QUALITY, 50}));
   Write(t, "jpeg-grey-8x8", Encode(".jpg", Picture(8, 8, CV_8UC1), {cv::IMWRITE_JPEG_QUALITY, 50}));
   Write(t, "jpeg-progressive-16x8",
         Encode(".jpg", Picture(16, 8, CV_8UC3),
@@ -140,8 +142,8 @@ void WriteImageSeeds() {
   // An EXIF segment (APP1) right after SOI holding a thumbnail's frame header of its own, which
   // the header reader must skip.
   const std::string jpeg = Encode(".jpg", Picture(8, 8, CV_8UC3), {cv::IMWRITE_JPEG_QUALITY, 50});
-  const std::string thumbnail_sof = "\xff\xc0" + std::string("\x00\x11\x08\x10\x00\x10\x00\x03", 8) +
-                                    std::string(9, '\x01');
+  const std::string thumbnail_sof =
+      "\xff\xc0" + std::string("\x00\x11\x08\x10\x00\x10\x00\x03", 8) + std::string(9, '\x01');
   Write(t, "jpeg-exif-thumbnail-sof",
         jpeg.substr(0, 2) + JpegSegment(0xe1, std::string("Exif\0\0", 6) + thumbnail_sof) +
             jpeg.substr(2));
@@ -149,12 +151,15 @@ void WriteImageSeeds() {
   // Edges: a header above the fuzzers' 512 x 512 budget, a header without data, a JPEG of 257
   // empty scans (above the scan limit), a JPEG that ends before its frame header.
   Write(t, "edge-png-over-budget",
-        kPngSignature + PngChunk("IHDR", BigEndian32(513) + BigEndian32(512) +
-                                             std::string("\x08\x02\x00\x00\x00", 5)) +
+        kPngSignature +
+            PngChunk("IHDR",
+                     BigEndian32(513) + BigEndian32(512) + std::string("\x08\x02\x00\x00\x00", 5)) +
             PngChunk("IEND", ""));
   Write(t, "edge-png-truncated", Encode(".png", Picture(16, 12, CV_8UC3)).substr(0, 50));
-  std::string scans = "\xff\xd8" + JpegSegment(0xc0, std::string("\x08\x00\x08\x00\x08\x01\x01\x11\x00", 9));
-  for (int i = 0; i < 257; ++i) scans += JpegSegment(0xda, std::string("\x01\x01\x00\x00\x3f\x00", 6));
+  std::string scans =
+      "\xff\xd8" + JpegSegment(0xc0, std::string("\x08\x00\x08\x00\x08\x01\x01\x11\x00", 9));
+  for (int i = 0; i < 257; ++i)
+    scans += JpegSegment(0xda, std::string("\x01\x01\x00\x00\x3f\x00", 6));
   Write(t, "edge-jpeg-257-scans", scans + "\xff\xd9");
   Write(t, "edge-jpeg-no-sof", jpeg.substr(0, jpeg.find("\xff\xc0")));
 }
@@ -181,10 +186,14 @@ std::string Serialized(const google::protobuf::Message& message) {
 void WriteSessionSeeds() {
   const std::string t = "session_request";
   const std::vector<std::pair<orbit::v1::Engine, std::string>> engines = {
-      {orbit::v1::ENGINE_UNSPECIFIED, "default"}, {orbit::v1::ENGINE_VCI, "vci"},
-      {orbit::v1::ENGINE_HMM, "hmm"},             {orbit::v1::ENGINE_VCI_HMM, "vci-hmm"},
-      {orbit::v1::ENGINE_VCI_BM, "vci-bm"},       {orbit::v1::ENGINE_VCI_W0, "vci-w0"},
-      {orbit::v1::ENGINE_EIS, "eis"},             {orbit::v1::ENGINE_SIIS, "siis"},
+      {orbit::v1::ENGINE_UNSPECIFIED, "default"},
+      {orbit::v1::ENGINE_VCI, "vci"},
+      {orbit::v1::ENGINE_HMM, "hmm"},
+      {orbit::v1::ENGINE_VCI_HMM, "vci-hmm"},
+      {orbit::v1::ENGINE_VCI_BM, "vci-bm"},
+      {orbit::v1::ENGINE_VCI_W0, "vci-w0"},
+      {orbit::v1::ENGINE_EIS, "eis"},
+      {orbit::v1::ENGINE_SIIS, "siis"},
       {orbit::v1::ENGINE_EIIS, "eiis"}};
   for (const auto& [engine, name] : engines) {
     RecognizeRequest request;
@@ -310,7 +319,8 @@ void WriteEnrollSeeds() {
   png.mutable_view()->set_azimuth_deg(0);
   png.mutable_view()->set_thumbnail("thumb");
   EnrollRequest jpeg;
-  jpeg.mutable_view()->set_image(Encode(".jpg", Picture(16, 16, CV_8UC3), {cv::IMWRITE_JPEG_QUALITY, 40}));
+  jpeg.mutable_view()->set_image(
+      Encode(".jpg", Picture(16, 16, CV_8UC3), {cv::IMWRITE_JPEG_QUALITY, 40}));
   jpeg.mutable_view()->set_azimuth_deg(90);
   jpeg.mutable_view()->mutable_region()->set_width(8);
   jpeg.mutable_view()->mutable_region()->set_height(8);
@@ -352,8 +362,10 @@ void WriteCeddSeeds() {
   Write(t, "bgr-120x80-full-region-view",
         CeddInput(120, 80, 1, 7, std::string("\x00\x00\x77\x50", 4), pixels));
   Write(t, "grey-128x128", CeddInput(128, 128, 0, 0, "", pixels.substr(0, 1000)));
-  Write(t, "edge-region-outside", CeddInput(10, 10, 1, 2, std::string("\x08\x08\x03\x03", 4), pixels));
-  Write(t, "edge-region-empty", CeddInput(10, 10, 1, 2, std::string("\x01\x01\x00\x03", 4), pixels));
+  Write(t, "edge-region-outside",
+        CeddInput(10, 10, 1, 2, std::string("\x08\x08\x03\x03", 4), pixels));
+  Write(t, "edge-region-empty",
+        CeddInput(10, 10, 1, 2, std::string("\x01\x01\x00\x03", 4), pixels));
   Write(t, "edge-16bit", CeddInput(4, 4, 4, 0, "", pixels.substr(0, 96)));
 }
 
@@ -367,14 +379,15 @@ void WriteManifestSeeds() {
   Write(t, "elevation-quotes-crlf",
         "azimuth, object ,path,elevation\r\n-30,\"mug, red\",\"a \"\"b\"\".png\",12.5\r\n"
         "\r\n390,plate,p.png,\r\n1e-300,plate,q.png,-90\r\n");
-  Write(t, "selection", "1-2" + nul + "3" + nul +
-                            "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,20\nd,o1,30\n");
-  Write(t, "selection-ranges", " 1 , 3-4,2" + nul + "" + nul +
-                                   "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,20\nd,o4,30\n");
+  Write(t, "selection",
+        "1-2" + nul + "3" + nul + "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,20\nd,o1,30\n");
+  Write(t, "selection-ranges",
+        " 1 , 3-4,2" + nul + "" + nul + "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,20\nd,o4,30\n");
   Write(t, "edge-unknown-column", "path,object,azimuth,tilt\na,b,1,2\n");
   Write(t, "edge-bad-azimuth", "path,object,azimuth\na,b,nan\n");
   Write(t, "edge-open-quote", "path,object,azimuth\n\"a,b,1\n");
-  Write(t, "edge-overlap", "1-3" + nul + "2" + nul + "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,5\n");
+  Write(t, "edge-overlap",
+        "1-3" + nul + "2" + nul + "path,object,azimuth\na,o1,0\nb,o2,10\nc,o3,5\n");
   Write(t, "edge-large-range", "1-999999" + nul + "" + nul + "path,object,azimuth\na,o1,0\n");
 }
 

@@ -16,17 +16,13 @@ grpc::Status StatusFromException(const std::exception& error) {
   }
   if (const auto* store = dynamic_cast<const StoreError*>(&error)) {
     switch (store->code()) {
-      case StoreError::Code::kNotFound:
-        return {grpc::StatusCode::NOT_FOUND, error.what()};
+      case StoreError::Code::kNotFound: return {grpc::StatusCode::NOT_FOUND, error.what()};
       case StoreError::Code::kAlreadyExists:
         return {grpc::StatusCode::ALREADY_EXISTS, error.what()};
-      case StoreError::Code::kFull:
-        return {grpc::StatusCode::RESOURCE_EXHAUSTED, error.what()};
+      case StoreError::Code::kFull: return {grpc::StatusCode::RESOURCE_EXHAUSTED, error.what()};
       case StoreError::Code::kBusy:
-      case StoreError::Code::kIo:
-        return {grpc::StatusCode::UNAVAILABLE, error.what()};
-      default:
-        return {grpc::StatusCode::INTERNAL, error.what()};
+      case StoreError::Code::kIo: return {grpc::StatusCode::UNAVAILABLE, error.what()};
+      default: return {grpc::StatusCode::INTERNAL, error.what()};
     }
   }
   return {grpc::StatusCode::INTERNAL, error.what()};
@@ -38,12 +34,9 @@ RefusalReason RefusalReasonOf(const std::exception& error) {
   }
   if (const auto* store = dynamic_cast<const StoreError*>(&error)) {
     switch (store->code()) {
-      case StoreError::Code::kNotFound:
-        return RefusalReason::kUnknownObject;
-      case StoreError::Code::kAlreadyExists:
-        return RefusalReason::kDuplicateName;
-      default:
-        return RefusalReason::kStore;
+      case StoreError::Code::kNotFound: return RefusalReason::kUnknownObject;
+      case StoreError::Code::kAlreadyExists: return RefusalReason::kDuplicateName;
+      default: return RefusalReason::kStore;
     }
   }
   return RefusalReason::kInternal;

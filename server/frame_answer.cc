@@ -14,9 +14,8 @@ namespace orbit::server {
 grpc::Status OpenSession(const v1::SessionOptions& requested, const SessionEnvironment& env,
                          OpenedSession* out, RefusalReason* reason) {
   SessionSettings settings;
-  const grpc::Status resolved =
-      ResolveSessionSettings(requested, env.defaults, env.catalogue.variant(), env.limits,
-                             &settings);
+  const grpc::Status resolved = ResolveSessionSettings(
+      requested, env.defaults, env.catalogue.variant(), env.limits, &settings);
   if (!resolved.ok()) {
     *reason = ReasonOfCheck(resolved, RefusalReason::kSessionLimit);
     return resolved;

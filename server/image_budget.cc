@@ -68,8 +68,8 @@ grpc::Status ReadPngHeader(std::string_view bytes, std::string_view field, Image
       depth_allowed = depth == 8 || depth == 16;
       break;
     default:
-      return Malformed(field, "a PNG whose header gives an unknown colour type " +
-                                  std::to_string(colour));
+      return Malformed(field,
+                       "a PNG whose header gives an unknown colour type " + std::to_string(colour));
   }
   if (!depth_allowed) {
     return Malformed(field, "a PNG whose header gives bit depth " + std::to_string(depth) +

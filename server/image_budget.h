@@ -123,9 +123,10 @@ class DecodeSlots {
 };
 
 // The decode slots every image decoded by this process goes through: one per core
-// (AvailableCpus, core/base/parallel_for.h: the CPUs this process may run on). Decoding is CPU-bound, so more decodes at once
-// than cores would not finish sooner; they would only hold more memory. The worker pool already
-// bounds decodes by its size; these slots keep the bound when --workers is above the core count.
+// (AvailableCpus, core/base/parallel_for.h: the CPUs this process may run on). Decoding is
+// CPU-bound, so more decodes at once than cores would not finish sooner; they would only hold more
+// memory. The worker pool already bounds decodes by its size; these slots keep the bound when
+// --workers is above the core count.
 DecodeSlots& ProcessDecodeSlots();
 
 }  // namespace orbit::server

@@ -16,8 +16,7 @@ grpc::Status DecodeImage(std::string_view bytes, std::string_view field, std::in
   out->slot = ProcessDecodeSlots().Acquire();
   cv::Mat& image = out->pixels;
   // The request's bytes, read in place (imdecode does not write to its input): no copy.
-  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U,
-                        const_cast<char*>(bytes.data()));
+  const cv::Mat encoded(1, static_cast<int>(bytes.size()), CV_8U, const_cast<char*>(bytes.data()));
   try {
     image = cv::imdecode(encoded, cv::IMREAD_UNCHANGED);
   } catch (const cv::Exception&) {

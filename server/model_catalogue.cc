@@ -32,8 +32,9 @@ void ModelCatalogue::Load() {
 
 ObjectSummary ModelCatalogue::Enroll(const Enrollment& enrollment) {
   if (enrollment.variant != variant()) {
-    throw std::invalid_argument("enrollment variant " + std::string(VariantName(enrollment.variant)) +
-                                " differs from the server's " + std::string(VariantName(variant())));
+    throw std::invalid_argument(
+        "enrollment variant " + std::string(VariantName(enrollment.variant)) +
+        " differs from the server's " + std::string(VariantName(variant())));
   }
   MutexLock lock(&write_mutex_);
   const Clock::time_point start = Clock::now();

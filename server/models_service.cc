@@ -54,8 +54,7 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
     case v1::ObjectRef::kName:
       if (auto found = store.Find(ref.name())) return found->id;
       throw StoreError(StoreError::Code::kNotFound, "no object named '" + ref.name() + "'");
-    default:
-      throw std::invalid_argument("object: set its id or its name");
+    default: throw std::invalid_argument("object: set its id or its name");
   }
 }
 
@@ -156,57 +155,61 @@ grpc::ServerReadReactor<v1::EnrollRequest>* ModelsService::Enroll(
 grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* context,
                                                   const v1::AddViewsRequest* request,
                                                   v1::ObjectInfo* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.gate, env_.bulk_pool, env_.metrics,
-                      [this, request, response] {
-    const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-    if (request->views().empty()) {
-      return env_.metrics.Refuse(InvalidArgument("views is empty"), RefusalReason::kInvalidField);
-    }
-    std::vector<ModelView> views;
-    std::vector<std::string> thumbnails;
-    const std::vector<v1::View> wire(request->views().begin(), request->views().end());
-    if (grpc::Status s =
-            ToModelViews(wire, env_.catalogue.variant(), env_.limits, &views, &thumbnails);
-        !s.ok()) {
-      return env_.metrics.Refuse(s, ReasonOfCheck(s, RefusalReason::kImageBudget));
-    }
-    const ObjectSummary summary = env_.catalogue.AddViews(id, views, thumbnails);
-    *response = ToObjectInfo(summary);
-    AddEnrollmentReport(env_.catalogue, summary, response);
-    return grpc::Status::OK;
-  });
+  return RunUnaryCall(
+      context, env_.access, Role::kAdmin, env_.gate, env_.bulk_pool, env_.metrics,
+      [this, request, response] {
+        const ObjectId id = Resolve(env_.catalogue.store(), request->object());
+        if (request->views().empty()) {
+          return env_.metrics.Refuse(InvalidArgument("views is empty"),
+                                     RefusalReason::kInvalidField);
+        }
+        std::vector<ModelView> views;
+        std::vector<std::string> thumbnails;
+        const std::vector<v1::View> wire(request->views().begin(), request->views().end());
+        if (grpc::Status s =
+                ToModelViews(wire, env_.catalogue.variant(), env_.limits, &views, &thumbnails);
+            !s.ok()) {
+          return env_.metrics.Refuse(s, ReasonOfCheck(s, RefusalReason::kImageBudget));
+        }
+        const ObjectSummary summary = env_.catalogue.AddViews(id, views, thumbnails);
+        *response = ToObjectInfo(summary);
+        AddEnrollmentReport(env_.catalogue, summary, response);
+        return grpc::Status::OK;
+      });
 }
 
 grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext* context,
                                                      const v1::ListObjectsRequest* request,
                                                      v1::ListObjectsResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
-                      [this, request, response] {
-    ListRequest page;
-    page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
-    if (page.limit < 1 || page.limit > kMaxPageSize) {
-      return env_.metrics.Refuse(InvalidArgument("page_size must be 1..1000"),
-                                 RefusalReason::kInvalidField);
-    }
-    if (!request->page_token().empty()) {
-      std::size_t used = 0;
-      try {
-        page.after_id = std::stoll(request->page_token(), &used);
-      } catch (const std::exception&) {
-        used = 0;
-      }
-      if (used != request->page_token().size() || page.after_id < 0) {
-        return env_.metrics.Refuse(InvalidArgument("page_token is not one this server gave"),
-                                   RefusalReason::kInvalidField);
-      }
-    }
-    const std::vector<ObjectSummary> objects = env_.catalogue.store().List(page);
-    for (const ObjectSummary& summary : objects) *response->add_objects() = ToObjectInfo(summary);
-    if (static_cast<int>(objects.size()) == page.limit) {
-      response->set_next_page_token(std::to_string(objects.back().id));
-    }
-    return grpc::Status::OK;
-  });
+  return RunUnaryCall(
+      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
+      [this, request, response] {
+        ListRequest page;
+        page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
+        if (page.limit < 1 || page.limit > kMaxPageSize) {
+          return env_.metrics.Refuse(InvalidArgument("page_size must be 1..1000"),
+                                     RefusalReason::kInvalidField);
+        }
+        if (!request->page_token().empty()) {
+          std::size_t used = 0;
+          try {
+            page.after_id = std::stoll(request->page_token(), &used);
+          } catch (const std::exception&) {
+            used = 0;
+          }
+          if (used != request->page_token().size() || page.after_id < 0) {
+            return env_.metrics.Refuse(InvalidArgument("page_token is not one this server gave"),
+                                       RefusalReason::kInvalidField);
+          }
+        }
+        const std::vector<ObjectSummary> objects = env_.catalogue.store().List(page);
+        for (const ObjectSummary& summary : objects)
+          *response->add_objects() = ToObjectInfo(summary);
+        if (static_cast<int>(objects.size()) == page.limit) {
+          response->set_next_page_token(std::to_string(objects.back().id));
+        }
+        return grpc::Status::OK;
+      });
 }
 
 grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* context,
@@ -214,24 +217,26 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
                                                    v1::GetObjectResponse* response) {
   return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
                       [this, request, response] {
-    const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-    const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
-    if (!object) {
-      return env_.metrics.Refuse({grpc::StatusCode::NOT_FOUND, "object deleted meanwhile"},
-                                 RefusalReason::kUnknownObject);
-    }
-    *response->mutable_object() = ToObjectInfo(object->summary);
-    if (request->include_views()) {
-      for (std::size_t i = 0; i < object->views.size(); ++i) {
-        const std::string none;
-        const std::string& thumbnail = request->include_thumbnails() && i < object->thumbnails.size()
-                                           ? object->thumbnails[i]
-                                           : none;
-        *response->add_views() = ToProtoView(object->views[i], thumbnail);
-      }
-    }
-    return grpc::Status::OK;
-  });
+                        const ObjectId id = Resolve(env_.catalogue.store(), request->object());
+                        const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
+                        if (!object) {
+                          return env_.metrics.Refuse(
+                              {grpc::StatusCode::NOT_FOUND, "object deleted meanwhile"},
+                              RefusalReason::kUnknownObject);
+                        }
+                        *response->mutable_object() = ToObjectInfo(object->summary);
+                        if (request->include_views()) {
+                          for (std::size_t i = 0; i < object->views.size(); ++i) {
+                            const std::string none;
+                            const std::string& thumbnail =
+                                request->include_thumbnails() && i < object->thumbnails.size()
+                                    ? object->thumbnails[i]
+                                    : none;
+                            *response->add_views() = ToProtoView(object->views[i], thumbnail);
+                          }
+                        }
+                        return grpc::Status::OK;
+                      });
 }
 
 grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContext* context,
@@ -239,34 +244,35 @@ grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContex
                                                       v1::DeleteObjectResponse* response) {
   return RunUnaryCall(context, env_.access, Role::kAdmin, env_.gate, env_.pool, env_.metrics,
                       [this, request, response] {
-    const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-    *response->mutable_deleted() = ToObjectInfo(env_.catalogue.Delete(id));
-    return grpc::Status::OK;
-  });
+                        const ObjectId id = Resolve(env_.catalogue.store(), request->object());
+                        *response->mutable_deleted() = ToObjectInfo(env_.catalogue.Delete(id));
+                        return grpc::Status::OK;
+                      });
 }
 
 grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext* context,
                                                     const v1::ServerInfoRequest* /*request*/,
                                                     v1::ServerInfoResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
-                      [this, response] {
-    const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-    response->set_version(env_.version);
-    response->set_variant(ToProtoVariant(env_.catalogue.variant()));
-    response->set_object_count(static_cast<std::int64_t>(index->object_count()));
-    response->set_view_count(static_cast<std::int64_t>(index->view_count()));
-    *response->mutable_session_defaults() = DescribeSettings(env_.defaults, env_.catalogue.variant());
-    v1::Limits* limits = response->mutable_limits();
-    limits->set_max_sessions(env_.limits.max_sessions);
-    limits->set_max_frames_per_second(env_.limits.max_frames_per_second);
-    limits->set_max_window(env_.limits.max_window);
-    limits->set_max_message_bytes(env_.limits.max_message_bytes);
-    limits->set_max_views_per_object(static_cast<int>(kMaxViewsPerObject));
-    limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
-    limits->set_max_image_pixels(env_.limits.max_image_pixels);
-    limits->set_max_hmm_cells(env_.limits.max_hmm_cells);
-    return grpc::Status::OK;
-  });
+  return RunUnaryCall(
+      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics, [this, response] {
+        const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
+        response->set_version(env_.version);
+        response->set_variant(ToProtoVariant(env_.catalogue.variant()));
+        response->set_object_count(static_cast<std::int64_t>(index->object_count()));
+        response->set_view_count(static_cast<std::int64_t>(index->view_count()));
+        *response->mutable_session_defaults() =
+            DescribeSettings(env_.defaults, env_.catalogue.variant());
+        v1::Limits* limits = response->mutable_limits();
+        limits->set_max_sessions(env_.limits.max_sessions);
+        limits->set_max_frames_per_second(env_.limits.max_frames_per_second);
+        limits->set_max_window(env_.limits.max_window);
+        limits->set_max_message_bytes(env_.limits.max_message_bytes);
+        limits->set_max_views_per_object(static_cast<int>(kMaxViewsPerObject));
+        limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
+        limits->set_max_image_pixels(env_.limits.max_image_pixels);
+        limits->set_max_hmm_cells(env_.limits.max_hmm_cells);
+        return grpc::Status::OK;
+      });
 }
 
 }  // namespace orbit::server

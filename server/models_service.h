@@ -26,7 +26,7 @@ struct ModelsEnvironment {
   const ServerLimits& limits;
   const SessionSettings& defaults;
   std::string version;
-  ServerMetrics& metrics;  // enrollments and refusals are counted here
+  ServerMetrics& metrics;   // enrollments and refusals are counted here
   const ServingGate& gate;  // closed until the index is loaded: every call refused UNAVAILABLE
 };
 

@@ -9,9 +9,9 @@
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/health_check_service_interface.h>
 
-#include "orbit/version.h"
 #include "core/base/parallel_for.h"
 #include "core/engines/product_pipeline.h"
+#include "orbit/version.h"
 #include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
 #include "server/model_change_follower.h"
@@ -98,16 +98,15 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
       SessionEnvironment{*catalogue_, *calibrator_, *pool_, *bulk_pool_, *registry_, config_.limits,
                          config_.session_defaults, *metrics_, gate_},
       access_);
-  models_ = std::make_unique<ModelsService>(ModelsEnvironment{
-      *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
-      kOrbitVersion, *metrics_, gate_});
+  models_ = std::make_unique<ModelsService>(
+      ModelsEnvironment{*catalogue_, *pool_, *bulk_pool_, access_, config_.limits,
+                        config_.session_defaults, kOrbitVersion, *metrics_, gate_});
   metrics_->WatchSessions(*registry_);
   metrics_->WatchIndex(*catalogue_);
   metrics_->WatchWorkers(*pool_, *bulk_pool_);
   if (!config_.metrics_listen.empty()) {  // before gRPC: a bad address serves nothing at all
     try {
-      metrics_endpoint_ =
-          std::make_unique<MetricsEndpoint>(config_.metrics_listen, *metrics_);
+      metrics_endpoint_ = std::make_unique<MetricsEndpoint>(config_.metrics_listen, *metrics_);
     } catch (const std::exception& e) {
       throw std::runtime_error(std::string("--metrics-listen: ") + e.what());
     }
@@ -147,9 +146,9 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
     };
     follow.on_applied = [lag = &metrics_->change_lag_seconds()](const ModelChange& change) {
       if (const auto committed = CommittedTime(change)) {
-        lag->Observe(std::max(0.0, std::chrono::duration<double>(
-                                       std::chrono::system_clock::now() - *committed)
-                                       .count()));
+        lag->Observe(std::max(
+            0.0,
+            std::chrono::duration<double>(std::chrono::system_clock::now() - *committed).count()));
       }
     };
     follower_ = std::make_unique<ModelChangeFollower>(*shared_store, config_.store, *catalogue_,
@@ -202,7 +201,7 @@ void OrbitServer::Shutdown() {
     server_->Shutdown(std::chrono::system_clock::now() +
                       std::chrono::seconds(config_.shutdown_grace_seconds));
     metrics_endpoint_.reset();  // its scrapes read the pools
-    pool_.reset();  // runs what is queued (calls already cancelled finish harmlessly)
+    pool_.reset();              // runs what is queued (calls already cancelled finish harmlessly)
     bulk_pool_.reset();
   });
 }

@@ -6,8 +6,8 @@
 
 #include "api/conversion.h"
 #include "server/error_status.h"
-#include "server/request_reading.h"
 #include "server/frame_answer.h"
+#include "server/request_reading.h"
 #include "server/unary_call.h"
 
 namespace orbit::server {
@@ -40,36 +40,37 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
   const bool has_image = std::any_of(request->frames().begin(), request->frames().end(),
                                      [](const v1::Frame& frame) { return !frame.image().empty(); });
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
-  return RunUnaryCall(context, access_, Role::kRecognize, env_.gate, workers, env_.metrics,
-                      [this, request, response] {
-    using Clock = std::chrono::steady_clock;
-    ServerMetrics& metrics = env_.metrics;
-    if (request->frames().empty()) {
-      return metrics.Refuse(InvalidArgument("frames is empty"), RefusalReason::kInvalidField);
-    }
-    if (request->frames_size() > kMaxWindow) {
-      return metrics.Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED,
-                             "at most " + std::to_string(kMaxWindow) +
-                                 " frames per Recognize call; stream longer sequences"},
-                            RefusalReason::kRequestSize);
-    }
-    OpenedSession session;
-    RefusalReason reason = RefusalReason::kInternal;
-    if (grpc::Status opened = OpenSession(request->options(), env_, &session, &reason);
-        !opened.ok()) {
-      return metrics.Refuse(opened, reason);
-    }
-    // The batch is answered on the catalogue as it was when the call began.
-    const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
-    for (const v1::Frame& frame : request->frames()) {
-      if (grpc::Status answered = AnswerFrame(frame, Clock::now(), index, env_, session,
-                                              response->add_updates(), &reason);
-          !answered.ok()) {
-        return metrics.Refuse(answered, reason);
-      }
-    }
-    return grpc::Status::OK;
-  });
+  return RunUnaryCall(
+      context, access_, Role::kRecognize, env_.gate, workers, env_.metrics,
+      [this, request, response] {
+        using Clock = std::chrono::steady_clock;
+        ServerMetrics& metrics = env_.metrics;
+        if (request->frames().empty()) {
+          return metrics.Refuse(InvalidArgument("frames is empty"), RefusalReason::kInvalidField);
+        }
+        if (request->frames_size() > kMaxWindow) {
+          return metrics.Refuse({grpc::StatusCode::RESOURCE_EXHAUSTED,
+                                 "at most " + std::to_string(kMaxWindow) +
+                                     " frames per Recognize call; stream longer sequences"},
+                                RefusalReason::kRequestSize);
+        }
+        OpenedSession session;
+        RefusalReason reason = RefusalReason::kInternal;
+        if (grpc::Status opened = OpenSession(request->options(), env_, &session, &reason);
+            !opened.ok()) {
+          return metrics.Refuse(opened, reason);
+        }
+        // The batch is answered on the catalogue as it was when the call began.
+        const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
+        for (const v1::Frame& frame : request->frames()) {
+          if (grpc::Status answered = AnswerFrame(frame, Clock::now(), index, env_, session,
+                                                  response->add_updates(), &reason);
+              !answered.ok()) {
+            return metrics.Refuse(answered, reason);
+          }
+        }
+        return grpc::Status::OK;
+      });
 }
 
 }  // namespace orbit::server

@@ -1,6 +1,6 @@
 // RejectionCalibrator: the server's calibration of the calibrated accept / unknown rule
-// (core/decision/rejection_calibration.h), kept in step with the model set without making sessions wait
-// for it.
+// (core/decision/rejection_calibration.h), kept in step with the model set without making sessions
+// wait for it.
 //
 // Computed once for the index the server starts with (before it serves), then again in the
 // background once a session shows it a snapshot that differs enough from the one it was
@@ -79,7 +79,7 @@ class RejectionCalibrator {
   std::shared_ptr<const RejectionCalibration> calibration_ ABSL_GUARDED_BY(mutex_);
   std::uint64_t calibrated_serial_ ABSL_GUARDED_BY(mutex_) = 0;
   int calibrated_objects_ ABSL_GUARDED_BY(mutex_) = 0;
-  std::shared_ptr<const ViewIndexSnapshot> requested_ ABSL_GUARDED_BY(mutex_);  // null: none
+  std::shared_ptr<const ViewIndexSnapshot> requested_ ABSL_GUARDED_BY(mutex_);     // null: none
   std::chrono::steady_clock::time_point first_requested_ ABSL_GUARDED_BY(mutex_);  // pending since
   bool stop_ ABSL_GUARDED_BY(mutex_) = false;
   std::thread thread_;

@@ -5,10 +5,10 @@
 #include <stdexcept>
 
 #include "api/conversion.h"
-#include "core/descriptor/cedd.h"
-#include "core/descriptor/query_frame.h"
 #include "core/descriptor/blur_estimate.h"
+#include "core/descriptor/cedd.h"
 #include "core/descriptor/noise_estimate.h"
+#include "core/descriptor/query_frame.h"
 #include "core/descriptor/view_description.h"
 #include "server/error_status.h"
 #include "server/image_decoding.h"
@@ -27,7 +27,8 @@ grpc::Status ReadCedd(const std::string& bytes, std::string_view field, Descript
 }
 
 grpc::Status CheckFinite(double value, std::string_view field) {
-  if (!std::isfinite(value)) return InvalidArgument(std::string(field) + " must be a finite number");
+  if (!std::isfinite(value))
+    return InvalidArgument(std::string(field) + " must be a finite number");
   return grpc::Status::OK;
 }
 
@@ -40,8 +41,8 @@ struct RequestImage {
 // Decodes the encoded image `bytes` (the request's `field`) within limits.max_image_pixels
 // (server/image_decoding.h) and resolves its region of interest.
 grpc::Status ReadRequestImage(const std::string& bytes, std::string_view field,
-                              const ServerLimits& limits, const v1::Region& region,
-                              bool has_region, RequestImage* out) {
+                              const ServerLimits& limits, const v1::Region& region, bool has_region,
+                              RequestImage* out) {
   if (auto s = DecodeImage(bytes, field, limits.max_image_pixels, &out->decoded); !s.ok()) {
     return s;
   }
@@ -73,7 +74,8 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 
 grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
                           const ServerLimits& limits, QueryFrame* out) {
-  out->azimuth = frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
+  out->azimuth =
+      frame.has_azimuth_deg() ? std::optional<double>(frame.azimuth_deg()) : std::nullopt;
   out->noise_sigma.reset();
   out->blur.reset();
   if (frame.has_quality()) {

@@ -12,8 +12,8 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include "core/index/object_model.h"
 #include "core/engines/recognition_engine.h"
+#include "core/index/object_model.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
 #include "server/session_settings.h"
@@ -30,17 +30,17 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 // the process's decode slots, held until the descriptor is computed) and its CEDD (of `region`
 // when set, which must lie inside it) computed in the server's variant. The azimuth must be
 // finite; quality.noise_sigma, when quality is set, in [0, 255] and quality.blur in [0, 1] (the
-// calibrated rule's allowance reads them, core/decision/quality_allowance.h). An image frame without
-// quality has both measured here, on the region.
+// calibrated rule's allowance reads them, core/decision/quality_allowance.h). An image frame
+// without quality has both measured here, on the region.
 grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
                           const ServerLimits& limits, QueryFrame* out);
 
 // A view as the store keeps it. With `cedd`, the typical distance is taken from the message
 // (0, unknown, when absent; else it must be in [0, 1]); with `image` (within `limits` as a
 // frame's image is), the server describes the image (or its region) as every enrollment path
-// does (core/descriptor/view_description.h, DescribeView with the default seed), so an uploaded image stores
-// what the client library would have sent. `thumbnail` receives the view's thumbnail bytes (at
-// most 64 KiB).
+// does (core/descriptor/view_description.h, DescribeView with the default seed), so an uploaded
+// image stores what the client library would have sent. `thumbnail` receives the view's thumbnail
+// bytes (at most 64 KiB).
 grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
                          const ServerLimits& limits, ModelView* out, std::string* thumbnail);
 

@@ -23,8 +23,8 @@ bool IsLoopbackAddress(const std::string& host_and_port) {
 void ValidateServerConfig(const ServerConfig& config) {
   if (grpc::Status s = CheckHmmCells(config.session_defaults, config.limits); !s.ok()) {
     const EngineOptions& o = config.session_defaults.options;
-    throw std::invalid_argument("the default session (window " + std::to_string(o.window) +
-                                " x " + std::to_string(o.hmm_states) +
+    throw std::invalid_argument("the default session (window " + std::to_string(o.window) + " x " +
+                                std::to_string(o.hmm_states) +
                                 " HMM states) is above --max-hmm-cells " +
                                 std::to_string(config.limits.max_hmm_cells));
   }
@@ -60,14 +60,14 @@ std::string DescribeStore(const ServerConfig& config) {
 std::string ServerConfig::Describe() const {
   const SessionSettings& d = session_defaults;
   std::ostringstream out;
-  out << "orbit serve " << "configuration:\n"
+  out << "orbit serve "
+      << "configuration:\n"
       << "  model store         " << DescribeStore(*this) << "\n";
   if (!store.empty()) {
     out << "  store grace         " << store_grace_seconds
         << " s (then NOT_SERVING until the store answers)\n";
   }
-  out
-      << "  listen              " << listen << "\n"
+  out << "  listen              " << listen << "\n"
       << "  access control      "
       << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"
       << "  tls                 "
@@ -84,26 +84,26 @@ std::string ServerConfig::Describe() const {
                     std::to_string(index.kd_checks) + " checks)"
               : std::string("exact"))
       << "\n"
-      << "  session defaults    engine " << SessionEngineName(d.engine) << ", top-k " << d.options.top_k
-      << ", window " << d.options.window << ", w " << d.options.orientation_weight << ", N_L "
-      << d.options.list_length << ", HMM states " << d.options.hmm_states << ", HMM sharpness "
-      << d.options.hmm_sharpness << ", rejection " << RejectionRuleName(d.options.rejection);
+      << "  session defaults    engine " << SessionEngineName(d.engine) << ", top-k "
+      << d.options.top_k << ", window " << d.options.window << ", w "
+      << d.options.orientation_weight << ", N_L " << d.options.list_length << ", HMM states "
+      << d.options.hmm_states << ", HMM sharpness " << d.options.hmm_sharpness << ", rejection "
+      << RejectionRuleName(d.options.rejection);
   if (d.options.rejection == RejectionRule::kCalibrated) {
     out << " (false-accept rate " << d.options.false_accept_rate << ")\n";
   } else {
     out << " (Th " << d.options.threshold << ")\n";
   }
-  out
-      << "  limits              " << limits.max_sessions << " sessions, "
-      << limits.max_frames_per_second << " frames/s per session, window <= "
-      << limits.max_window << ", HMM window x states <= " << limits.max_hmm_cells
-      << ", messages <= " << limits.max_message_bytes << " bytes, images <= "
-      << limits.max_image_pixels << " pixels, idle "
+  out << "  limits              " << limits.max_sessions << " sessions, "
+      << limits.max_frames_per_second << " frames/s per session, window <= " << limits.max_window
+      << ", HMM window x states <= " << limits.max_hmm_cells
+      << ", messages <= " << limits.max_message_bytes
+      << " bytes, images <= " << limits.max_image_pixels << " pixels, idle "
       << limits.idle_timeout_seconds << " s\n"
-      << "  workers             " << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
+      << "  workers             "
+      << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
       << ", for images and enrollments "
-      << (bulk_worker_threads > 0 ? std::to_string(bulk_worker_threads) : "half the cores")
-      << "\n"
+      << (bulk_worker_threads > 0 ? std::to_string(bulk_worker_threads) : "half the cores") << "\n"
       << "  shutdown grace      " << shutdown_grace_seconds << " s\n"
       << "  metrics             "
       << (metrics_listen.empty() ? std::string("off")

@@ -12,7 +12,7 @@
 namespace orbit::server {
 
 struct ServerConfig {
-  std::filesystem::path database;           // the SQLite model store; created when missing
+  std::filesystem::path database;  // the SQLite model store; created when missing
   // A PostgreSQL model store instead (storage/postgres_model_store.h): a libpq connection
   // string, postgresql://USER:PASSWORD@HOST:PORT/DBNAME or "host=... dbname=...". Several
   // servers may share it. Empty: the SQLite store in `database`.
@@ -20,7 +20,7 @@ struct ServerConfig {
   // With `store`: how long the replica may lose the store before its health reports
   // NOT_SERVING (its models may be stale; server/model_change_follower.h).
   int store_grace_seconds = 10;
-  std::string listen = "127.0.0.1:50051";   // HOST:PORT; port 0 picks a free port
+  std::string listen = "127.0.0.1:50051";            // HOST:PORT; port 0 picks a free port
   std::optional<std::filesystem::path> tokens_file;  // server/access_control.h
   std::optional<std::filesystem::path> tls_cert;     // PEM certificate chain (with tls_key)
   std::optional<std::filesystem::path> tls_key;      // PEM private key
@@ -28,13 +28,13 @@ struct ServerConfig {
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;
   // Of every model and session. Unset: the variant of the objects the store holds (StoreVariant),
-  // or the product's (core/engines/product_pipeline.h: cedd-robust) for an empty store, so a store built
-  // with an older default keeps serving without a flag.
+  // or the product's (core/engines/product_pipeline.h: cedd-robust) for an empty store, so a store
+  // built with an older default keeps serving without a flag.
   std::optional<DescriptorVariant> variant;
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;
-  int worker_threads = 0;          // descriptor frames and short calls; 0: one per core
+  int worker_threads = 0;  // descriptor frames and short calls; 0: one per core
   // Work that may take long: frames and views sent as images (decoding), enrollments and added
   // views (describing, the store's fsync). On workers of its own, so that it never delays
   // another session's descriptor frames. 0: half the cores, at least one.

@@ -20,28 +20,32 @@ namespace {
 
 // A descriptor frame costs tens of microseconds, an image frame milliseconds to a few hundred
 // (decoding up to --max-image-pixels); a scrape interval holds hundreds of thousands of frames.
-const prometheus::Histogram::BucketBoundaries kFrameBounds = {1e-5, 2.5e-5, 5e-5,  1e-4, 2.5e-4, 5e-4, 1e-3, 2.5e-3,
-                                          5e-3, 0.01,   0.025, 0.05, 0.1,    0.25, 0.5,  1};
+const prometheus::Histogram::BucketBoundaries kFrameBounds = {
+    1e-5, 2.5e-5, 5e-5,  1e-4, 2.5e-4, 5e-4, 1e-3, 2.5e-3,
+    5e-3, 0.01,   0.025, 0.05, 0.1,    0.25, 0.5,  1};
 // An enrollment describes up to hundreds of images and syncs the store: milliseconds to seconds.
-const prometheus::Histogram::BucketBoundaries kEnrollmentBounds = {0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1,
-                                               0.25,  0.5,    1,     2.5,  5,     10,   30};
+const prometheus::Histogram::BucketBoundaries kEnrollmentBounds = {
+    0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30};
 // One SQLite transaction with synchronous=FULL: an fsync or two, a fraction of a millisecond on
 // an SSD, tens of milliseconds on a disk or a busy store.
-const prometheus::Histogram::BucketBoundaries kStoreWriteBounds = {1e-4,  2.5e-4, 5e-4, 0.001, 0.0025, 0.005, 0.01,
-                                               0.025, 0.05,   0.1,  0.25,  0.5,    1,     5};
+const prometheus::Histogram::BucketBoundaries kStoreWriteBounds = {
+    1e-4, 2.5e-4, 5e-4, 0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 5};
 // A change another replica committed reaches this one in milliseconds when it is woken by the
 // notification, up to the poll interval (1 s) when it is not, and later while the store is away.
 const prometheus::Histogram::BucketBoundaries kChangeLagBounds = {
     0.001, 0.0025, 0.005, 0.01, 0.025, 0.05, 0.1, 0.25, 0.5, 1, 2.5, 5, 10, 30};
 
 prometheus::Family<prometheus::Counter>& AddCounter(prometheus::Registry& registry,
-                                                   std::string name, std::string help) {
+                                                    std::string name, std::string help) {
   return prometheus::BuildCounter().Name(std::move(name)).Help(std::move(help)).Register(registry);
 }
 
 prometheus::Family<prometheus::Histogram>& AddHistogram(prometheus::Registry& registry,
-                                                       std::string name, std::string help) {
-  return prometheus::BuildHistogram().Name(std::move(name)).Help(std::move(help)).Register(registry);
+                                                        std::string name, std::string help) {
+  return prometheus::BuildHistogram()
+      .Name(std::move(name))
+      .Help(std::move(help))
+      .Register(registry);
 }
 
 }  // namespace
@@ -120,9 +124,9 @@ ServerMetrics::ServerMetrics()
   frame_seconds_[static_cast<int>(FrameInput::kImage)] =
       &frame_seconds_family_.Add({{"input", "image"}}, kFrameBounds);
   for (const auto& [code, reason] : kRefusalKinds) {
-    refusals_[code][static_cast<int>(reason)] = &refusals_family_.Add(
-        {{"code", std::string(StatusCodeName(code))},
-         {"reason", std::string(RefusalReasonName(reason))}});
+    refusals_[code][static_cast<int>(reason)] =
+        &refusals_family_.Add({{"code", std::string(StatusCodeName(code))},
+                               {"reason", std::string(RefusalReasonName(reason))}});
   }
   enrollments_[static_cast<int>(EnrollmentOutcome::kStored)] =
       &enrollments_family_.Add({{"outcome", "stored"}});
@@ -133,10 +137,12 @@ ServerMetrics::ServerMetrics()
   enrollments_[static_cast<int>(EnrollmentOutcome::kCancelled)] =
       &enrollments_family_.Add({{"outcome", "cancelled"}});
   enrollment_seconds_ = &enrollment_seconds_family_.Add({}, kEnrollmentBounds);
-  store_writes_.enroll = &store_write_seconds_family_.Add({{"operation", "enroll"}}, kStoreWriteBounds);
+  store_writes_.enroll =
+      &store_write_seconds_family_.Add({{"operation", "enroll"}}, kStoreWriteBounds);
   store_writes_.add_views =
       &store_write_seconds_family_.Add({{"operation", "add_views"}}, kStoreWriteBounds);
-  store_writes_.remove = &store_write_seconds_family_.Add({{"operation", "delete"}}, kStoreWriteBounds);
+  store_writes_.remove =
+      &store_write_seconds_family_.Add({{"operation", "delete"}}, kStoreWriteBounds);
   change_lag_seconds_ = &change_lag_seconds_family_.Add({}, kChangeLagBounds);
 }
 
@@ -185,9 +191,8 @@ void ServerMetrics::WatchSessions(const SessionRegistry& sessions) {
 }
 
 void ServerMetrics::WatchIndex(const ModelCatalogue& catalogue) {
-  gauges_->Add("orbit_index_objects", "Objects in the index sessions rank.", {}, [&catalogue] {
-    return static_cast<double>(catalogue.Snapshot()->object_count());
-  });
+  gauges_->Add("orbit_index_objects", "Objects in the index sessions rank.", {},
+               [&catalogue] { return static_cast<double>(catalogue.Snapshot()->object_count()); });
   gauges_->Add("orbit_index_views", "Views of every object in the index.", {},
                [&catalogue] { return static_cast<double>(catalogue.Snapshot()->view_count()); });
 }

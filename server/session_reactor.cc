@@ -61,9 +61,7 @@ void SessionReactor::OnReadDone(bool ok) {
       const Clock::time_point previous_read_done = previous_read_done_;
       previous_read_done_ = now;
       switch (request_.kind_case()) {
-        case v1::SessionRequest::kOpen:
-          op = HandleOpen(request_.open());
-          break;
+        case v1::SessionRequest::kOpen: op = HandleOpen(request_.open()); break;
         case v1::SessionRequest::kReset:
           if (!session_.engine) {
             op = Refuse({grpc::StatusCode::INVALID_ARGUMENT, "the first request must be `open`"},
@@ -73,9 +71,7 @@ void SessionReactor::OnReadDone(bool ok) {
           session_.engine->Reset();
           op = ReadNext();
           break;
-        case v1::SessionRequest::kFrame:
-          op = HandleFrame(now, previous_read_done, &task);
-          break;
+        case v1::SessionRequest::kFrame: op = HandleFrame(now, previous_read_done, &task); break;
         default:
           op = Refuse({grpc::StatusCode::INVALID_ARGUMENT,
                        "empty request: set one of open, frame or reset"},
@@ -231,22 +227,15 @@ SessionReactor::StreamOp SessionReactor::Refuse(const grpc::Status& status, Refu
 
 void SessionReactor::Perform(const StreamOp& op) {
   switch (op.kind) {
-    case StreamOp::Kind::kNone:
-      return;
+    case StreamOp::Kind::kNone: return;
     case StreamOp::Kind::kRead:
       StartRead(&request_);
       // The reactor is still there: kRead comes from a reaction or the constructor (StreamOp).
       Perform(AfterReadStarted());
       return;
-    case StreamOp::Kind::kWrite:
-      StartWrite(&update_);
-      return;
-    case StreamOp::Kind::kFinish:
-      Finish(op.status);
-      return;
-    case StreamOp::Kind::kCancel:
-      context_->TryCancel();
-      return;
+    case StreamOp::Kind::kWrite: StartWrite(&update_); return;
+    case StreamOp::Kind::kFinish: Finish(op.status); return;
+    case StreamOp::Kind::kCancel: context_->TryCancel(); return;
   }
 }
 

@@ -20,13 +20,13 @@
 
 #include "core/base/mutex.h"
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "server/frame_answer.h"
 #include "server/frame_rate_limit.h"
 #include "server/model_catalogue.h"
-#include "server/rejection_calibrator.h"
 #include "server/refusal_reason.h"
+#include "server/rejection_calibrator.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
-#include "server/frame_answer.h"
 #include "server/session_engine.h"
 #include "server/session_environment.h"
 #include "server/session_registry.h"
@@ -35,9 +35,8 @@
 
 namespace orbit::server {
 
-class SessionReactor final
-    : public grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>,
-      public RegisteredSession {
+class SessionReactor final : public grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>,
+                             public RegisteredSession {
  public:
   // Registers with the registry (ending the stream at once with its refusal, if any) and
   // reads the first request. `context` is the call's; it outlives the reactor.

@@ -8,9 +8,9 @@ grpc::Status SessionRegistry::Add(RegisteredSession* session) {
   MutexLock lock(&mutex_);
   if (closed_) return {grpc::StatusCode::UNAVAILABLE, "the server is shutting down"};
   if (static_cast<int>(sessions_.size()) >= max_sessions_) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
-            "this server already runs its maximum of " + std::to_string(max_sessions_) +
-                " sessions; try again later"};
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "this server already runs its maximum of " +
+                                                      std::to_string(max_sessions_) +
+                                                      " sessions; try again later"};
   }
   sessions_.insert(session);
   return grpc::Status::OK;
@@ -26,9 +26,9 @@ void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
   MutexLock lock(&mutex_);
   for (RegisteredSession* session : sessions_) {
     if (session->last_activity() < cutoff) {
-      session->Close({grpc::StatusCode::DEADLINE_EXCEEDED,
-                      "session closed after " + std::to_string(idle_timeout_seconds) +
-                          " s without a frame"});
+      session->Close(
+          {grpc::StatusCode::DEADLINE_EXCEEDED,
+           "session closed after " + std::to_string(idle_timeout_seconds) + " s without a frame"});
     }
   }
 }

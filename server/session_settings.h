@@ -14,11 +14,11 @@ namespace orbit::server {
 
 // The server's limits, each refused with RESOURCE_EXHAUSTED when exceeded.
 struct ServerLimits {
-  int max_sessions = 256;              // concurrent Session streams
-  double max_frames_per_second = 60;   // per session, averaged over a 2-second burst allowance
-  int max_window = kMaxWindow;         // W a session may ask for (1..64)
-  int max_message_bytes = 4 << 20;     // any single request message
-  int idle_timeout_seconds = 120;      // a session without a frame for this long is closed
+  int max_sessions = 256;             // concurrent Session streams
+  double max_frames_per_second = 60;  // per session, averaged over a 2-second burst allowance
+  int max_window = kMaxWindow;        // W a session may ask for (1..64)
+  int max_message_bytes = 4 << 20;    // any single request message
+  int idle_timeout_seconds = 120;     // a session without a frame for this long is closed
   // window x hmm_states a session running the HMM may ask for: the HMM keeps about 10 bytes per
   // (frame, state, object), so 1024 bounds a session at about 10 MB per 1000 enrolled objects
   // (the defaults, 8 x 8, use 64; the unchecked extreme, 64 x 360, would be 230 MB).

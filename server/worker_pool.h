@@ -16,8 +16,9 @@ namespace orbit::server {
 class WorkerPool {
  public:
   // REQUIRES: threads >= 1. The threads run `nice` steps nicer than the thread that creates
-  // the pool (Linux's per-thread priority, capped at 19): the bulk pool's image decoding and enrollments yield a busy core to the
-  // sessions' descriptor frames, and still get the time the frames leave.
+  // the pool (Linux's per-thread priority, capped at 19): the bulk pool's image decoding and
+  // enrollments yield a busy core to the sessions' descriptor frames, and still get the time the
+  // frames leave.
   explicit WorkerPool(int threads, int nice = 0);
   // Runs every task already posted, then joins the threads.
   ~WorkerPool();

@@ -29,10 +29,9 @@ void ValidateObjectName(std::string_view name) {
   for (std::size_t i = 0; i < name.size(); ++i) {
     const char c = name[i];
     if (!IsAsciiAlnum(c) && c != '_' && c != '-' && c != '.') {
-      throw std::invalid_argument("object name \"" + std::string(name) +
-                                  "\" has a character not allowed at position " +
-                                  std::to_string(i) +
-                                  " (allowed: ASCII letters, digits, '_', '-', '.')");
+      throw std::invalid_argument(
+          "object name \"" + std::string(name) + "\" has a character not allowed at position " +
+          std::to_string(i) + " (allowed: ASCII letters, digits, '_', '-', '.')");
     }
   }
 }
@@ -69,16 +68,14 @@ void ValidateViews(const std::vector<ModelView>& views,
   }
   if (!thumbnails.empty() && thumbnails.size() != views.size()) {
     throw std::invalid_argument(std::to_string(thumbnails.size()) + " thumbnails for " +
-                                std::to_string(views.size()) +
-                                " views: give none or one per view");
+                                std::to_string(views.size()) + " views: give none or one per view");
   }
   for (std::size_t i = 0; i < views.size(); ++i) ValidateView(views[i], i);
   for (std::size_t i = 0; i < thumbnails.size(); ++i) {
     if (thumbnails[i].size() > kMaxThumbnailBytes) {
-      throw std::invalid_argument("view " + std::to_string(i) + ": thumbnail of " +
-                                  std::to_string(thumbnails[i].size()) +
-                                  " bytes is larger than the limit of " +
-                                  std::to_string(kMaxThumbnailBytes));
+      throw std::invalid_argument(
+          "view " + std::to_string(i) + ": thumbnail of " + std::to_string(thumbnails[i].size()) +
+          " bytes is larger than the limit of " + std::to_string(kMaxThumbnailBytes));
     }
   }
 }
@@ -89,7 +86,8 @@ void ValidateMetadata(std::string_view metadata) {
                                 " bytes is larger than the limit of " +
                                 std::to_string(kMaxMetadataBytes));
   }
-  const nlohmann::json parsed = nlohmann::json::parse(metadata, nullptr, /*allow_exceptions=*/false);
+  const nlohmann::json parsed =
+      nlohmann::json::parse(metadata, nullptr, /*allow_exceptions=*/false);
   if (parsed.is_discarded()) throw std::invalid_argument("metadata is not valid JSON");
   if (!parsed.is_object()) throw std::invalid_argument("metadata must be a JSON object ({...})");
 }

@@ -130,8 +130,8 @@ std::string PostgresResult::Bytes(int row, int column) const {
     const int high = HexDigit(hex[i]);
     const int low = HexDigit(hex[i + 1]);
     if (high < 0 || low < 0) {
-      throw StoreError(StoreError::Code::kCorrupt, std::string("invalid hex in bytea ") +
-                                                       PQfname(result_.get(), column));
+      throw StoreError(StoreError::Code::kCorrupt,
+                       std::string("invalid hex in bytea ") + PQfname(result_.get(), column));
     }
     bytes.push_back(static_cast<char>(high * 16 + low));
   }
@@ -200,8 +200,7 @@ PostgresResult PostgresConnection::Query(const std::string& sql, const PostgresP
 }
 
 bool PostgresConnection::Reusable() const {
-  return PQstatus(connection_) == CONNECTION_OK &&
-         PQtransactionStatus(connection_) == PQTRANS_IDLE;
+  return PQstatus(connection_) == CONNECTION_OK && PQtransactionStatus(connection_) == PQTRANS_IDLE;
 }
 
 bool PostgresConnection::InTransaction() const {

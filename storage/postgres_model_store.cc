@@ -21,7 +21,7 @@ namespace {
   "to_char(" column " AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.MS\"Z\"')"
 
 // The columns SummaryFromRow reads, in order.
-#define ORBIT_PG_SUMMARY_COLUMNS                                         \
+#define ORBIT_PG_SUMMARY_COLUMNS \
   "o.id, o.name, o.variant, " ORBIT_PG_TIME("o.created_at") ", "        \
       ORBIT_PG_TIME("o.updated_at") ", o.metadata, "                    \
       "(SELECT count(*) FROM views v WHERE v.object_id = o.id)"
@@ -29,9 +29,9 @@ namespace {
 DescriptorVariant VariantFromColumn(const std::string& text, ObjectId id) {
   const std::optional<DescriptorVariant> variant = ParseVariant(text);
   if (!variant) {
-    throw StoreError(StoreError::Code::kCorrupt, "object " + std::to_string(id) +
-                                                     " has an unknown descriptor variant \"" +
-                                                     text + "\"");
+    throw StoreError(
+        StoreError::Code::kCorrupt,
+        "object " + std::to_string(id) + " has an unknown descriptor variant \"" + text + "\"");
   }
   return *variant;
 }
@@ -101,8 +101,8 @@ class PostgresModelStore::Lease {
       connection_.reset();  // closed by the server while idle (a restart): try the next
     }
     if (!connection_) {
-      connection_ = std::make_unique<PostgresConnection>(
-          store_.conninfo_, store_.options_.busy_timeout.count());
+      connection_ = std::make_unique<PostgresConnection>(store_.conninfo_,
+                                                         store_.options_.busy_timeout.count());
     }
   }
   ~Lease() {
@@ -156,12 +156,13 @@ ObjectId PostgresModelStore::Enroll(const Enrollment& enrollment) {
   }
   const ObjectId id =
       connection
-          .Query("INSERT INTO objects (name, variant, created_at, updated_at, metadata) "
-                 "VALUES ($1, $2, now(), now(), $3) RETURNING id",
-                 PostgresParams()
-                     .Add(std::string_view(enrollment.name))
-                     .Add(VariantName(enrollment.variant))
-                     .Add(std::string_view(enrollment.metadata)))
+          .Query(
+              "INSERT INTO objects (name, variant, created_at, updated_at, metadata) "
+              "VALUES ($1, $2, now(), now(), $3) RETURNING id",
+              PostgresParams()
+                  .Add(std::string_view(enrollment.name))
+                  .Add(VariantName(enrollment.variant))
+                  .Add(std::string_view(enrollment.metadata)))
           .Int64(0, 0);
   InsertViews(connection, id, enrollment.views, enrollment.thumbnails);
   RecordChange(connection, id, ModelChangeKind::kEnroll);
@@ -189,8 +190,7 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
                                 std::to_string(kMaxViewsPerObject) + " per object");
   }
   InsertViews(connection, id, views, thumbnails);
-  connection.Query("UPDATE objects SET updated_at = now() WHERE id = $1",
-                   PostgresParams().Add(id));
+  connection.Query("UPDATE objects SET updated_at = now() WHERE id = $1", PostgresParams().Add(id));
   RecordChange(connection, id, ModelChangeKind::kAddViews);
   transaction.Commit();
 }
@@ -265,15 +265,14 @@ void PostgresModelStore::Rename(ObjectId id, std::string_view new_name) {
 
 std::vector<ObjectSummary> PostgresModelStore::List(const ListRequest& request) {
   if (request.limit < 1 || request.limit > kMaxListLimit) {
-    throw std::invalid_argument("list limit " + std::to_string(request.limit) +
-                                " is outside 1.." + std::to_string(kMaxListLimit));
+    throw std::invalid_argument("list limit " + std::to_string(request.limit) + " is outside 1.." +
+                                std::to_string(kMaxListLimit));
   }
   Lease lease(*this);
   // One statement, one snapshot; pages continue after the last id given, so no object is
   // listed twice and none present throughout is skipped.
   const PostgresResult rows = (*lease).Query(
-      "SELECT " ORBIT_PG_SUMMARY_COLUMNS
-      " FROM objects o WHERE o.id > $1 ORDER BY o.id LIMIT $2",
+      "SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id > $1 ORDER BY o.id LIMIT $2",
       PostgresParams().Add(request.after_id).Add(std::int64_t{request.limit}));
   std::vector<ObjectSummary> page;
   for (int row = 0; row < rows.rows(); ++row) page.push_back(SummaryFromRow(rows, row));
@@ -284,9 +283,9 @@ std::optional<StoredObject> PostgresModelStore::Get(ObjectId id) {
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction snapshot(connection, PostgresTransaction::Mode::kSnapshot);
-  const PostgresResult found = connection.Query(
-      "SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id = $1",
-      PostgresParams().Add(id));
+  const PostgresResult found =
+      connection.Query("SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id = $1",
+                       PostgresParams().Add(id));
   if (found.rows() == 0) return std::nullopt;
   StoredObject object;
   object.summary = SummaryFromRow(found, 0);
@@ -304,9 +303,9 @@ std::optional<StoredObject> PostgresModelStore::Get(ObjectId id) {
 
 std::optional<ObjectSummary> PostgresModelStore::Find(std::string_view name) {
   Lease lease(*this);
-  const PostgresResult found = (*lease).Query(
-      "SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.name = $1",
-      PostgresParams().Add(name));
+  const PostgresResult found =
+      (*lease).Query("SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.name = $1",
+                     PostgresParams().Add(name));
   if (found.rows() == 0) return std::nullopt;
   return SummaryFromRow(found, 0);
 }
@@ -357,17 +356,17 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
                                 std::to_string(kMaxListLimit));
   }
   Lease lease(*this);
-  const PostgresResult rows = (*lease).Query(
-      "SELECT seq, object_id, kind, " ORBIT_PG_TIME("committed_at")
-      " FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2",
-      PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  const PostgresResult rows =
+      (*lease).Query("SELECT seq, object_id, kind, " ORBIT_PG_TIME(
+                         "committed_at") " FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2",
+                     PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
   std::vector<ModelChange> changes;
   for (int row = 0; row < rows.rows(); ++row) {
     const std::optional<ModelChangeKind> kind = ParseModelChangeKind(rows.Text(row, 2));
     if (!kind) {
-      throw StoreError(StoreError::Code::kCorrupt, "change " + rows.Text(row, 0) +
-                                                       " has an unknown kind \"" +
-                                                       rows.Text(row, 2) + "\"");
+      throw StoreError(
+          StoreError::Code::kCorrupt,
+          "change " + rows.Text(row, 0) + " has an unknown kind \"" + rows.Text(row, 2) + "\"");
     }
     changes.push_back({.seq = rows.Int64(row, 0),
                        .object_id = rows.Int64(row, 1),

@@ -96,8 +96,7 @@ class PostgresModelStore final : public ModelStore {
  private:
   class Lease;  // a pooled connection, returned to the pool when it goes out of scope
 
-  void InsertViews(PostgresConnection& connection, ObjectId id,
-                   const std::vector<ModelView>& views,
+  void InsertViews(PostgresConnection& connection, ObjectId id, const std::vector<ModelView>& views,
                    const std::vector<std::string>& thumbnails)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 

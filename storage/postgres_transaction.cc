@@ -21,7 +21,8 @@ PostgresTransaction::PostgresTransaction(PostgresConnection& connection, Mode mo
     throw StoreError(StoreError::Code::kBusy,
                      "PostgreSQL " + connection_.target() +
                          ": another writer held the model store for longer than the busy "
-                         "timeout (" + e.what() + ")");
+                         "timeout (" +
+                         e.what() + ")");
   }
 }
 

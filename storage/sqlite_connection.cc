@@ -9,15 +9,9 @@ SqliteConnection::SqliteConnection(const std::filesystem::path& file, Mode mode,
     : file_(file) {
   int flags = SQLITE_OPEN_NOMUTEX | SQLITE_OPEN_EXRESCODE;
   switch (mode) {
-    case Mode::kReadOnly:
-      flags |= SQLITE_OPEN_READONLY;
-      break;
-    case Mode::kReadWrite:
-      flags |= SQLITE_OPEN_READWRITE;
-      break;
-    case Mode::kReadWriteCreate:
-      flags |= SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE;
-      break;
+    case Mode::kReadOnly: flags |= SQLITE_OPEN_READONLY; break;
+    case Mode::kReadWrite: flags |= SQLITE_OPEN_READWRITE; break;
+    case Mode::kReadWriteCreate: flags |= SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE; break;
   }
   const int rc = sqlite3_open_v2(file.c_str(), &db_, flags, nullptr);
   if (rc != SQLITE_OK) {
@@ -44,9 +38,8 @@ void SqliteConnection::Execute(std::string_view sql) {
 StatementLease SqliteConnection::Prepare(std::string_view sql) {
   auto found = statements_.find(std::string(sql));
   if (found == statements_.end()) {
-    found = statements_
-                .emplace(std::string(sql), std::make_unique<SqliteStatement>(db_, sql))
-                .first;
+    found =
+        statements_.emplace(std::string(sql), std::make_unique<SqliteStatement>(db_, sql)).first;
   }
   return StatementLease(*found->second);
 }

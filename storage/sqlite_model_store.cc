@@ -30,8 +30,8 @@ constexpr std::chrono::milliseconds kCheckpointReaderWait(200);
 constexpr const char* kNow = "strftime('%Y-%m-%dT%H:%M:%fZ', 'now')";
 
 // The columns SummaryFromRow reads, in order.
-#define ORBIT_SUMMARY_COLUMNS                                                              \
-  "o.id, o.name, o.variant, o.created_at, o.updated_at, o.metadata, "                     \
+#define ORBIT_SUMMARY_COLUMNS                                         \
+  "o.id, o.name, o.variant, o.created_at, o.updated_at, o.metadata, " \
   "(SELECT count(*) FROM views v WHERE v.object_id = o.id)"
 
 DescriptorVariant VariantFromColumn(std::string_view text, ObjectId id) {
@@ -153,11 +153,11 @@ SqliteModelStore::SqliteModelStore(const std::filesystem::path& file,
     throw StoreError(StoreError::Code::kIo, "model store " + file_.string() + " does not exist");
   }
   try {
-    writer_ = std::make_unique<SqliteConnection>(
-        file_,
-        options_.create_if_missing ? SqliteConnection::Mode::kReadWriteCreate
-                                   : SqliteConnection::Mode::kReadWrite,
-        options_.busy_timeout);
+    writer_ = std::make_unique<SqliteConnection>(file_,
+                                                 options_.create_if_missing
+                                                     ? SqliteConnection::Mode::kReadWriteCreate
+                                                     : SqliteConnection::Mode::kReadWrite,
+                                                 options_.busy_timeout);
     // WAL: readers never block the writer nor the writer the readers, and a commit is one
     // sequential append plus one fsync.
     const std::string journal_mode = writer_->QueryText("PRAGMA journal_mode = WAL");
@@ -228,16 +228,16 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
     if (!count->Step()) throw ObjectNotFound(id);
     const auto existing = static_cast<std::size_t>(count->ColumnInt64(0));
     if (existing + views.size() > kMaxViewsPerObject) {
-      throw std::invalid_argument("object " + std::to_string(id) + " has " +
-                                  std::to_string(existing) + " views; " +
-                                  std::to_string(views.size()) + " more would exceed the limit of " +
-                                  std::to_string(kMaxViewsPerObject) + " per object");
+      throw std::invalid_argument(
+          "object " + std::to_string(id) + " has " + std::to_string(existing) + " views; " +
+          std::to_string(views.size()) + " more would exceed the limit of " +
+          std::to_string(kMaxViewsPerObject) + " per object");
     }
   }
   InsertViews(id, views, thumbnails);
   {
-    StatementLease touch = writer_->Prepare(std::string("UPDATE objects SET updated_at = ") +
-                                            kNow + " WHERE id = ?1");
+    StatementLease touch =
+        writer_->Prepare(std::string("UPDATE objects SET updated_at = ") + kNow + " WHERE id = ?1");
     touch->Bind(1, id);
     touch->Run();
   }
@@ -262,8 +262,8 @@ void SqliteModelStore::InsertViews(ObjectId id, const std::vector<ModelView>& vi
     insert->Bind(5, view.typical_distance);
     if (i < thumbnails.size() && !thumbnails[i].empty()) {
       const std::string& thumbnail = thumbnails[i];
-      insert->BindBlob(6, {reinterpret_cast<const std::uint8_t*>(thumbnail.data()),
-                           thumbnail.size()});
+      insert->BindBlob(6,
+                       {reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
     } else {
       insert->BindNull(6);
     }
@@ -330,8 +330,8 @@ void SqliteModelStore::CommitWrite(SqliteTransaction& transaction) {
 
 std::vector<ObjectSummary> SqliteModelStore::List(const ListRequest& request) {
   if (request.limit < 1 || request.limit > kMaxListLimit) {
-    throw std::invalid_argument("list limit " + std::to_string(request.limit) +
-                                " is outside 1.." + std::to_string(kMaxListLimit));
+    throw std::invalid_argument("list limit " + std::to_string(request.limit) + " is outside 1.." +
+                                std::to_string(kMaxListLimit));
   }
   Reader reader(*this);
   StatementLease list = reader.connection().Prepare(
@@ -349,8 +349,8 @@ std::optional<StoredObject> SqliteModelStore::Get(ObjectId id) {
   SqliteTransaction snapshot(connection, SqliteTransaction::Mode::kRead);
   StoredObject object;
   {
-    StatementLease find = connection.Prepare("SELECT " ORBIT_SUMMARY_COLUMNS
-                                             " FROM objects o WHERE o.id = ?1");
+    StatementLease find =
+        connection.Prepare("SELECT " ORBIT_SUMMARY_COLUMNS " FROM objects o WHERE o.id = ?1");
     find->Bind(1, id);
     if (!find->Step()) return std::nullopt;
     object.summary = SummaryFromRow(*find);
@@ -448,8 +448,8 @@ void SqliteModelStore::Backup(const std::filesystem::path& destination) {
     SyncDirectory(destination.parent_path());
   } catch (const StoreError& e) {
     std::filesystem::remove(partial, ignored);
-    throw StoreError(e.code(), "cannot back up " + file_.string() + " to " +
-                                   destination.string() + ": " + e.what());
+    throw StoreError(e.code(), "cannot back up " + file_.string() + " to " + destination.string() +
+                                   ": " + e.what());
   } catch (const std::filesystem::filesystem_error& e) {
     std::filesystem::remove(partial, ignored);
     throw StoreError(StoreError::Code::kIo, "cannot back up " + file_.string() + " to " +

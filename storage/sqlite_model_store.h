@@ -26,7 +26,7 @@ class SqliteConnection;
 class SqliteTransaction;
 
 struct SqliteModelStoreOptions {
-  bool create_if_missing = false;  // otherwise a missing file is StoreError kIo
+  bool create_if_missing = false;                // otherwise a missing file is StoreError kIo
   std::chrono::milliseconds busy_timeout{5000};  // how long to wait for another writer
   bool quick_check_on_open = true;               // PRAGMA quick_check before anything else
   // After a commit that leaves at least this many pages (4 KiB each) in the write-ahead log, the

@@ -45,9 +45,9 @@ inline StoreError ObjectNotFound(ObjectId id) {
 }
 // kAlreadyExists: "an object named "NAME" already exists (id OWNER)".
 inline StoreError NameTaken(std::string_view name, ObjectId owner) {
-  return StoreError(StoreError::Code::kAlreadyExists,
-                    "an object named \"" + std::string(name) + "\" already exists (id " +
-                        std::to_string(owner) + ")");
+  return StoreError(StoreError::Code::kAlreadyExists, "an object named \"" + std::string(name) +
+                                                          "\" already exists (id " +
+                                                          std::to_string(owner) + ")");
 }
 
 }  // namespace orbit

@@ -12,9 +12,7 @@ std::uint64_t MixSeed(std::uint64_t seed, std::uint64_t value) {
   return z ^ (z >> 31);
 }
 
-double SeededRandom::Uniform() {
-  return static_cast<double>(engine_() >> 11) * 0x1.0p-53;
-}
+double SeededRandom::Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
 
 std::uint64_t SeededRandom::UniformInt(std::uint64_t bound) {
   // Rejection sampling: no modulo bias.

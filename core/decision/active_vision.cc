@@ -67,7 +67,8 @@ SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int average
   if (right.smallest != left.smallest) {
     return right.smallest > left.smallest ? SuggestedMove::kRight : SuggestedMove::kLeft;
   }
-  if (right.sum != left.sum) return right.sum > left.sum ? SuggestedMove::kRight : SuggestedMove::kLeft;
+  if (right.sum != left.sum)
+    return right.sum > left.sum ? SuggestedMove::kRight : SuggestedMove::kLeft;
   return SuggestedMove::kNone;
 }
 

@@ -25,7 +25,7 @@ namespace orbit {
 // device azimuth, LEFT toward decreasing.
 enum class SuggestedMove { kNone, kLeft, kRight };
 
-std::string_view MoveName(SuggestedMove move);        // "LEFT", "RIGHT", "NONE"
+std::string_view MoveName(SuggestedMove move);  // "LEFT", "RIGHT", "NONE"
 
 struct MoveCandidate {
   const IndexedObject* object = nullptr;
@@ -36,11 +36,11 @@ struct MoveCandidate {
 // except that a side the device has already seen is not suggested when the other is new.
 // `seen_turns` are the window's earlier frames' measured turns from the latest frame (degrees,
 // positive to the right; MeasuredTurn(latest, frame)): a side is seen when a frame lies on it
-// less than one and a half sectors (of 360 / averaged_views) away. Going back shows what the window already holds, so the new side is the
-// better bet whatever the averaged views say: on COIL-100 under motion blur, four views
-// following the separation rule alone are less often right than four views stepping one way
-// (docs/results/recognition.md, "Active vision: does following the move suggestion help?").
-// Empty `seen_turns`: the separation rule alone, as the thesis' methods use it.
+// less than one and a half sectors (of 360 / averaged_views) away. Going back shows what the window
+// already holds, so the new side is the better bet whatever the averaged views say: on COIL-100
+// under motion blur, four views following the separation rule alone are less often right than four
+// views stepping one way (docs/results/recognition.md, "Active vision: does following the move
+// suggestion help?"). Empty `seen_turns`: the separation rule alone, as the thesis' methods use it.
 // Throws std::invalid_argument when averaged_views < 2 or a candidate's object is null.
 SuggestedMove SuggestMove(std::span<const MoveCandidate> candidates, int averaged_views,
                           std::span<const double> seen_turns = {});

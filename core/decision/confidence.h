@@ -4,12 +4,12 @@
 //
 //   z = a + b U + c ln n + d U ln n,   confidence = 1 / (1 + exp(-z))
 //
-// with U the window's unknown statistic (core/decision/unknown_statistic.h) and n its frames (a longer
-// window makes the same U more telling). A logistic fit of "top-1 right" over every update of
-// `orbit eval --methods product --unknown-objects 10,20,...,100` (known and unknown objects,
-// DF, MB and GN, n = 1, 2, 4, 6, 8, 10 trials), checked on the other split (objects 91-100
-// unknown) in docs/results/recognition.md's reliability table. It holds for the product
-// pipeline on model sets like COIL-100's; for another engine or variant it is an estimate.
+// with U the window's unknown statistic (core/decision/unknown_statistic.h) and n its frames (a
+// longer window makes the same U more telling). A logistic fit of "top-1 right" over every update
+// of `orbit eval --methods product --unknown-objects 10,20,...,100` (known and unknown objects, DF,
+// MB and GN, n = 1, 2, 4, 6, 8, 10 trials), checked on the other split (objects 91-100 unknown) in
+// docs/results/recognition.md's reliability table. It holds for the product pipeline on model sets
+// like COIL-100's; for another engine or variant it is an estimate.
 //
 // Pure and thread-safe.
 #pragma once

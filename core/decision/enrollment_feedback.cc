@@ -38,7 +38,8 @@ double AzimuthGap::width() const {
 }
 
 EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSnapshot& index) {
-  if (object.views.empty()) throw std::invalid_argument("AssessEnrollment: the object has no views");
+  if (object.views.empty())
+    throw std::invalid_argument("AssessEnrollment: the object has no views");
   EnrollmentFeedback feedback;
   const std::vector<std::size_t> order = ByAzimuth(object);
   feedback.gaps = Gaps(object, order);
@@ -54,7 +55,8 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
       own_best[order[k]] = std::max(own_best[order[k]], similarity);
       repeat = repeat || (j < k && similarity >= kRedundantSimilarity);
     }
-    if (repeat) feedback.redundant_azimuths.push_back(NormaliseAzimuth(object.views[order[k]].azimuth));
+    if (repeat)
+      feedback.redundant_azimuths.push_back(NormaliseAzimuth(object.views[order[k]].azimuth));
   }
 
   // Every other object's best TC with each view.
@@ -81,11 +83,11 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
                                    closer[p]});
   }
   const std::size_t kept = std::min<std::size_t>(feedback.confusable.size(), kConfusableObjects);
-  std::partial_sort(feedback.confusable.begin(), feedback.confusable.begin() + static_cast<std::ptrdiff_t>(kept),
-                    feedback.confusable.end(), [](const Confusion& a, const Confusion& b) {
-                      return a.similarity != b.similarity ? a.similarity > b.similarity
-                                                          : a.object < b.object;
-                    });
+  std::partial_sort(
+      feedback.confusable.begin(), feedback.confusable.begin() + static_cast<std::ptrdiff_t>(kept),
+      feedback.confusable.end(), [](const Confusion& a, const Confusion& b) {
+        return a.similarity != b.similarity ? a.similarity > b.similarity : a.object < b.object;
+      });
   feedback.confusable.resize(kept);
   return feedback;
 }

@@ -18,14 +18,14 @@
 
 #include <span>
 
-#include "core/index/indexed_object.h"
 #include "core/descriptor/query_frame.h"
+#include "core/index/indexed_object.h"
 #include "core/index/similarity_rows.h"
 
 namespace orbit {
 
-// Where the winner is seen from (core/decision/pose_estimate.h): the model azimuth (degrees, [0, 360),
-// in the object's own model frame) facing the camera at the latest frame, and how far from it
+// Where the winner is seen from (core/decision/pose_estimate.h): the model azimuth (degrees, [0,
+// 360), in the object's own model frame) facing the camera at the latest frame, and how far from it
 // (degrees, 0..180) other azimuths fit the window's frames about as well: 0 when one side is
 // unmistakable, 180 for an object that looks the same from every side.
 struct PoseEstimate {

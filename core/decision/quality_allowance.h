@@ -1,6 +1,6 @@
 // The quality allowance of the calibrated accept / unknown rule: how much the
-// unknown statistic U (core/decision/unknown_statistic.h) of an unknown object's window rises when its
-// frames are noisy or blurred, taken off U so that the rule's target false-accept rate holds
+// unknown statistic U (core/decision/unknown_statistic.h) of an unknown object's window rises when
+// its frames are noisy or blurred, taken off U so that the rule's target false-accept rate holds
 // for degraded windows as it does for clean ones.
 //
 // Why: the rule's threshold is a quantile of a null of clean windows
@@ -44,8 +44,8 @@ inline constexpr double kNoiseAllowanceSpan = 40;             // grey levels abo
 // The formula above. REQUIRES: noise_sigma in [0, kMaxNoiseSigma].
 double NoiseAllowance(double noise_sigma);
 
-// The same for blur (core/descriptor/blur_estimate.h, in [0, 1]): motion or focus blur moves a frame away
-// from every view too, and the device can read it from the frame alone.
+// The same for blur (core/descriptor/blur_estimate.h, in [0, 1]): motion or focus blur moves a
+// frame away from every view too, and the device can read it from the frame alone.
 //
 //   BlurAllowance(b) = kBlurAllowancePerUnit * max(0, b - kSharpFrameBlur)
 //

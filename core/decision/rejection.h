@@ -19,7 +19,7 @@ enum class Decision {
   kUndecided,  // no answer possible: empty index, or the matched views have no typical distance
 };
 
-std::string_view DecisionName(Decision decision);     // "ACCEPT", "UNKNOWN", "UNDECIDED"
+std::string_view DecisionName(Decision decision);  // "ACCEPT", "UNKNOWN", "UNDECIDED"
 
 enum class RejectionRule {
   kTypicalDistance,  // "th": the thesis' rule (docs/design.md#threshold-rule)

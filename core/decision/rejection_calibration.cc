@@ -13,9 +13,9 @@ namespace {
 // One sampled view against every object of the index: per object, the view's best similarity
 // to it and the Ttyp of that best view. Its own object's entry is -1 (never a winner).
 struct SampledView {
-  std::size_t object = 0;             // position in index.objects()
-  std::vector<float> best;            // [objects]
-  std::vector<float> best_typical;    // [objects]
+  std::size_t object = 0;           // position in index.objects()
+  std::vector<float> best;          // [objects]
+  std::vector<float> best_typical;  // [objects]
 };
 
 // Which views of each object to sample: `per_object` of them, evenly spread over its views in
@@ -88,8 +88,8 @@ RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& in
   const std::size_t objects = index.object_count();
   if (objects < 2) return calibration;
   const int per_object =
-      std::max(1, options.max_sampled_views / static_cast<int>(std::min<std::size_t>(
-                                                   objects, options.max_sampled_views)));
+      std::max(1, options.max_sampled_views /
+                      static_cast<int>(std::min<std::size_t>(objects, options.max_sampled_views)));
   const std::vector<SampledView> sampled = SampleViews(index, per_object);
 
   // The sampled views of each object, by position in `sampled`.
@@ -126,8 +126,10 @@ double RejectionCalibration::Threshold(int frames, double false_accept_rate) con
   const std::vector<double>& null = Null(frames);
   // The largest null value with at most false_accept_rate of the null at or below it (ties
   // count whole: a value drawn several times is either all in or all out).
-  const auto allowed = static_cast<std::ptrdiff_t>(false_accept_rate * static_cast<double>(null.size()));
-  auto end = std::upper_bound(null.begin(), null.end(), null[std::max<std::ptrdiff_t>(allowed, 1) - 1]);
+  const auto allowed =
+      static_cast<std::ptrdiff_t>(false_accept_rate * static_cast<double>(null.size()));
+  auto end =
+      std::upper_bound(null.begin(), null.end(), null[std::max<std::ptrdiff_t>(allowed, 1) - 1]);
   while (end - null.begin() > allowed && end != null.begin()) {
     end = std::lower_bound(null.begin(), end, *(end - 1));  // drop the last value and its ties
   }

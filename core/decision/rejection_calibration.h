@@ -6,8 +6,8 @@
 // Some of its views are queried against every other object; a window of n of them is answered
 // as a session would answer it (the winner and the runner-up are the two objects with the
 // largest summed best-view similarity over the window's frames) and gives one value of the
-// unknown statistic U (core/decision/unknown_statistic.h). Those values are the null distribution: what
-// U looks like when the object in front of the camera is unknown. The threshold for a target
+// unknown statistic U (core/decision/unknown_statistic.h). Those values are the null distribution:
+// what U looks like when the object in front of the camera is unknown. The threshold for a target
 // false-accept rate f is the f-quantile of the null at the window's length: a window whose U is
 // at or below it is accepted, and an unknown object's window is accepted with probability about
 // f, provided unknown objects differ from the known ones the way known ones differ among

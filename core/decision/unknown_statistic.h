@@ -23,8 +23,8 @@
 
 #include <span>
 
-#include "core/index/indexed_object.h"
 #include "core/descriptor/query_frame.h"
+#include "core/index/indexed_object.h"
 #include "core/index/similarity_rows.h"
 
 namespace orbit {

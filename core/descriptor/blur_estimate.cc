@@ -26,8 +26,10 @@ double AxisBlur(const cv::Mat& grey, const cv::Mat& reblurred, int dx, int dy) {
 
 double EstimateBlur(const cv::Mat& image) {
   if (image.empty() || image.depth() != CV_8U || image.channels() == 2 || image.channels() > 4) {
-    throw std::invalid_argument("EstimateBlur needs a non-empty 8-bit image of 1, 3 or 4 "
-                                "channels, got type " + std::to_string(image.type()));
+    throw std::invalid_argument(
+        "EstimateBlur needs a non-empty 8-bit image of 1, 3 or 4 "
+        "channels, got type " +
+        std::to_string(image.type()));
   }
   if (image.cols < 2 || image.rows < 2) return 0;
   cv::Mat grey;

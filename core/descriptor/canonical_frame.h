@@ -40,9 +40,9 @@ inline constexpr int kBrightnessTarget = 200;         // where that percentile i
 // docs/results/robustness.md: build/orbit_robustness_ablation). The defaults are cedd-robust's;
 // the product never uses other values.
 struct CanonicalFrameOptions {
-  int area = kCanonicalArea;                 // step 1; 0: the region keeps its size
-  double blur_sigma = kCanonicalBlurSigma;   // step 2; 0: no blur
-  bool normalise_brightness = true;          // step 3
+  int area = kCanonicalArea;                // step 1; 0: the region keeps its size
+  double blur_sigma = kCanonicalBlurSigma;  // step 2; 0: no blur
+  bool normalise_brightness = true;         // step 3
 };
 
 // The canonical frame of `bgr` (8-bit, 3 channels, not empty): steps 1-3 above. The result is

@@ -62,8 +62,7 @@ class Divider {
 // Brings any supported image to 8-bit BGR (a view, not a copy, when it already is).
 cv::Mat ToBgr(const cv::Mat& region) {
   switch (region.type()) {
-    case CV_8UC3:
-      return region;
+    case CV_8UC3: return region;
     case CV_8UC1: {
       cv::Mat bgr;
       cv::cvtColor(region, bgr, cv::COLOR_GRAY2BGR);
@@ -105,7 +104,9 @@ double ReplayLireQuadrantMean(const cv::Mat& bgr, int x0, int x1, int y0, int y1
 class LireQuadrantMean {
  public:
   LireQuadrantMean(const cv::Mat& bgr, const Grid& grid, std::int64_t block_area)
-      : bgr_(bgr), grid_(grid), block_area_(static_cast<int>(block_area)),
+      : bgr_(bgr),
+        grid_(grid),
+        block_area_(static_cast<int>(block_area)),
         luma_(1000 * (block_area / 4)),
         // The exact mean's distance to the nearest integer is remainder / divisor; replay when it
         // is within a generous bound on the reference's accumulated rounding error on the mean
@@ -141,7 +142,8 @@ double ExactQuadrantMean(const std::int64_t* cell, std::int64_t pixels) {
 
 }  // namespace
 
-Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::optional<cv::Rect> roi) {
+Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
+                       std::optional<cv::Rect> roi) {
   if (image.empty()) throw std::invalid_argument("CEDD of an empty image");
   const cv::Rect whole(0, 0, image.cols, image.rows);
   const cv::Rect area = roi.value_or(whole);
@@ -151,7 +153,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
                                 " image");
   }
   const cv::Mat bgr = variant == DescriptorVariant::kCeddRobust ? CanonicalFrame(ToBgr(image(area)))
-                                                                 : ToBgr(image(area));
+                                                                : ToBgr(image(area));
   const bool lire = variant == DescriptorVariant::kCeddLire;
   const Grid grid = lire ? cedd::LireGrid(bgr.cols, bgr.rows) : cedd::FullGrid(bgr.cols, bgr.rows);
 
@@ -168,8 +170,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant, std::opt
   };
 
   // LIRE's blocks all have the same size; cedd-full's vary by a pixel.
-  const std::int64_t lire_block_area =
-      lire ? cell_pixels(grid.left[0], grid.top[0]) * 4 : 1;
+  const std::int64_t lire_block_area = lire ? cell_pixels(grid.left[0], grid.top[0]) * 4 : 1;
   const LireQuadrantMean lire_quadrant_mean(bgr, grid, lire_block_area);
   const Divider lire_block(lire_block_area);
 

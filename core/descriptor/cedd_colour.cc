@@ -19,8 +19,8 @@ double Membership(double x, const Trapezoid& t) {
   return mu;
 }
 
-constexpr Trapezoid kHue[8] = {{0, 0, 5, 10},       {5, 10, 35, 50},    {35, 50, 70, 85},
-                               {70, 85, 150, 165},  {150, 165, 195, 205}, {195, 205, 265, 280},
+constexpr Trapezoid kHue[8] = {{0, 0, 5, 10},        {5, 10, 35, 50},      {35, 50, 70, 85},
+                               {70, 85, 150, 165},   {150, 165, 195, 205}, {195, 205, 265, 280},
                                {265, 280, 315, 330}, {315, 330, 360, 360}};
 constexpr Trapezoid kSaturation10[2] = {{0, 0, 10, 75}, {10, 75, 255, 255}};
 constexpr Trapezoid kValue10[3] = {{0, 0, 10, 75}, {10, 75, 180, 220}, {180, 220, 255, 255}};
@@ -106,8 +106,7 @@ Fuzzy10 FuzzyLink10(const Hsv& hsv) {
     if (hue[h] <= 0) continue;
     for (const Rule10& rule : kChromaticRules) {
       if (sat[rule.saturation] > 0 && val[rule.value] > 0) {
-        bins[ChromaticBin(h)] +=
-            std::min(hue[h], std::min(sat[rule.saturation], val[rule.value]));
+        bins[ChromaticBin(h)] += std::min(hue[h], std::min(sat[rule.saturation], val[rule.value]));
       }
     }
   }

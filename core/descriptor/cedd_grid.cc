@@ -84,8 +84,10 @@ Grid LireGrid(int width, int height) {
   Grid grid;
   const int m = std::min(width, height);
   int blocks_side = -1;
-  if (m >= 80) blocks_side = 40;                 // N = 1600
-  else if (m >= 40) blocks_side = 20;            // N = 400
+  if (m >= 80)
+    blocks_side = 40;  // N = 1600
+  else if (m >= 40)
+    blocks_side = 20;  // N = 400
   int step_x = 2, step_y = 2, max_x, max_y;
   if (blocks_side > 0) {
     step_x = width / blocks_side;

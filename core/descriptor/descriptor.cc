@@ -8,12 +8,9 @@ namespace orbit {
 
 std::string_view VariantName(DescriptorVariant variant) {
   switch (variant) {
-    case DescriptorVariant::kCeddLire:
-      return "cedd-lire";
-    case DescriptorVariant::kCeddFull:
-      return "cedd-full";
-    case DescriptorVariant::kCeddRobust:
-      return "cedd-robust";
+    case DescriptorVariant::kCeddLire: return "cedd-lire";
+    case DescriptorVariant::kCeddFull: return "cedd-full";
+    case DescriptorVariant::kCeddRobust: return "cedd-robust";
   }
   return "unknown";
 }

@@ -17,8 +17,8 @@
 namespace orbit {
 
 inline constexpr int kDescriptorSize = 144;
-inline constexpr int kDescriptorMaxValue = 7;   // each value is quantised to 3 bits
-inline constexpr int kColourBins = 24;          // fuzzy colour bins per texture class
+inline constexpr int kDescriptorMaxValue = 7;  // each value is quantised to 3 bits
+inline constexpr int kColourBins = 24;         // fuzzy colour bins per texture class
 inline constexpr int kTextureClasses = 6;
 
 using DescriptorValues = std::array<std::uint8_t, kDescriptorSize>;
@@ -26,8 +26,8 @@ using DescriptorValues = std::array<std::uint8_t, kDescriptorSize>;
 enum class DescriptorVariant {
   kCeddLire,  // bit-exact with the LIRE reference; reads only LIRE's grid of blocks
   kCeddFull,  // the same algorithm on a 40x40 grid covering every pixel of the region
-  // cedd-full of the region's canonical frame (core/descriptor/canonical_frame.h: canonical size, blur and
-  // brightness): the product's variant, robust to blur, noise, compression and light
+  // cedd-full of the region's canonical frame (core/descriptor/canonical_frame.h: canonical size,
+  // blur and brightness): the product's variant, robust to blur, noise, compression and light
   kCeddRobust,
 };
 inline constexpr std::array<DescriptorVariant, 3> kDescriptorVariants = {

@@ -14,9 +14,9 @@
 
 namespace orbit {
 
-inline constexpr double kMotionBlurLength = 15;           // pixels
-inline constexpr double kMotionBlurAngleDegrees = 20;     // counter-clockwise from horizontal
-inline constexpr double kGaussianNoiseVariance = 0.012;   // on the [0, 1] intensity scale
+inline constexpr double kMotionBlurLength = 15;          // pixels
+inline constexpr double kMotionBlurAngleDegrees = 20;    // counter-clockwise from horizontal
+inline constexpr double kGaussianNoiseVariance = 0.012;  // on the [0, 1] intensity scale
 
 // The kernel of MATLAB's fspecial('motion', length, angle_degrees), reproduced step by step
 // (same mesh, same end-of-line correction, same eps terms): a line `length` pixels long at

@@ -55,7 +55,8 @@ double EstimateNoiseSigma(const cv::Mat& image) {
   // Horizontal second differences of three consecutive rows, rotated as the rows go down.
   std::vector<std::int16_t> rows[3] = {std::vector<std::int16_t>(n), std::vector<std::int16_t>(n),
                                        std::vector<std::int16_t>(n)};
-  for (int r = 0; r < 2; ++r) SecondDifference(pixels.ptr<std::uint8_t>(r), step, rows[r].data(), n);
+  for (int r = 0; r < 2; ++r)
+    SecondDifference(pixels.ptr<std::uint8_t>(r), step, rows[r].data(), n);
   std::int64_t sum = 0;
   for (int r = 1; r + 1 < pixels.rows; ++r) {
     std::vector<std::int16_t>& below = rows[(r + 1) % 3];

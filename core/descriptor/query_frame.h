@@ -16,10 +16,11 @@ namespace orbit {
 // known only between two frames that both have one (MeasuredTurn); where it is not, the
 // engines assume nothing about it: the HMM lets the object turn to any sector, VCI puts no
 // orientation cost on a path and completes a list with the view most similar to the frame.
-// `noise_sigma`: the frame's estimated noise deviation in grey levels (core/descriptor/noise_estimate.h),
-// and `blur`, its blur in [0, 1] (core/descriptor/blur_estimate.h), when the device measured them; the
-// calibrated accept / unknown rule allows noisy and blurred windows more
-// (core/decision/quality_allowance.h). No engine's ranking reads them.
+// `noise_sigma`: the frame's estimated noise deviation in grey levels
+// (core/descriptor/noise_estimate.h), and `blur`, its blur in [0, 1]
+// (core/descriptor/blur_estimate.h), when the device measured them; the calibrated accept / unknown
+// rule allows noisy and blurred windows more (core/decision/quality_allowance.h). No engine's
+// ranking reads them.
 struct QueryFrame {
   Descriptor descriptor;
   std::optional<double> azimuth;

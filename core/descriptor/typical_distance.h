@@ -4,7 +4,8 @@
 // says how far a query of this very view typically lands when the camera shakes or the sensor is
 // noisy, so the rejection rule can judge a match's distance against it.
 //
-// The distorted copies are exactly two, the protocol's query distortions (core/descriptor/distortion.h):
+// The distorted copies are exactly two, the protocol's query distortions
+// (core/descriptor/distortion.h):
 //   1. MotionBlur(view)                                    15-pixel line at 20 degrees
 //   2. AddGaussianNoise(view, kGaussianNoiseVariance, seed)  variance 0.012
 // so Ttyp = (T(view, copy 1) + T(view, copy 2)) / 2.

@@ -1,7 +1,7 @@
 #include "core/descriptor/view_description.h"
 
-#include "core/descriptor/cedd.h"
 #include "core/base/seeded_random.h"
+#include "core/descriptor/cedd.h"
 
 namespace orbit {
 namespace {

@@ -4,8 +4,8 @@
 // stores the same numbers through every path (docs/design.md#typical-distance: a device that
 // sends descriptors without images computes the distorted copies itself).
 //
-// The seed rule. The Gaussian noise of a view's noisy copy (core/descriptor/typical_distance.h) is seeded
-// from the view itself:
+// The seed rule. The Gaussian noise of a view's noisy copy (core/descriptor/typical_distance.h) is
+// seeded from the view itself:
 //   ViewNoiseSeed(descriptor, base) = MixSeed(base, FNV-1a 64 of the 144 descriptor values)
 // with base = kDefaultViewNoiseSeed unless a caller asks otherwise (`orbit import --seed`,
 // EnrollerOptions::seed, `orbit eval --seed`). It depends on neither the object's name, nor the
@@ -36,7 +36,7 @@ struct ViewDescription {
   // CEDDs of TypicalDistortions(view, ViewNoiseSeed(descriptor, base)), in that order: the
   // motion-blurred copy, then the noisy one.
   std::array<DescriptorValues, kTypicalDistortionCount> distorted{};
-  double typical_distance = 0;    // Ttyp = TypicalDistance(descriptor, distorted), in [0, 1]
+  double typical_distance = 0;  // Ttyp = TypicalDistance(descriptor, distorted), in [0, 1]
 };
 
 // Describes `view` (the object's region, already cropped) in `variant`.

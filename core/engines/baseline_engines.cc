@@ -29,7 +29,8 @@ class BaselineEngine final : public WindowedEngine {
   void Rebase(const ViewIndexSnapshot& before, const ViewIndexSnapshot& after,
               const SnapshotChange&, std::span<const QueryFrame> window) override {
     std::unordered_map<const IndexedObject*, std::size_t> before_first_slot;
-    for (const ObjectSlot& slot : before.objects()) before_first_slot[slot.object] = slot.first_slot;
+    for (const ObjectSlot& slot : before.objects())
+      before_first_slot[slot.object] = slot.first_slot;
     for (std::size_t t = 0; t < similarities_.size(); ++t) {
       std::vector<float> moved(after.slot_count(), 0.0f);
       for (const ObjectSlot& slot : after.objects()) {

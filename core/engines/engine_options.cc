@@ -11,8 +11,8 @@ namespace {
 
 // Throws "<prefix><field> must be in <range>, got <value>" unless `in_range`.
 template <typename T>
-void Require(bool in_range, std::string_view prefix, std::string_view field,
-             std::string_view range, T value) {
+void Require(bool in_range, std::string_view prefix, std::string_view field, std::string_view range,
+             T value) {
   if (in_range) return;
   std::ostringstream message;
   message << prefix << field << " must be in " << range << ", got " << value;
@@ -33,8 +33,7 @@ std::string Integers(int low, int high) {
 
 void ValidateEngineOptions(const EngineOptions& o, std::string_view p) {
   // Every comparison is written so that NaN fails it.
-  Require(o.window >= 1 && o.window <= kMaxWindow, p, "window", Integers(1, kMaxWindow),
-          o.window);
+  Require(o.window >= 1 && o.window <= kMaxWindow, p, "window", Integers(1, kMaxWindow), o.window);
   Require(o.list_length >= 1 && o.list_length <= kMaxListLength, p, "list_length",
           Integers(1, kMaxListLength), o.list_length);
   Require(o.orientation_weight >= 0 && o.orientation_weight <= kMaxOrientationWeight, p,
@@ -43,8 +42,7 @@ void ValidateEngineOptions(const EngineOptions& o, std::string_view p) {
           Integers(1, kMaxHmmStates), o.hmm_states);
   Require(o.hmm_sharpness >= 0 && o.hmm_sharpness <= kMaxHmmSharpness, p, "hmm_sharpness",
           Integers(0, kMaxHmmSharpness), o.hmm_sharpness);
-  Require(std::isfinite(o.threshold) && o.threshold > 0, p, "threshold", "(0, inf)",
-          o.threshold);
+  Require(std::isfinite(o.threshold) && o.threshold > 0, p, "threshold", "(0, inf)", o.threshold);
   Require(o.false_accept_rate > 0 && o.false_accept_rate < 1, p, "false_accept_rate", "(0, 1)",
           o.false_accept_rate);
   Require(o.top_k >= 1 && o.top_k <= kMaxTopK, p, "top_k", Integers(1, kMaxTopK), o.top_k);

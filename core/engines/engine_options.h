@@ -35,15 +35,15 @@ struct EngineOptions {
   // threshold a model-set calibration gives for false_accept_rate (undecided without one:
   // RecognitionEngine::SetCalibration).
   RejectionRule rejection = RejectionRule::kTypicalDistance;
-  double threshold = 2.0;           // Th (finite, > 0)
+  double threshold = 2.0;  // Th (finite, > 0)
   // kCalibrated's target share of unknown objects' windows accepted, in (0, 1); why this
   // default: docs/results/recognition.md, "Why 0.17 by default".
   double false_accept_rate = 0.17;
-  int top_k = 5;                    // objects in each update's ranking (1..kMaxTopK)
+  int top_k = 5;  // objects in each update's ranking (1..kMaxTopK)
   // lambda of the nearest-view blend, in [0, 1] (0: the engine's own score, as the thesis'
   // engines; docs/design.md#nearest-view-blend).
   double nearest_view_weight = 0;
-  int averaged_views = 8;           // N_avg: active vision's averaged views (2..kMaxAveragedViews)
+  int averaged_views = 8;  // N_avg: active vision's averaged views (2..kMaxAveragedViews)
   // Active vision: objects scoring within this margin of the best are the ambiguous candidates
   // (finite, >= 0; docs/design.md#active-vision).
   double ambiguity_margin = 0.05;

@@ -48,7 +48,8 @@ const EngineKind& FindEngine(std::string_view name) {
   }
   std::string known;
   for (const std::string_view n : kNames) known += (known.empty() ? "" : ", ") + std::string(n);
-  throw std::invalid_argument("unknown engine \"" + std::string(name) + "\" (known: " + known + ")");
+  throw std::invalid_argument("unknown engine \"" + std::string(name) + "\" (known: " + known +
+                              ")");
 }
 
 std::unique_ptr<RecognitionEngine> CreateEngine(std::string_view name,

@@ -69,7 +69,7 @@ HoughPath BestHoughPath(std::span<const std::vector<HoughEntry>> entries,
       int arg = 0;
       for (std::size_t i = 0; i < entries[k - 1].size(); ++i) {
         const double value = best[k - 1][i] - StepCost(entries[k - 1][i], e, frame_azimuths[k - 1],
-                                                        frame_azimuths[k], w);
+                                                       frame_azimuths[k], w);
         if (value > top) {
           top = value;
           arg = static_cast<int>(i);
@@ -131,7 +131,8 @@ class HoughVoter final : public WindowedEngine {
       for (const ObjectSlot& slot : change.added) {
         const auto& views = slot.object->model().views;
         for (int v = 0; v < static_cast<int>(views.size()); ++v) {
-          list.push_back({slot.object->id(), v, views[v].azimuth, Tanimoto(query, views[v].descriptor)});
+          list.push_back(
+              {slot.object->id(), v, views[v].azimuth, Tanimoto(query, views[v].descriptor)});
         }
       }
       std::stable_sort(list.begin(), list.end(), [](const ViewMatch& a, const ViewMatch& b) {

@@ -38,9 +38,9 @@ namespace orbit {
 
 // One view of a candidate standing on a frame's list.
 struct HoughEntry {
-  int view = 0;          // index in the object's ObjectModel::views
-  double azimuth = 0;    // alpha(c_{i,j}), degrees
-  double similarity = 0; // TC(q_k, c_{i,j})
+  int view = 0;           // index in the object's ObjectModel::views
+  double azimuth = 0;     // alpha(c_{i,j}), degrees
+  double similarity = 0;  // TC(q_k, c_{i,j})
 };
 
 // |wrap(wrap(beta_k - beta_next) - wrap(alpha_k - alpha_next))| in radians: the orientation

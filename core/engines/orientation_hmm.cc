@@ -1,8 +1,8 @@
 #include "core/engines/orientation_hmm.h"
 
 #include <algorithm>
-#include <cstdint>
 #include <cmath>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <limits>
@@ -12,10 +12,10 @@
 #include <stdexcept>
 
 #include "core/base/cpu_dispatch.h"
-#include "core/engines/sector_similarity_table.h"
-#include "core/index/similarity_rows.h"
 #include "core/descriptor/similarity.h"
+#include "core/engines/sector_similarity_table.h"
 #include "core/engines/windowed_engine.h"
+#include "core/index/similarity_rows.h"
 
 namespace orbit {
 namespace {
@@ -471,8 +471,8 @@ class OrientationHmm final : public WindowedEngine {
   struct WindowFrame {
     std::vector<std::uint16_t> best;  // [object]: its highest emission in BoundUnits(), 0 when
                                       // unseen (every TC 0), > 0 when seen
-    std::vector<float> kept;  // [slot * states + state]: the emissions of kept_[slot]
-    SparseTransitions step;   // from the previous frame (empty for the first)
+    std::vector<float> kept;          // [slot * states + state]: the emissions of kept_[slot]
+    SparseTransitions step;           // from the previous frame (empty for the first)
   };
 
   // The emissions of one frame for every object of `table`, [state * objects + object] in the
@@ -629,7 +629,7 @@ class OrientationHmm final : public WindowedEngine {
   const int states_;
   const std::vector<Arc> sectors_;
   const SparseTransitions unknown_turn_;  // the step to or from a frame without azimuth
-  BatchViterbi viterbi_;  // holds the last Assess's paths, read by Complete
+  BatchViterbi viterbi_;                  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
   std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn

@@ -57,8 +57,8 @@ SparseTransitions UnknownTurnTransitions(std::span<const Arc> sectors);
 std::vector<double> Emissions(std::span<const double> state_similarities);
 
 struct ViterbiPath {
-  std::vector<int> states;      // most probable state per frame
-  double log_probability = 0;   // its log probability (-inf when every path is impossible)
+  std::vector<int> states;     // most probable state per frame
+  double log_probability = 0;  // its log probability (-inf when every path is impossible)
 };
 
 // Most probable state sequence. transitions[t-1] leads from frame t-1 to frame t;

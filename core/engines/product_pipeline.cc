@@ -17,9 +17,9 @@ std::string DescribeProduct() {
   text << p.engine << " (" << p.options.hmm_states << " states, window " << p.options.window
        << ", emissions to the power " << (1 << p.options.hmm_sharpness) << ", score "
        << 1 - p.options.nearest_view_weight << " path + " << p.options.nearest_view_weight
-       << " nearest views) on "
-       << VariantName(p.variant) << " (CEDD of a canonical frame: resampled to "
-       << kCanonicalArea << " pixels, Gaussian blur of " << kCanonicalBlurSigma
+       << " nearest views) on " << VariantName(p.variant)
+       << " (CEDD of a canonical frame: resampled to " << kCanonicalArea
+       << " pixels, Gaussian blur of " << kCanonicalBlurSigma
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
        << "th percentile of the brightest channel is " << kBrightnessTarget << ")";
   return text.str();

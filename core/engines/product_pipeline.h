@@ -1,7 +1,7 @@
-// The product's default recognition pipeline, defined once (docs/design.md#product-pipeline): the descriptor variant a
-// device describes its frames in and a server keeps its models in, the engine a session runs
-// when it asks for none, and that engine's options. `orbit serve` takes its defaults from here,
-// the client library describes frames in its server's variant, and `orbit eval --methods
+// The product's default recognition pipeline, defined once (docs/design.md#product-pipeline): the
+// descriptor variant a device describes its frames in and a server keeps its models in, the engine
+// a session runs when it asks for none, and that engine's options. `orbit serve` takes its defaults
+// from here, the client library describes frames in its server's variant, and `orbit eval --methods
 // product` evaluates exactly this, so the three cannot drift apart.
 //
 // Why these choices: docs/results/robustness.md (the tables, the ablation, the commands).

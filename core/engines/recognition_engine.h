@@ -50,7 +50,7 @@ struct RankedObject {
 
 // The answer to one frame.
 struct FrameUpdate {
-  std::int64_t frame_index = 0;      // 0 for the first frame after construction or Reset()
+  std::int64_t frame_index = 0;       // 0 for the first frame after construction or Reset()
   std::vector<RankedObject> ranking;  // best first, at most options.top_k; empty index: empty
   Decision decision = Decision::kUndecided;
   SuggestedMove move = SuggestedMove::kNone;

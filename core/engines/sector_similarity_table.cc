@@ -133,8 +133,7 @@ void SectorSimilarityTable::Compute(const DescriptorValues& query,
   }
 }
 
-void SectorSimilarityTable::ComputeObject(const DescriptorValues& query,
-                                          const SectorViews& sectors,
+void SectorSimilarityTable::ComputeObject(const DescriptorValues& query, const SectorViews& sectors,
                                           std::span<float> similarity) {
   const std::size_t count = static_cast<std::size_t>(sectors.count);
   if (similarity.size() < count) {

@@ -62,10 +62,10 @@ class SectorSimilarityTable {
  private:
   std::size_t objects_ = 0;
   int states_ = 0;
-  std::size_t stride_ = 0;                 // states * objects, rounded up for aligned rows
-  std::vector<std::int16_t> bin_sums_;     // [bin][state * objects + object]: sum of its views
-  std::vector<float> inverse_counts_;      // 1 / number of views in the state
-  std::vector<float> squared_norms_;       // S.S of the mean
+  std::size_t stride_ = 0;              // states * objects, rounded up for aligned rows
+  std::vector<std::int16_t> bin_sums_;  // [bin][state * objects + object]: sum of its views
+  std::vector<float> inverse_counts_;   // 1 / number of views in the state
+  std::vector<float> squared_norms_;    // S.S of the mean
   // States whose sums could overflow 16 bits (over 4681 views in one sector): computed
   // directly from their mean, (position in the result, mean).
   std::vector<std::pair<std::size_t, const MeanDescriptor*>> wide_states_;

@@ -32,9 +32,9 @@ void WindowedEngine::Complete(const ViewIndexSnapshot&, std::span<const QueryFra
 void WindowedEngine::Validate(const ViewIndexSnapshot* index, const QueryFrame& frame) const {
   if (index == nullptr) throw std::invalid_argument("no view index to recognise against");
   if (frame.descriptor.variant != index->variant()) {
-    throw std::invalid_argument("frame descriptor has variant " +
-                                std::string(VariantName(frame.descriptor.variant)) +
-                                ", the model set has " + std::string(VariantName(index->variant())));
+    throw std::invalid_argument(
+        "frame descriptor has variant " + std::string(VariantName(frame.descriptor.variant)) +
+        ", the model set has " + std::string(VariantName(index->variant())));
   }
   ValidateQueryFrame(frame);
 }
@@ -117,7 +117,8 @@ std::size_t WindowedEngine::Rank(std::vector<Assessment>& assessments) {
   // Only the ranked objects need ordering (an HMM session assesses every object per frame), and
   // the runner-up for the unknown statistic.
   const std::size_t ordered = std::min<std::size_t>(
-      assessments.size(), std::max<std::size_t>(static_cast<std::size_t>(RankedDepth(options())), 2));
+      assessments.size(),
+      std::max<std::size_t>(static_cast<std::size_t>(RankedDepth(options())), 2));
   const auto better = [](const Assessment& a, const Assessment& b) {
     return a.score > b.score || (a.score == b.score && a.object->id() < b.object->id());
   };

@@ -76,7 +76,8 @@ SectorViews ComputeSectorViews(const ObjectModel& model, int count) {
         nearest = std::min(nearest, CircularDistance(view.azimuth, centre));
       }
       for (int v = 0; v < static_cast<int>(model.views.size()); ++v) {
-        if (CircularDistance(model.views[v].azimuth, centre) <= nearest + 1e-9) members.push_back(v);
+        if (CircularDistance(model.views[v].azimuth, centre) <= nearest + 1e-9)
+          members.push_back(v);
       }
     }
     sectors.views[s] = members;

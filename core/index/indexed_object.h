@@ -37,9 +37,9 @@ double Tanimoto(const MeanDescriptor& q, const MeanDescriptor& c);
 // centre, so that every state has a descriptor even after the protocol removes views.
 struct SectorViews {
   int count = 0;
-  std::vector<MeanDescriptor> descriptor;        // [count]
-  std::vector<ViewSum> sum;                      // [count]: descriptor * (views in the mean)
-  std::vector<double> squared_norm;              // [count]: descriptor . descriptor
+  std::vector<MeanDescriptor> descriptor;  // [count]
+  std::vector<ViewSum> sum;                // [count]: descriptor * (views in the mean)
+  std::vector<double> squared_norm;        // [count]: descriptor . descriptor
   // [count]: the model views the mean was taken over (the sector's own, or the stand-ins)
   std::vector<std::vector<int>> views;
 };

@@ -19,8 +19,8 @@ using ObjectId = std::int64_t;
 
 struct ModelView {
   DescriptorValues descriptor{};
-  double azimuth = 0;                // degrees, normalised to [0, 360)
-  std::optional<double> elevation;   // degrees, when the capture recorded it
+  double azimuth = 0;               // degrees, normalised to [0, 360)
+  std::optional<double> elevation;  // degrees, when the capture recorded it
   // Ttyp(c_{i,f}): mean Tanimoto distance between this view and its distorted copies
   // (docs/design.md#typical-distance); 0 when unknown.
   double typical_distance = 0;

@@ -1,8 +1,8 @@
 // SimilarityRows: the Tanimoto coefficients of a session's window frames with the views of the
 // few objects its answer looks at closely (the winner, the runner-up), computed once per frame
 // and object and kept while the frame stays in the window. The accept / unknown statistic
-// (core/decision/unknown_statistic.h) and the pose estimate (core/decision/pose_estimate.h) read them; without
-// the cache each update would redo window x views comparisons for both.
+// (core/decision/unknown_statistic.h) and the pose estimate (core/decision/pose_estimate.h) read
+// them; without the cache each update would redo window x views comparisons for both.
 //
 // Keyed by the IndexedObject's address: when the session moves to another index snapshot, forget
 // the objects the new one no longer holds before the old snapshot is released (an object's new
@@ -16,8 +16,8 @@
 #include <span>
 #include <vector>
 
-#include "core/index/indexed_object.h"
 #include "core/descriptor/query_frame.h"
+#include "core/index/indexed_object.h"
 
 namespace orbit {
 

@@ -1,12 +1,12 @@
 // ViewBins: an object's view descriptors bin by bin, 4 bits a value, for the similarity rows
-// (core/index/similarity_rows.h): a frame's row of Tanimoto coefficients with an object's views reads
-// only the frame's non-zero bins (about 21 of 144 in a COIL-100 CEDD), and each bin of up to
+// (core/index/similarity_rows.h): a frame's row of Tanimoto coefficients with an object's views
+// reads only the frame's non-zero bins (about 21 of 144 in a COIL-100 CEDD), and each bin of up to
 // 128 views is one cache line, where a byte a value took two at 72 views. Where hundreds of
 // sessions look at different objects, these reads come from memory (docs/results/load.md,
 // "Cold reads and the floor", measures the gain).
 //
-// A CEDD value is at most 7 (core/descriptor/descriptor.h), so 4 bits hold it exactly and every product
-// below is the one a byte a value gives.
+// A CEDD value is at most 7 (core/descriptor/descriptor.h), so 4 bits hold it exactly and every
+// product below is the one a byte a value gives.
 #pragma once
 
 #include <cstddef>

@@ -19,7 +19,7 @@ using KdTree = flann::Index<flann::L2<float>>;
 // Views of some objects in one contiguous block, never modified after BuildSegment.
 struct ViewIndexSnapshot::Segment {
   std::vector<std::shared_ptr<const IndexedObject>> objects;
-  std::vector<std::size_t> first_view;       // per object: its first view's local slot
+  std::vector<std::size_t> first_view;  // per object: its first view's local slot
   std::size_t view_count = 0;
   std::vector<std::uint8_t> descriptors;     // local slot s: [s * 144, (s + 1) * 144)
   std::vector<std::int32_t> squared_norms;   // c.c per local slot
@@ -84,8 +84,8 @@ bool Better(const Scored& a, const Scored& b) {
   return a.first > b.first || (a.first == b.first && a.second < b.second);
 }
 
-std::shared_ptr<const Segment> BuildSegment(std::vector<std::shared_ptr<const IndexedObject>> objects,
-                                            const ViewIndexOptions& options) {
+std::shared_ptr<const Segment> BuildSegment(
+    std::vector<std::shared_ptr<const IndexedObject>> objects, const ViewIndexOptions& options) {
   auto segment = std::make_shared<Segment>();
   for (const auto& object : objects) {
     segment->first_view.push_back(segment->view_count);
@@ -211,9 +211,8 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchExact(const DescriptorValues& qu
       const std::size_t first = segment.first_view[o];
       const std::size_t end = first + segment.objects[o]->view_count();
       for (std::size_t v = first; v < end; ++v) {
-        const double tc =
-            TanimotoFromDot(Dot(wide, &segment.descriptors[v * kDescriptorSize]),
-                            wide.squared_norm, segment.squared_norms[v]);
+        const double tc = TanimotoFromDot(Dot(wide, &segment.descriptors[v * kDescriptorSize]),
+                                          wide.squared_norm, segment.squared_norms[v]);
         if (static_cast<int>(best.size()) < count) {
           best.emplace_back(tc, segment_first_slot_[s] + v);
           std::push_heap(best.begin(), best.end(), worse_on_top);
@@ -261,8 +260,7 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
   return Best(scored, count);
 }
 
-std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored,
-                                               int count) const {
+std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored, int count) const {
   std::vector<Scored> sorted = scored;
   std::sort(sorted.begin(), sorted.end(), Better);
   if (static_cast<int>(sorted.size()) > count) sorted.resize(count);
@@ -308,8 +306,7 @@ SnapshotChange CompareSnapshots(const ViewIndexSnapshot& before, const ViewIndex
   for (const ObjectSlot& slot : after.objects()) {
     const std::int32_t position = position_in(before, slot.object);
     const bool added = position < 0;
-    const std::size_t source =
-        added ? change.added.size() : static_cast<std::size_t>(position);
+    const std::size_t source = added ? change.added.size() : static_cast<std::size_t>(position);
     std::vector<SnapshotChange::Run>& runs = change.runs;
     if (!runs.empty() && runs.back().added == added &&
         runs.back().source + runs.back().length == source) {
@@ -344,8 +341,8 @@ void ViewIndexSnapshot::SimilarityToEveryView(const DescriptorValues& query,
 ViewIndex::ViewIndex(DescriptorVariant variant, ViewIndexOptions options)
     : variant_(variant), options_(options) {
   ValidateOptions(options_);
-  current_ = std::make_shared<const ViewIndexSnapshot>(variant_, options_,
-                                                       std::vector<SegmentState>{});
+  current_ =
+      std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::vector<SegmentState>{});
 }
 
 namespace {
@@ -363,7 +360,8 @@ ViewIndex::ViewIndex(std::vector<ObjectModel> models, ViewIndexOptions options)
   current_ = BuildAll(std::move(models));
 }
 
-std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(std::vector<ObjectModel> models) const {
+std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(
+    std::vector<ObjectModel> models) const {
   std::vector<SegmentState> segments;
   if (!models.empty()) {
     std::vector<std::shared_ptr<const IndexedObject>> objects;

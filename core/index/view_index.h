@@ -13,10 +13,10 @@
 //            docs/results/engines-speed.md for recall@N_L against kExact on COIL-100.
 //
 // Updates without a rebuild from scratch: views live in immutable segments, each with its own
-// kd-tree. Add() (and Replace(), a removal and an addition in one step) appends a segment holding the new object and merges segments of similar size
-// (log-structured, so each view is re-indexed O(log views) times over the index's life);
-// Remove() records the object as deleted and a segment is rewritten only when more than half of
-// it is deleted. Searches skip deleted objects.
+// kd-tree. Add() (and Replace(), a removal and an addition in one step) appends a segment holding
+// the new object and merges segments of similar size (log-structured, so each view is re-indexed
+// O(log views) times over the index's life); Remove() records the object as deleted and a segment
+// is rewritten only when more than half of it is deleted. Searches skip deleted objects.
 //
 // Snapshots: Snapshot() returns an immutable view of the index at that moment; later Add() and
 // Remove() never change it. A session takes the current snapshot for each frame, so an object
@@ -51,9 +51,10 @@ enum class SearchMode {
 
 struct ViewIndexOptions {
   SearchMode search = SearchMode::kExact;
-  int kd_trees = 4;         // FLANN randomised kd-trees per segment
-  int kd_checks = 256;      // leaves FLANN visits per segment and query (see docs/results/engines-speed.md)
-  int kd_candidates = 32;   // views FLANN proposes for re-ranking (at least the count asked)
+  int kd_trees = 4;  // FLANN randomised kd-trees per segment
+  int kd_checks =
+      256;  // leaves FLANN visits per segment and query (see docs/results/engines-speed.md)
+  int kd_candidates = 32;  // views FLANN proposes for re-ranking (at least the count asked)
 };
 
 // One view found by a search: the object, the position of the view in that object's

@@ -24,9 +24,9 @@ int Enroll(const orbit::Connection& connection, orbit::CaptureReader& capture,
            const std::string& name) {
   orbit::Enroller enroller(connection);
   const orbit::Enroller::VideoEnrollment enrolled = enroller.FromVideo(name, capture);
-  std::cout << "enrolled " << enrolled.object.name() << " (id " << enrolled.object.id()
-            << ") from " << enrolled.selection.views.size() << " of "
-            << enrolled.selection.frames_read << " frames\n";
+  std::cout << "enrolled " << enrolled.object.name() << " (id " << enrolled.object.id() << ") from "
+            << enrolled.selection.views.size() << " of " << enrolled.selection.frames_read
+            << " frames\n";
   return 0;
 }
 

@@ -20,7 +20,8 @@ TEST(ConversionTest, VariantsRoundTripAndUnknownOnesAreRefusedByName) {
   EXPECT_EQ(ProtoVariantName(v1::DESCRIPTOR_VARIANT_UNSPECIFIED), "unspecified");
   EXPECT_EQ(ProtoVariantName(static_cast<v1::DescriptorVariant>(9)), "unknown (9)");
   // Neither end guesses a variant: both refuse what they do not know.
-  for (const auto bad : {v1::DESCRIPTOR_VARIANT_UNSPECIFIED, static_cast<v1::DescriptorVariant>(9)}) {
+  for (const auto bad :
+       {v1::DESCRIPTOR_VARIANT_UNSPECIFIED, static_cast<v1::DescriptorVariant>(9)}) {
     try {
       FromProtoVariant(bad);
       ADD_FAILURE() << "accepted " << bad;

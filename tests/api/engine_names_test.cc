@@ -15,8 +15,8 @@ namespace {
 using ::testing::ElementsAre;
 
 TEST(EngineNamesTest, NamesComeFromTheProtoInItsOrder) {
-  EXPECT_THAT(SessionEngineNames(), ElementsAre("vci", "hmm", "vci-hmm", "vci-bm", "vci-w0",
-                                                "eis", "siis", "eiis"));
+  EXPECT_THAT(SessionEngineNames(),
+              ElementsAre("vci", "hmm", "vci-hmm", "vci-bm", "vci-w0", "eis", "siis", "eiis"));
   EXPECT_EQ(SessionEngineName(v1::ENGINE_VCI_W0), "vci-w0");
   EXPECT_EQ(SessionEngineName(v1::ENGINE_UNSPECIFIED), "");
   EXPECT_EQ(SessionEngineName(static_cast<v1::Engine>(99)), "");

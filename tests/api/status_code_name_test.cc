@@ -11,12 +11,25 @@ namespace orbit {
 namespace {
 
 TEST(StatusCodeNameTest, EveryCodeHasItsCanonicalName) {
-  // In the numeric order of grpc/status.h, checked against grpc.github.io/grpc/core/md_doc_statuscodes.
-  const char* const expected[] = {
-      "OK",        "CANCELLED",          "UNKNOWN",         "INVALID_ARGUMENT",
-      "DEADLINE_EXCEEDED", "NOT_FOUND",  "ALREADY_EXISTS",  "PERMISSION_DENIED",
-      "RESOURCE_EXHAUSTED", "FAILED_PRECONDITION", "ABORTED", "OUT_OF_RANGE",
-      "UNIMPLEMENTED", "INTERNAL", "UNAVAILABLE", "DATA_LOSS", "UNAUTHENTICATED"};
+  // In the numeric order of grpc/status.h, checked against
+  // grpc.github.io/grpc/core/md_doc_statuscodes.
+  const char* const expected[] = {"OK",
+                                  "CANCELLED",
+                                  "UNKNOWN",
+                                  "INVALID_ARGUMENT",
+                                  "DEADLINE_EXCEEDED",
+                                  "NOT_FOUND",
+                                  "ALREADY_EXISTS",
+                                  "PERMISSION_DENIED",
+                                  "RESOURCE_EXHAUSTED",
+                                  "FAILED_PRECONDITION",
+                                  "ABORTED",
+                                  "OUT_OF_RANGE",
+                                  "UNIMPLEMENTED",
+                                  "INTERNAL",
+                                  "UNAVAILABLE",
+                                  "DATA_LOSS",
+                                  "UNAUTHENTICATED"};
   std::set<std::string> names;
   for (int code = 0; code < 17; ++code) {
     const std::string name(StatusCodeName(static_cast<grpc::StatusCode>(code)));

@@ -39,8 +39,8 @@ TEST(CliDescriptor, PrintsOneLinePerImageAndReportsUnreadableFiles) {
 }
 
 TEST(CliDescriptor, NotAnImageIsAnErrorToo) {
-  const auto result = RunCommand(OrbitBinary() + " descriptor " +
-                                 (DataDir() / "coil-100-lire-cedd.txt").string());
+  const auto result =
+      RunCommand(OrbitBinary() + " descriptor " + (DataDir() / "coil-100-lire-cedd.txt").string());
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_TRUE(result.out.empty());
   EXPECT_NE(result.err.find("coil-100-lire-cedd.txt"), std::string::npos) << result.err;

@@ -45,7 +45,8 @@ std::pair<std::string, std::vector<CsvRow>> ReadCsv(const std::filesystem::path&
     const std::vector<std::string> values = SplitComma(line);
     EXPECT_EQ(values.size(), names.size()) << line;
     CsvRow row;
-    for (std::size_t i = 0; i < names.size() && i < values.size(); ++i) row.field[names[i]] = values[i];
+    for (std::size_t i = 0; i < names.size() && i < values.size(); ++i)
+      row.field[names[i]] = values[i];
     rows.push_back(row);
   }
   return {header, rows};
@@ -71,8 +72,8 @@ TEST_F(EvalCommandTest, PrintsTableCsvAndPlotForTheChosenMethods) {
   const testing::CommandResult result = testing::RunCommand(
       testing::OrbitBinary() + " eval --layout coil100 --data " + coil_ +
       " --objects 1-4 --unknown-objects 5 --methods eis,vci,hmm --distortions df,mb --n 1,2"
-      " --trials 2 --seed 7 --index exact --threads 2 --csv " + csv.string() +
-      " --plot " + plot.string());
+      " --trials 2 --seed 7 --index exact --threads 2 --csv " +
+      csv.string() + " --plot " + plot.string());
   ASSERT_EQ(result.exit_code, 0) << result.err;
 
   // The Markdown table: one row per distortion x method, one column per n.
@@ -83,7 +84,7 @@ TEST_F(EvalCommandTest, PrintsTableCsvAndPlotForTheChosenMethods) {
   EXPECT_THAT(result.out, HasSubstr("4 known objects, 1 unknown objects"));
   EXPECT_THAT(result.out, HasSubstr("Model memory (cedd-lire): 4 objects, 288 views"));
   EXPECT_THAT(result.out, HasSubstr("recognition (%)"));
-  EXPECT_THAT(result.out, Not(HasSubstr("siis")));   // not asked for
+  EXPECT_THAT(result.out, Not(HasSubstr("siis")));  // not asked for
   EXPECT_THAT(result.out, Not(HasSubstr("| GN |")));
 
   const auto [header, rows] = ReadCsv(csv);
@@ -104,7 +105,8 @@ TEST_F(EvalCommandTest, PrintsTableCsvAndPlotForTheChosenMethods) {
     // Four very different objects, unchanged views 5 degrees from the removed ones' neighbours:
     // every method finds nearly all of them.
     if (row.field.at("distortion") == "df") {
-      EXPECT_GE(row.number("hit_rate"), 0.75) << row.field.at("method") << " n=" << row.field.at("n");
+      EXPECT_GE(row.number("hit_rate"), 0.75)
+          << row.field.at("method") << " n=" << row.field.at("n");
     }
   }
 
@@ -131,9 +133,9 @@ TEST_F(EvalCommandTest, CountsDoNotDependOnThreadsOrLayout) {
   manifest.close();
   const std::string common =
       " --methods eis,vci-bm,hmm --distortions gn --n 1,2 --trials 3 --seed 3 --no-progress --csv ";
-  const auto coil = testing::RunCommand(testing::OrbitBinary() + " eval --layout coil100 --data " +
-                                        coil_ + " --objects 1-6 --threads 2" + common +
-                                        (dir_ / "a.csv").string());
+  const auto coil =
+      testing::RunCommand(testing::OrbitBinary() + " eval --layout coil100 --data " + coil_ +
+                          " --objects 1-6 --threads 2" + common + (dir_ / "a.csv").string());
   ASSERT_EQ(coil.exit_code, 0) << coil.err;
   const auto listed = testing::RunCommand(
       testing::OrbitBinary() + " eval --layout manifest --manifest " + (dir_ / "set.csv").string() +
@@ -189,7 +191,8 @@ TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
   const auto r = testing::RunCommand(
       testing::OrbitBinary() + " eval --data " + coil_ +
       " --objects 1-3 --n 1 --trials 1 --methods product --no-progress --sweep jpeg:20..60"
-      " --sweep-steps 3 --csv " + csv.string() + " --plot " + plot.string());
+      " --sweep-steps 3 --csv " +
+      csv.string() + " --plot " + plot.string());
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("### Sweep: JPEG quality (hit rate %, top-1)"));
   EXPECT_THAT(r.out, HasSubstr("| method | n | 20 | 40 | 60 | worst |"));
@@ -200,8 +203,8 @@ TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
   ASSERT_EQ(rows.size(), 3u);
   EXPECT_EQ(rows[1].field.at("distortion"), "jpeg:q=40");
   EXPECT_FALSE(cv::imread(plot.string()).empty());
-  const auto bad = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
-                                       " --sweep noise");
+  const auto bad =
+      testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ + " --sweep noise");
   EXPECT_NE(bad.exit_code, 0);
   EXPECT_THAT(bad.err, HasSubstr("unknown axis \"noise\" (mb, gn, jpeg, gain)"));
 }

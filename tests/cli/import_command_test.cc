@@ -25,16 +25,16 @@
 namespace orbit {
 namespace {
 
+using testing::CoilDir;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
-using testing::CoilDir;
 using testing::OrbitBinary;
 using testing::OutputLines;
-using testing::UnindentedLines;
 using testing::RunCommand;
 using testing::RunOrbit;
 using testing::ScratchDir;
 using testing::ServerProcess;
+using testing::UnindentedLines;
 
 // A store made with another variant (e.g. cedd-lire, the default before cedd-robust) keeps it:
 // import adds to it in its variant, refuses to mix another in, and a server started on it
@@ -43,13 +43,15 @@ TEST(ImportCommandTest, AnExistingStoreKeepsItsVariantAndANewOneGetsTheProducts)
   ScratchDir dir;
   const std::string lire_db = (dir / "lire.db").string();
   const std::string coil = " --layout coil100 --data " + CoilDir();
-  ASSERT_EQ(RunOrbit("import --db " + lire_db + coil + " --objects 1 --variant cedd-lire").exit_code,
-            0);
+  ASSERT_EQ(
+      RunOrbit("import --db " + lire_db + coil + " --objects 1 --variant cedd-lire").exit_code, 0);
   ASSERT_EQ(RunOrbit("import --db " + lire_db + coil + " --objects 2").exit_code, 0);
-  const auto mixed = RunOrbit("import --db " + lire_db + coil + " --objects 3 --variant cedd-robust");
+  const auto mixed =
+      RunOrbit("import --db " + lire_db + coil + " --objects 3 --variant cedd-robust");
   EXPECT_EQ(mixed.exit_code, 1);
   EXPECT_THAT(mixed.err, ::testing::HasSubstr("--variant cedd-robust is not the variant of the "
-                                              "objects in " + lire_db + " (cedd-lire)"));
+                                              "objects in " +
+                                              lire_db + " (cedd-lire)"));
   EXPECT_THAT(OutputLines(RunOrbit("list --db " + lire_db).out),
               ::testing::ElementsAre(::testing::StartsWith("1 obj1 cedd-lire 72"),
                                      ::testing::StartsWith("2 obj2 cedd-lire 72")));
@@ -78,7 +80,8 @@ TEST(ImportCommandTest, ImportStoresLireDescriptorsAndTypicalDistances) {
   ASSERT_EQ(models[0].views.size(), 72u);
   // Every view's descriptor is LIRE's own for that image (the reference file), at its azimuth.
   std::map<std::string, DescriptorValues> reference;
-  for (const auto& ref : testing::ReadReferenceVectors(testing::DataDir() / "coil-100-lire-cedd.txt")) {
+  for (const auto& ref :
+       testing::ReadReferenceVectors(testing::DataDir() / "coil-100-lire-cedd.txt")) {
     reference[ref.path] = ref.values;
   }
   for (const ModelView& view : models[0].views) {
@@ -104,7 +107,7 @@ TEST(ImportCommandTest, ImportFromAManifestWithElevationsAndVariant) {
 
   const testing::CommandResult imported =
       RunOrbit("import --db " + db + " --layout manifest --manifest " + (dir / "set.csv").string() +
-            " --variant cedd-full");
+               " --variant cedd-full");
 
   ASSERT_EQ(imported.exit_code, 0) << imported.err;
   // Each object with what its enrollment got: mug's views at 0 and 90 leave two gaps, cup's one
@@ -131,8 +134,8 @@ TEST(ImportCommandTest, ImportRefusesABadObjectNameBeforeWritingAnything) {
                                  << CoilDir() << "/obj5__0.png,mug,0\n"
                                  << CoilDir() << "/obj6__0.png,red/cup,0\n";
 
-  const testing::CommandResult imported = RunOrbit(
-      "import --db " + db + " --layout manifest --manifest " + (dir / "set.csv").string());
+  const testing::CommandResult imported =
+      RunOrbit("import --db " + db + " --layout manifest --manifest " + (dir / "set.csv").string());
 
   EXPECT_EQ(imported.exit_code, 1);
   EXPECT_THAT(imported.err, HasSubstr("object name \"red/cup\" has a character not allowed"));
@@ -201,8 +204,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   EXPECT_EQ(deleted.out, "deleted obj2 (id 2, 72 views)\n");
   const auto missing = RunCommand(orbit + "delete" + at + " obj2");
   EXPECT_EQ(missing.exit_code, 1);
-  EXPECT_NE(missing.err.find("no object named \"obj2\" on " + server.address()),
-            std::string::npos)
+  EXPECT_NE(missing.err.find("no object named \"obj2\" on " + server.address()), std::string::npos)
       << missing.err;
   EXPECT_EQ(OutputLines(RunCommand(orbit + "list" + at).out).size(), 2u);
 

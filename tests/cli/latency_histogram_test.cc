@@ -26,12 +26,12 @@ TEST(LatencyHistogramTest, SmallValuesGiveExactNearestRankPercentiles) {
   EXPECT_EQ(h.min(), 1);
   EXPECT_EQ(h.max(), 100);
   EXPECT_DOUBLE_EQ(h.mean(), 50.5);
-  EXPECT_EQ(h.Percentile(50), 50);   // the 50th of 100 values
+  EXPECT_EQ(h.Percentile(50), 50);  // the 50th of 100 values
   EXPECT_EQ(h.Percentile(90), 90);
-  EXPECT_EQ(h.Percentile(99), 99);   // 99 x 100 / 100 = 99 exactly, not 100
+  EXPECT_EQ(h.Percentile(99), 99);  // 99 x 100 / 100 = 99 exactly, not 100
   EXPECT_EQ(h.Percentile(99.5), 100);
   EXPECT_EQ(h.Percentile(100), 100);
-  EXPECT_EQ(h.Percentile(0.5), 1);   // rank ceil(0.5) = 1
+  EXPECT_EQ(h.Percentile(0.5), 1);  // rank ceil(0.5) = 1
 
   LatencyHistogram four;
   for (int v : {10, 20, 30, 40}) four.Record(v);
@@ -59,7 +59,7 @@ TEST(LatencyHistogramTest, LargeValuesAreReportedByTheMiddleOfTheirBucket) {
 TEST(LatencyHistogramTest, ATailDoesNotMoveTheMedianAndMaxIsExact) {
   LatencyHistogram h;
   for (int i = 0; i < 99; ++i) h.Record(1000);  // 1 ms
-  h.Record(1000000);                             // one 1 s outlier
+  h.Record(1000000);                            // one 1 s outlier
   // 1000 has 10 bits: buckets of 8 us; 1000 / 8 = 125, so [1000, 1007], middle 1003.5.
   EXPECT_DOUBLE_EQ(h.Percentile(50), 1003.5);
   EXPECT_DOUBLE_EQ(h.Percentile(99), 1003.5);  // rank 99 is still 1 ms

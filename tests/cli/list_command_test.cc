@@ -15,14 +15,14 @@
 namespace orbit {
 namespace {
 
+using testing::CoilDir;
 using ::testing::ElementsAre;
 using ::testing::HasSubstr;
 using ::testing::MatchesRegex;
-using testing::CoilDir;
 using testing::OutputLines;
-using testing::UnindentedLines;
 using testing::RunOrbit;
 using testing::ScratchDir;
+using testing::UnindentedLines;
 
 TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   ScratchDir dir;
@@ -73,10 +73,10 @@ TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   const testing::CommandResult resumed =
       RunOrbit("import --db " + db + " --layout coil100 --data " + CoilDir() + " --objects 1-3");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
-  EXPECT_THAT(UnindentedLines(resumed.out),
-              ElementsAre("skipped obj1 (already in the store as id 1)",
-                          "enrolled obj2 (id 4, 72 views)",
-                          "skipped obj3 (already in the store as id 3)"));
+  EXPECT_THAT(
+      UnindentedLines(resumed.out),
+      ElementsAre("skipped obj1 (already in the store as id 1)", "enrolled obj2 (id 4, 72 views)",
+                  "skipped obj3 (already in the store as id 3)"));
 }
 
 TEST(ListCommandTest, CommandsOnAMissingStoreFailClearly) {

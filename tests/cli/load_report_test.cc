@@ -100,7 +100,8 @@ TEST(LoadReportTest, TextSaysWhatTheRunMeasured) {
   EXPECT_THAT(text, HasSubstr("p50 2.008  p90 2.992  p99 2.992  max 3.000 ms"));
   EXPECT_THAT(text, HasSubstr("4 opened, 2 failed"));
   EXPECT_THAT(text, HasSubstr("RESOURCE_EXHAUSTED 2"));
-  EXPECT_THAT(text, HasSubstr("CPU 1.50 s = 5000.0 us/frame (15.0% of a core); RSS 50.0 -> 60.0 MB"));
+  EXPECT_THAT(text,
+              HasSubstr("CPU 1.50 s = 5000.0 us/frame (15.0% of a core); RSS 50.0 -> 60.0 MB"));
   EXPECT_THAT(text, HasSubstr("generator    CPU 0.60 s = 2000.0 us/frame (6.0% of a core)"));
   EXPECT_THAT(text, HasSubstr("enrollments  2 of 72 views each"));
   const nlohmann::ordered_json json = LoadReportJson(report);

@@ -12,8 +12,8 @@
 namespace orbit {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::CoilDir;
+using ::testing::HasSubstr;
 using testing::RunOrbit;
 using testing::ScratchDir;
 using testing::ServerProcess;
@@ -47,9 +47,8 @@ void ExpectOrderedRoundTrips(const nlohmann::json& rtt) {
 TEST(LoadtestCommandTest, OpenLoopAnswersEveryFrameOnScheduleWithoutErrors) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir)});
-  const nlohmann::json report =
-      Loadtest(server, "--sessions 3 --rate 20 --duration 2 --server-pid " +
-                           std::to_string(server.pid()));
+  const nlohmann::json report = Loadtest(
+      server, "--sessions 3 --rate 20 --duration 2 --server-pid " + std::to_string(server.pid()));
   // 3 sessions x 20 frames/s x 2 s, every frame answered.
   EXPECT_EQ(report.at("frames").at("sent"), 120) << report;
   EXPECT_EQ(report.at("frames").at("answered"), 120) << report;
@@ -74,7 +73,8 @@ TEST(LoadtestCommandTest, OpenLoopAnswersEveryFrameOnScheduleWithoutErrors) {
 TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-fps", "100000"}});
-  const nlohmann::json closed = Loadtest(server, "--sessions 2 --closed-loop --duration 1 --engine vci");
+  const nlohmann::json closed =
+      Loadtest(server, "--sessions 2 --closed-loop --duration 1 --engine vci");
   EXPECT_EQ(closed.at("config").at("mode"), "closed-loop");
   EXPECT_EQ(closed.at("config").at("engine"), "vci");
   EXPECT_GT(closed.at("frames").at("answered").get<int>(), 2);
@@ -82,7 +82,8 @@ TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
   EXPECT_EQ(closed.at("errors"), nlohmann::json::object());
   ExpectOrderedRoundTrips(closed.at("rtt_ms"));
 
-  const nlohmann::json images = Loadtest(server, "--sessions 2 --rate 10 --duration 1 --image-frames");
+  const nlohmann::json images =
+      Loadtest(server, "--sessions 2 --rate 10 --duration 1 --image-frames");
   EXPECT_EQ(images.at("config").at("frames"), "image");
   EXPECT_EQ(images.at("frames").at("sent"), 20);
   EXPECT_EQ(images.at("frames").at("answered"), 20);
@@ -94,7 +95,8 @@ TEST(LoadtestCommandTest, ClosedLoopAndImageFramesRunTheChosenEngine) {
 TEST(LoadtestCommandTest, SessionsOnConnectionsOfTheirOwnAreAnsweredAlike) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir)});
-  const nlohmann::json report = Loadtest(server, "--sessions 3 --connections 3 --rate 20 --duration 1");
+  const nlohmann::json report =
+      Loadtest(server, "--sessions 3 --connections 3 --rate 20 --duration 1");
   EXPECT_EQ(report.at("config").at("connections"), 3) << report;
   EXPECT_EQ(report.at("frames").at("sent"), 60);
   EXPECT_EQ(report.at("frames").at("answered"), 60);
@@ -140,8 +142,10 @@ TEST(LoadtestCommandTest, AShortSoakWithEnrollmentsAndDeletionsLosesNoUpdate) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir)});
   const nlohmann::json report =
-      Loadtest(server, "--sessions 24 --rate 10 --duration 5 --enroll-every 0.5 --delete-during "
-                       "--server-pid " + std::to_string(server.pid()));
+      Loadtest(server,
+               "--sessions 24 --rate 10 --duration 5 --enroll-every 0.5 --delete-during "
+               "--server-pid " +
+                   std::to_string(server.pid()));
   EXPECT_EQ(report.at("errors"), nlohmann::json::object()) << report;
   EXPECT_EQ(report.at("frames").at("sent"), 1200) << report;  // 24 x 10 x 5
   EXPECT_EQ(report.at("frames").at("unanswered"), 0) << report;
@@ -192,9 +196,9 @@ TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
 
   const testing::CommandResult help = RunOrbit("loadtest --help");
   EXPECT_EQ(help.exit_code, 0);
-  for (const char* text : {"frames per second per session", "seconds of load",
-                           "concurrent sessions", "--connections", "--enroll-every",
-                           "--server-pid", "in ms"}) {
+  for (const char* text :
+       {"frames per second per session", "seconds of load", "concurrent sessions", "--connections",
+        "--enroll-every", "--server-pid", "in ms"}) {
     EXPECT_THAT(help.out, HasSubstr(text));
   }
 }

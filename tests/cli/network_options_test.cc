@@ -55,12 +55,10 @@ TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
   const std::string reader_file = " --token-file " + (dir / "reader.token").string();
 
   const auto enrolled = RunCommand(orbit + "enroll" + net + " --token admin-token-0123456" +
-                                   " --name obj1" +
-                                   CoilImageArguments(1, EveryTwentyDegrees()));
+                                   " --name obj1" + CoilImageArguments(1, EveryTwentyDegrees()));
   ASSERT_EQ(enrolled.exit_code, 0) << enrolled.err;
-  const auto denied =
-      RunCommand(orbit + "enroll" + net + reader_file + " --name obj2" +
-                 CoilImageArguments(2, {0, 20}));
+  const auto denied = RunCommand(orbit + "enroll" + net + reader_file + " --name obj2" +
+                                 CoilImageArguments(2, {0, 20}));
   EXPECT_EQ(denied.exit_code, 1);
   EXPECT_NE(denied.err.find("PERMISSION_DENIED"), std::string::npos) << denied.err;
   const auto anonymous = RunCommand("env -u ORBIT_TOKEN " + orbit + "info" + net);
@@ -73,16 +71,16 @@ TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
       RunCommand("ORBIT_TOKEN=stale-token-000000000 " + orbit + "list" + net + reader_file);
   ASSERT_EQ(file_wins.exit_code, 0) << file_wins.err;
   EXPECT_EQ(file_wins.out.rfind("1 obj1 cedd-robust 18 ", 0), 0u) << file_wins.out;
-  const auto recognised = RunCommand(orbit + "recognize --json" + net + reader_file +
-                                     CoilImageArguments(1, {30, 50}));
+  const auto recognised =
+      RunCommand(orbit + "recognize --json" + net + reader_file + CoilImageArguments(1, {30, 50}));
   ASSERT_EQ(recognised.exit_code, 0) << recognised.err;
   EXPECT_EQ(nlohmann::json::parse(OutputLines(recognised.out).back())["candidates"][0]["name"],
             "obj1");
 
   // Plaintext against the TLS port fails.
-  EXPECT_NE(RunCommand(orbit + "info --timeout 3 --server " + server.address() + reader_file)
-                .exit_code,
-            0);
+  EXPECT_NE(
+      RunCommand(orbit + "info --timeout 3 --server " + server.address() + reader_file).exit_code,
+      0);
 }
 
 }  // namespace

@@ -8,8 +8,8 @@
 
 #include <gtest/gtest.h>
 
-#include "core/base/angles.h"
 #include <nlohmann/json.hpp>
+#include "core/base/angles.h"
 
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
@@ -83,7 +83,8 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_EQ(last["decision"], "ACCEPT");
   EXPECT_GT(last["confidence"].get<double>(), 0.5);
   // Its latest frame shows obj2 at 90 degrees, between the enrolled 80 and 100.
-  EXPECT_LE(std::abs(AzimuthChange(last["pose"]["azimuth_deg"].get<double>(), 90)), 15) << lines.back();
+  EXPECT_LE(std::abs(AzimuthChange(last["pose"]["azimuth_deg"].get<double>(), 90)), 15)
+      << lines.back();
 
   const auto text = RunCommand(orbit + "recognize" + at + frames);
   ASSERT_EQ(text.exit_code, 0) << text.err;
@@ -141,13 +142,16 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
     // "enrolled obj3 (id 1, 48 views)": blurred, noisy, lost frames and steps the noisy
     // compass skipped leave some of the 72 steps empty, but no gap wider than 30 degrees.
     int views = 0;
-    ASSERT_EQ(std::sscanf(lines[0].c_str(), ("enrolled obj" + std::to_string(object) +
-                                             " (id %*d, %d views)").c_str(), &views), 1)
+    ASSERT_EQ(std::sscanf(lines[0].c_str(),
+                          ("enrolled obj" + std::to_string(object) + " (id %*d, %d views)").c_str(),
+                          &views),
+              1)
         << lines[0];
     EXPECT_GE(views, 40);
     EXPECT_EQ(lines[1].rfind("  capture: 72 frames, ", 0), 0u) << lines[1];
     EXPECT_NE(lines[1].find("views in " + std::to_string(views) + " of 72 steps of 5 degrees"),
-              std::string::npos) << lines[1];
+              std::string::npos)
+        << lines[1];
     EXPECT_EQ(lines[2], "  coverage: no gap wider than 30 degrees");
   }
   for (int object : objects) {
@@ -155,9 +159,9 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
     const std::string name = "query" + std::to_string(object);
     const std::string box =
         RenderWalk(dir, name, object, "--frames 24 --turn 120 --start 100 --seed 7");
-    const auto r = RunCommand(orbit + "recognize --json --fast --top-k 2" + at + " --video " +
-                              dir + "/" + name + ".avi --orientation " + dir + "/" + name +
-                              ".csv --box " + box);
+    const auto r =
+        RunCommand(orbit + "recognize --json --fast --top-k 2" + at + " --video " + dir + "/" +
+                   name + ".avi --orientation " + dir + "/" + name + ".csv --box " + box);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::vector<std::string> lines = OutputLines(r.out);
     EXPECT_EQ(lines.size(), 24u);  // one update per frame, none lost
@@ -181,18 +185,18 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
 
   // A log that stops before the video ends is refused before anything is sent.
   const std::string log = scratch.Write("short.csv", "timestamp_ms,azimuth_deg\n0,0\n1000,90\n");
-  const auto short_log = RunCommand(orbit + "recognize" + at + " --video " + dir +
-                                    "/query3.avi --orientation " + log);
+  const auto short_log =
+      RunCommand(orbit + "recognize" + at + " --video " + dir + "/query3.avi --orientation " + log);
   EXPECT_EQ(short_log.exit_code, 1);
   EXPECT_NE(short_log.err.find(log + " does not cover frame 23 (at 2300 ms): it covers "
-                               "timestamp_ms 0 to 1000"),
+                                     "timestamp_ms 0 to 1000"),
             std::string::npos)
       << short_log.err;
   const auto no_log = RunCommand(orbit + "recognize" + at + " --video " + dir + "/query3.avi");
   EXPECT_EQ(no_log.exit_code, 2) << no_log.err;
-  const auto both = RunCommand(orbit + "enroll" + at + " --name x --video " + dir +
-                               "/query3.avi --orientation " + dir + "/query3.csv" +
-                               CoilImageArguments(1, {0}));
+  const auto both =
+      RunCommand(orbit + "enroll" + at + " --name x --video " + dir + "/query3.avi --orientation " +
+                 dir + "/query3.csv" + CoilImageArguments(1, {0}));
   EXPECT_EQ(both.exit_code, 1);
   EXPECT_NE(both.err.find("give --video or --image, not both"), std::string::npos) << both.err;
 }

@@ -25,7 +25,8 @@ TEST(SessionFlagsTest, LeftOutFlagsTakeTheServersDefaults) {
 }
 
 TEST(SessionFlagsTest, TheRejectionRuleAndItsTargetReachTheSession) {
-  const RecognitionOptions calibrated = Parse({"--rejection", "calibrated", "--false-accept-rate", "0.02"});
+  const RecognitionOptions calibrated =
+      Parse({"--rejection", "calibrated", "--false-accept-rate", "0.02"});
   EXPECT_EQ(calibrated.rejection, v1::REJECTION_CALIBRATED);
   EXPECT_EQ(calibrated.false_accept_rate, 0.02);
   const RecognitionOptions th = Parse({"--rejection", "th", "--threshold", "1.5"});

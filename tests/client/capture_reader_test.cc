@@ -58,8 +58,7 @@ TEST(CaptureReaderTest, RefusesALogThatEndsBeforeTheVideoAndAMissingVideo) {
   const std::string video = testing::WriteWalk(dir, ShortWalk()).video;
   // 24 frames at 12 fps: the last at 1916.67 ms.
   const std::string log = dir.Write("short.csv", "timestamp_ms,azimuth_deg\n0,0\n1500,90\n");
-  EXPECT_EQ(ErrorMessageOf(
-                [&] { CaptureReader(video, OrientationLog::ReadFile(log)); }),
+  EXPECT_EQ(ErrorMessageOf([&] { CaptureReader(video, OrientationLog::ReadFile(log)); }),
             log +
                 " does not cover frame 23 (at 1916.67 ms): it covers timestamp_ms 0 to 1500; "
                 "a log must span the whole video, from its first frame to its last");

@@ -163,7 +163,8 @@ class SlowLink {
       const ssize_t n = ::read(from, buffer, sizeof buffer);
       if (n <= 0) break;
       for (ssize_t done = 0; done < n;) {
-        const ssize_t w = ::send(to, buffer + done, static_cast<std::size_t>(n - done), MSG_NOSIGNAL);
+        const ssize_t w =
+            ::send(to, buffer + done, static_cast<std::size_t>(n - done), MSG_NOSIGNAL);
         if (w <= 0) return;
         done += w;
       }
@@ -206,8 +207,8 @@ TEST(ConnectionTest, UnreachableAndSilentServersFailWithinTheDeadline) {
 TEST(ConnectionTest, TokensAndTlsReachTheServer) {
   const testing::ScratchDir scratch;
   const std::filesystem::path& dir = scratch.path();
-  ServerProcess server(testing::SecuredServerOptions(dir, "orbit.test", "admin-secret-0001",
-                                                     "reader-secret-0001"));
+  ServerProcess server(
+      testing::SecuredServerOptions(dir, "orbit.test", "admin-secret-0001", "reader-secret-0001"));
   ConnectionOptions tls = testing::At(server.address());
   tls.tls_root_certificates_file = (dir / "cert.pem").string();
   tls.tls_server_name = "orbit.test";

@@ -48,9 +48,9 @@ TEST(EnrollerTest, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
                    DescribeView(crop, DescriptorVariant::kCeddFull, 9).typical_distance);
   EXPECT_FALSE(cropped.has_elevation_deg());
 
-  EXPECT_THROW(ComputeView({image, 0, cv::Rect(100, 100, 40, 40), {}},
-                           DescriptorVariant::kCeddLire, 1),
-               std::invalid_argument);
+  EXPECT_THROW(
+      ComputeView({image, 0, cv::Rect(100, 100, 40, 40), {}}, DescriptorVariant::kCeddLire, 1),
+      std::invalid_argument);
   EXPECT_THROW(ComputeView({cv::Mat(), 0, {}, {}}, DescriptorVariant::kCeddLire, 1),
                std::invalid_argument);
 }

@@ -21,7 +21,8 @@ TEST(FrameQualityTest, BlurLowersSharpnessAndNoiseRaisesTheNoiseEstimate) {
   // black background.
   EXPECT_GT(noisy.noise_sigma, 12);
   EXPECT_LT(noisy.noise_sigma, 26);
-  // Blur reads on the same scale for every scene (core/descriptor/blur_estimate.h); noise reads as sharp.
+  // Blur reads on the same scale for every scene (core/descriptor/blur_estimate.h); noise reads as
+  // sharp.
   EXPECT_LT(sharp.blur, 0.5);
   EXPECT_GT(blurred.blur, 0.6);
   EXPECT_LT(noisy.blur, sharp.blur);

@@ -161,9 +161,9 @@ TEST(RecognitionSession, TheDefaultServerRecognisesBlurredAndNoisyFrames) {
         for (int k = 0; k < 6; ++k) {
           const int azimuth = 15 + 20 * k;
           const cv::Mat view = CoilImage(object, azimuth);
-          session->Push(noisy ? AddGaussianNoise(view, 0.02, 100 * object + k)
-                              : MotionBlur(view, 19, 110),
-                        double(azimuth));
+          session->Push(
+              noisy ? AddGaussianNoise(view, 0.02, 100 * object + k) : MotionBlur(view, 19, 110),
+              double(azimuth));
         }
         const std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 6);
         EXPECT_TRUE(session->Close().ok());
@@ -180,10 +180,11 @@ TEST(RecognitionSession, TheDefaultServerRecognisesBlurredAndNoisyFrames) {
 }
 
 // A noisy camera: the frames' noise, which Push measures and sends, lets the server's accept /
-// unknown rule accept a known object it would otherwise call unknown (core/decision/quality_allowance.h).
-// Two noisy frames (variance 0.03, a deviation of about 37 grey levels) of each enrolled object,
-// once with their noise (Push) and once as bare descriptors (PushDescriptor). The noisy arm
-// goes first, so a calibration still catching up with the enrollments could only cost it.
+// unknown rule accept a known object it would otherwise call unknown
+// (core/decision/quality_allowance.h). Two noisy frames (variance 0.03, a deviation of about 37
+// grey levels) of each enrolled object, once with their noise (Push) and once as bare descriptors
+// (PushDescriptor). The noisy arm goes first, so a calibration still catching up with the
+// enrollments could only cost it.
 TEST(RecognitionSession, NoisyFramesOfAKnownObjectAreAcceptedWhenTheirNoiseIsSent) {
   ServerProcess server;
   const Connection connection(testing::At(server.address()));

@@ -40,8 +40,10 @@ TEST(ReplicasComposeTest, TheBalancerReachesEveryReplicaOfTheComposeFile) {
   ASSERT_FALSE(haproxy.empty());
 
   const std::set<std::string> slots = Captures(haproxy, R"(server \S+ "\$\{(ORBIT_REPLICA_\d)\}")");
-  EXPECT_EQ(slots, (std::set<std::string>{"ORBIT_REPLICA_1", "ORBIT_REPLICA_2", "ORBIT_REPLICA_3"}));
-  const std::set<std::string> services = Captures(compose, R"(\n  (replica-\d+):\n    <<: \*replica)");
+  EXPECT_EQ(slots,
+            (std::set<std::string>{"ORBIT_REPLICA_1", "ORBIT_REPLICA_2", "ORBIT_REPLICA_3"}));
+  const std::set<std::string> services =
+      Captures(compose, R"(\n  (replica-\d+):\n    <<: \*replica)");
   EXPECT_EQ(services.size(), 3u);
 
   std::smatch port;
@@ -58,7 +60,8 @@ TEST(ReplicasComposeTest, TheBalancerReachesEveryReplicaOfTheComposeFile) {
 
   // The replicas share the compose file's PostgreSQL, and not the image's SQLite default.
   EXPECT_NE(compose.find("\n  postgres:\n"), std::string::npos);
-  EXPECT_TRUE(std::regex_search(compose, std::regex(R"(ORBIT_STORE: postgresql://[^@\n]+@postgres:5432/)")));
+  EXPECT_TRUE(std::regex_search(compose,
+                                std::regex(R"(ORBIT_STORE: postgresql://[^@\n]+@postgres:5432/)")));
   EXPECT_NE(compose.find("ORBIT_DB: \"\""), std::string::npos);
 }
 

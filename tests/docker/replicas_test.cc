@@ -32,13 +32,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
-using testing::WaitUntil;
 using testing::At;
 using testing::BalancerProcess;
 using testing::CoilImage;
 using testing::ServerProcess;
 using testing::ServerProcessOptions;
 using testing::TestDatabase;
+using testing::WaitUntil;
 
 ServerProcessOptions Replica(const std::string& conninfo) {
   return {.store = conninfo, .metrics = true};
@@ -156,8 +156,7 @@ TEST(PostgresReplicasTest, AReplicaKilledMidEnrollmentLeavesNothingOnTheOther) {
   ServerProcess a(Replica(database.conninfo()));
   ServerProcess b(Replica(database.conninfo()));
   const Connection at_a(At(a.address()));
-  const std::vector<v1::View> views =
-      Enroller(at_a).ComputeViews(testing::CoilEnrollmentImages(7));
+  const std::vector<v1::View> views = Enroller(at_a).ComputeViews(testing::CoilEnrollmentImages(7));
 
   // Half of the views sent, the stream still open: then A dies.
   auto stub = v1::Models::NewStub(at_a.channel());

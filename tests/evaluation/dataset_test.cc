@@ -15,10 +15,9 @@ namespace orbit {
 namespace {
 
 using ::testing::ElementsAre;
-using ::testing::HasSubstr;
 using testing::ErrorMessageOf;
+using ::testing::HasSubstr;
 using testing::ScratchDir;
-
 
 TEST(ParseObjectRangeTest, AcceptsNumbersRangesAndLists) {
   EXPECT_THAT(ParseObjectRange("7"), ElementsAre(7));
@@ -48,19 +47,14 @@ TEST(ParseObjectRangeTest, RangesUpToTheLargestIntAndAMillionNumbers) {
 
 TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange(""); }), HasSubstr("empty"));
-  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1,,3"); }),
-              HasSubstr("empty item"));
-  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-5,x"); }),
-              HasSubstr("\"x\""));
-  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("0-3"); }),
-              HasSubstr("numbered from 1"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1,,3"); }), HasSubstr("empty item"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-5,x"); }), HasSubstr("\"x\""));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("0-3"); }), HasSubstr("numbered from 1"));
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("5-1"); }),
               HasSubstr("\"5-1\" ends before it starts"));
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-"); }), HasSubstr("\"1-\""));
-  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("99999999999"); }),
-              HasSubstr("too large"));
-  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000000000"); }),
-              HasSubstr("too large"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("99999999999"); }), HasSubstr("too large"));
+  EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000000000"); }), HasSubstr("too large"));
 }
 
 TEST(ListCoil100Test, ListsTheSharedDataSortedByObjectThenAzimuth) {
@@ -69,7 +63,7 @@ TEST(ListCoil100Test, ListsTheSharedDataSortedByObjectThenAzimuth) {
   ASSERT_EQ(all.size(), 7200u);
   EXPECT_EQ(all[0].object, "obj1");
   EXPECT_EQ(all[0].azimuth, 0);
-  EXPECT_EQ(all[1].azimuth, 5);     // numeric order: 5 before 10, 100, ...
+  EXPECT_EQ(all[1].azimuth, 5);  // numeric order: 5 before 10, 100, ...
   EXPECT_EQ(all[71].azimuth, 355);
   EXPECT_EQ(all[72].object, "obj2");  // obj2 before obj10
   EXPECT_EQ(all.back().object, "obj100");
@@ -97,8 +91,9 @@ TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
   EXPECT_EQ(images[1].azimuth, 10);
   EXPECT_EQ(images[2].object, "obj10");
 
-  EXPECT_THAT(ErrorMessageOf<std::runtime_error>(
-                  [&] { ListCoil100(dir.path(), std::vector<int>{2, 3}); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] {
+                ListCoil100(dir.path(), std::vector<int>{2, 3});
+              }),
               HasSubstr("no image of object 3"));
   EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ListCoil100(dir.path() / "missing"); }),
               HasSubstr("not a directory"));
@@ -117,8 +112,8 @@ TEST(ReadManifestTest, ResolvesRelativePathsAgainstTheCsvFolder) {
                              "cup,450,\"views/c \"\"x\"\".png\",-5.5\r\n");
   const std::vector<DatasetImage> images = ReadManifest(csv);
   ASSERT_EQ(images.size(), 3u);
-  EXPECT_EQ(images[0], (DatasetImage{(dir.path() / "sets" / "views" / "a.png").string(), "cup",
-                                     90, 10.0}));
+  EXPECT_EQ(images[0],
+            (DatasetImage{(dir.path() / "sets" / "views" / "a.png").string(), "cup", 90, 10.0}));
   EXPECT_EQ(images[1], (DatasetImage{"/abs/b.png", "mug, blue", 330, std::nullopt}));
   EXPECT_EQ(images[2].path, (dir.path() / "sets" / "views" / "c \"x\".png").string());
   EXPECT_EQ(images[2].azimuth, 90);
@@ -141,9 +136,11 @@ TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
     return ErrorMessageOf<std::runtime_error>([&] { ReadManifest(csv); });
   };
   const std::string name = (dir.path() / "bad.csv").string();
-  EXPECT_THAT(error("path,object\na.png,x\n"), HasSubstr(name + ":1: header lacks the column \"azimuth\""));
+  EXPECT_THAT(error("path,object\na.png,x\n"),
+              HasSubstr(name + ":1: header lacks the column \"azimuth\""));
   EXPECT_THAT(error("a.png,x,5\n"), HasSubstr(":1: unknown column \"a.png\""));
-  EXPECT_THAT(error("path,object,azimuth,azimuth\n"), HasSubstr(":1: column \"azimuth\" appears twice"));
+  EXPECT_THAT(error("path,object,azimuth,azimuth\n"),
+              HasSubstr(":1: column \"azimuth\" appears twice"));
   EXPECT_THAT(error("path,object,azimuth\na.png,x,5\nb.png,x\n"),
               HasSubstr(name + ":3: expected 3 fields, found 2"));
   EXPECT_THAT(error("path,object,azimuth\na.png,x,north\n"),
@@ -187,7 +184,8 @@ TEST(ReadQueryCapturesTest, ErrorsNameTheFileAndLine) {
   EXPECT_THAT(error("path,object,azimuth\na.png,x,5\n"),
               HasSubstr(":1: header lacks the column \"sequence\" (expected "
                         "path,object,sequence[,azimuth])"));
-  EXPECT_THAT(error("path,object,sequence,elevation\n"), HasSubstr(":1: unknown column \"elevation\""));
+  EXPECT_THAT(error("path,object,sequence,elevation\n"),
+              HasSubstr(":1: unknown column \"elevation\""));
   EXPECT_THAT(error("path,object,sequence\na.png,x,\n"), HasSubstr(":2: empty sequence"));
   EXPECT_THAT(error("path,object,sequence,azimuth\na.png,x,s,east\n"),
               HasSubstr(":2: azimuth \"east\" is not a finite number"));
@@ -271,8 +269,9 @@ TEST(SelectDatasetTest, SelectsCoil100ObjectsByTheirNumber) {
   EXPECT_THAT(objects(selected.known), ElementsAre("obj1", "obj1", "obj10"));
   EXPECT_TRUE(selected.unknown.empty());
 
-  EXPECT_THAT(ErrorMessageOf<std::runtime_error>(
-                  [&] { SelectDataset({"coil100", dir.path(), "", "3", ""}); }),
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] {
+                SelectDataset({"coil100", dir.path(), "", "3", ""});
+              }),
               HasSubstr("no image of object 3"));
 }
 

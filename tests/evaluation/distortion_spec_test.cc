@@ -49,7 +49,7 @@ TEST(DistortionSpecTest, ParameterisedStepsCombineInOrderUnderACanonicalName) {
   const DistortionSpec spec = ParseDistortionSpec("mb:angle=70:len=9+gn:var=0.004");
   EXPECT_EQ(spec.name, "mb:len=9:angle=70+gn:var=0.004");
   EXPECT_EQ(spec.steps, (std::vector<DistortionStep>{{Kind::kMotionBlur, 9, 70},
-                                                      {Kind::kGaussianNoise, 0.004, 0}}));
+                                                     {Kind::kGaussianNoise, 0.004, 0}}));
   EXPECT_EQ(ParseDistortionSpec("jpeg:q=20+gain:0.6+lowres:0.5").name,
             "jpeg:q=20+gain:0.6+lowres:0.5");
   EXPECT_EQ(ParseDistortionSpec("gain:1.4").steps[0], (DistortionStep{Kind::kGain, 1.4, 0}));
@@ -57,8 +57,10 @@ TEST(DistortionSpecTest, ParameterisedStepsCombineInOrderUnderACanonicalName) {
 
 TEST(DistortionSpecTest, MalformedSpecsAreRefusedNamingTheToken) {
   EXPECT_THAT(ErrorOf("mb:len=0"), HasSubstr("'mb:len=0': len must be in [1, 100]"));
-  EXPECT_THAT(ErrorOf("blur"), HasSubstr("'blur': unknown kind 'blur' (df, mb, gn, jpeg, gain, lowres)"));
-  EXPECT_THAT(ErrorOf("gn:var=abc"), HasSubstr("'gn:var=abc': var must be a number in (0, 1], not 'abc'"));
+  EXPECT_THAT(ErrorOf("blur"),
+              HasSubstr("'blur': unknown kind 'blur' (df, mb, gn, jpeg, gain, lowres)"));
+  EXPECT_THAT(ErrorOf("gn:var=abc"),
+              HasSubstr("'gn:var=abc': var must be a number in (0, 1], not 'abc'"));
   EXPECT_THAT(ErrorOf("gn:var=0"), HasSubstr("var must be in (0, 1]"));
   EXPECT_THAT(ErrorOf("gn:var=nan"), HasSubstr("var must be a number"));
   EXPECT_THAT(ErrorOf("jpeg"), HasSubstr("'jpeg': needs q=Q"));
@@ -75,7 +77,9 @@ TEST(DistortionSpecTest, MalformedSpecsAreRefusedNamingTheToken) {
 TEST(DistortionSpecTest, TheProtocolsDistortionsAreExactlyCoresFunctions) {
   const cv::Mat image = CoilImage();
   ASSERT_FALSE(image.empty());
-  const auto same = [](const cv::Mat& a, const cv::Mat& b) { return cv::norm(a, b, cv::NORM_INF) == 0; };
+  const auto same = [](const cv::Mat& a, const cv::Mat& b) {
+    return cv::norm(a, b, cv::NORM_INF) == 0;
+  };
   EXPECT_TRUE(same(ApplyDistortion(image, ParseDistortionSpec("df"), 7), image));
   EXPECT_TRUE(same(ApplyDistortion(image, ParseDistortionSpec("mb"), 7), MotionBlur(image)));
   EXPECT_TRUE(same(ApplyDistortion(image, ParseDistortionSpec("gn"), 7),

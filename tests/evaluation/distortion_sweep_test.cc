@@ -87,7 +87,7 @@ TEST(DistortionSweepTest, TableAndCsvGiveHitRateAgainstStrength) {
             "gn,0.03,gn:var=0.03,product,cedd-robust,8,10,7,0.7000\n");
   const cv::Mat plot = DrawSweepPlot(report, sweeps);
   EXPECT_EQ(plot.type(), CV_8UC3);
-  EXPECT_GE(plot.cols, 460);             // one sweep: one panel (or two legend entries) wide
+  EXPECT_GE(plot.cols, 460);                 // one sweep: one panel (or two legend entries) wide
   EXPECT_EQ(plot.rows, 40 + 340 + 26 + 12);  // title, one n: one row of panels, one legend row
 }
 

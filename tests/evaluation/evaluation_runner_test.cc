@@ -13,8 +13,8 @@
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/distortion.h"
-#include "core/engines/product_pipeline.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -35,8 +35,10 @@ TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
   const std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire,
                                                 DescriptorVariant::kCeddFull};
 
-  const std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"), ParseDistortionSpec("mb")};
-  const std::vector<DescribedImage> described = DescribeImage(image, 0, variants, distortions, seed);
+  const std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"),
+                                                ParseDistortionSpec("mb")};
+  const std::vector<DescribedImage> described =
+      DescribeImage(image, 0, variants, distortions, seed);
 
   ASSERT_EQ(described.size(), 2u);
   for (std::size_t v = 0; v < variants.size(); ++v) {
@@ -69,12 +71,13 @@ TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
   const DescribedImage first = DescribeImage(image, 0, lire, distortions, 7)[0];
   const DescribedImage fifth = DescribeImage(image, 4, lire, distortions, 7)[0];
 
-  EXPECT_EQ(fifth.queries[0],
-            ExtractCedd(AddGaussianNoise(pixels, 0.012, ImageNoiseSeed(7, 4)),
-                        DescriptorVariant::kCeddLire).values);
+  EXPECT_EQ(fifth.queries[0], ExtractCedd(AddGaussianNoise(pixels, 0.012, ImageNoiseSeed(7, 4)),
+                                          DescriptorVariant::kCeddLire)
+                                  .values);
   EXPECT_EQ(fifth.queries[1],
             ExtractCedd(ApplyDistortion(pixels, distortions[1], ImageNoiseSeed(7, 4)),
-                        DescriptorVariant::kCeddLire).values);
+                        DescriptorVariant::kCeddLire)
+                .values);
   EXPECT_NE(first.queries[0], fifth.queries[0]);
   EXPECT_NE(fifth.queries[0], fifth.view.descriptor);
   EXPECT_NE(fifth.queries[1], fifth.view.descriptor);
@@ -107,8 +110,8 @@ TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
             "object \"a\" has 2 views; n = 4 needs as many");
 }
 
-// `product` is the product pipeline (core/engines/product_pipeline.h): its engine with its options, on
-// its own variant only, which the evaluation adds when it was not asked for. With the engine's
+// `product` is the product pipeline (core/engines/product_pipeline.h): its engine with its options,
+// on its own variant only, which the evaluation adds when it was not asked for. With the engine's
 // options set to the product's it is therefore exactly that engine on that variant, query for
 // query.
 TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
@@ -153,7 +156,8 @@ TEST(RunEvaluationTest, ActiveQueriesTakeTheirViewsFromTheMethodsMoves) {
   options.distortions = {ParseDistortionSpec("df")};
   options.query_lengths = {2, 4};
   options.trials = 3;
-  const std::vector<DatasetImage> known = ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3});
+  const std::vector<DatasetImage> known =
+      ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3});
   const std::vector<DatasetImage> unknown = ListCoil100(testing::CoilDir(), std::vector<int>{4});
   const EvaluationReport passive = RunEvaluation(known, unknown, options);
   options.active_step = 20;
@@ -212,8 +216,7 @@ TEST(RunEvaluationTest, TheActiveOracleBoundsEveryLeftRightPolicy) {
   }
   EXPECT_GE(oracle.cells[1].hits, std::max(follow.cells[1].hits, one_way.cells[1].hits));
   std::cout << "n = 4 hits of " << oracle.cells[1].trials << ": follow " << follow.cells[1].hits
-            << ", one way " << one_way.cells[1].hits << ", oracle " << oracle.cells[1].hits
-            << "\n";
+            << ", one way " << one_way.cells[1].hits << ", oracle " << oracle.cells[1].hits << "\n";
 }
 
 // Captured sequences against a model set: objects 1-3 of COIL-100 every 10 degrees are the
@@ -231,8 +234,8 @@ TEST(RunCaptureEvaluationTest, EachSequenceIsOneQueryAskedWithItsFirstNFrames) {
                         "obj" + std::to_string(object), double(azimuth), sequence};
   };
   const std::vector<CaptureFrame> captures{
-      frame(1, 5, "a"),   frame(1, 15, "a"),  frame(1, 25, "a"), frame(2, 105, "b"),
-      frame(2, 115, "b"), frame(9, 5, "c"),   frame(9, 15, "c")};
+      frame(1, 5, "a"),   frame(1, 15, "a"), frame(1, 25, "a"), frame(2, 105, "b"),
+      frame(2, 115, "b"), frame(9, 5, "c"),  frame(9, 15, "c")};
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod)};
   options.variants = {Product().variant};

@@ -117,8 +117,9 @@ TEST(RecognitionReportTest, WritesOneCsvLinePerQuery) {
   std::istringstream lines(out.str());
   std::string line;
   std::getline(lines, line);
-  EXPECT_EQ(line, "method,variant,distortion,n,known,hit,decision,unknown_statistic,"
-                  "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur");
+  EXPECT_EQ(line,
+            "method,variant,distortion,n,known,hit,decision,unknown_statistic,"
+            "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur");
   std::getline(lines, line);
   EXPECT_EQ(line, "product,cedd-robust,df,8,1,1,ACCEPT,0,0.01,0.95,10.0,0.0,24.500,0.625");
   int count = 1;

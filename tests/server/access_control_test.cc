@@ -11,11 +11,11 @@
 #include <stdexcept>
 #include <string>
 
-#include <gtest/gtest.h>
 #include <grpcpp/test/server_context_test_spouse.h>
+#include <gtest/gtest.h>
 
-#include "tests/support/test_data.h"
 #include "tests/support/storage_test_support.h"
+#include "tests/support/test_data.h"
 
 namespace orbit::server {
 namespace {
@@ -52,13 +52,13 @@ grpc::Status Call(const AccessControl& access, const char* authorization, Role n
 std::string Bearer(const std::string& token) { return "Bearer " + token; }
 
 TEST_F(AccessControlFileTest, ReadsOneTokenPerLineIgnoringBlankLinesAndComments) {
-  const AccessControl access = AccessControl::FromFile(Write(
-      "# the operators\n"
-      "\n" +
-      std::string(kAdminToken) + " admin\n" +
-      "   \t\n"
-      "#the devices, one per line\n" +
-      kRecognizeToken + "   recognize\n"));
+  const AccessControl access =
+      AccessControl::FromFile(Write("# the operators\n"
+                                    "\n" +
+                                    std::string(kAdminToken) + " admin\n" +
+                                    "   \t\n"
+                                    "#the devices, one per line\n" +
+                                    kRecognizeToken + "   recognize\n"));
   EXPECT_TRUE(access.enabled());
   EXPECT_EQ(access.token_count(), 2u);
   EXPECT_TRUE(Call(access, Bearer(kAdminToken).c_str(), Role::kAdmin).ok());
@@ -101,7 +101,8 @@ TEST_F(AccessControlFileTest, RefusesATokenShorterThanSixteenCharacters) {
 TEST_F(AccessControlFileTest, RefusesADuplicateTokenAtItsSecondLine) {
   Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " recognize\n# again\n" +
         kAdminToken + " recognize\n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }), At(4) + "duplicate token");
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
+            At(4) + "duplicate token");
 }
 
 TEST_F(AccessControlFileTest, RefusesAFileWithNoTokenAtAll) {
@@ -145,9 +146,9 @@ TEST_F(AccessControlAuthorizeTest, AuthorizationThatIsNotABearerTokenIsUnauthent
   // "Bearer ", so only the scheme itself is wrong).
   EXPECT_EQ(Call(access_, kAdminToken, Role::kRecognize).error_code(),
             grpc::StatusCode::UNAUTHENTICATED);
-  EXPECT_EQ(Call(access_, ("Digest " + std::string(kAdminToken)).c_str(), Role::kRecognize)
-                .error_code(),
-            grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_EQ(
+      Call(access_, ("Digest " + std::string(kAdminToken)).c_str(), Role::kRecognize).error_code(),
+      grpc::StatusCode::UNAUTHENTICATED);
   EXPECT_EQ(Call(access_, "Bearer", Role::kRecognize).error_code(),
             grpc::StatusCode::UNAUTHENTICATED);
 }

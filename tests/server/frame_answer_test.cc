@@ -14,21 +14,22 @@
 namespace orbit::server {
 namespace {
 
-using ::testing::HasSubstr;
 using orbit::testing::CoilObjects;
 using orbit::testing::CoilView;
 using orbit::testing::EvenView;
 using orbit::testing::ScratchDir;
+using ::testing::HasSubstr;
 
 // A server's shared state around a store holding COIL-100 objects 1-4 (every other view).
 class FrameAnswerTest : public ::testing::Test {
  protected:
   FrameAnswerTest()
-      : store_(dir_ / "models.db", [] {
-          SqliteModelStoreOptions options;
-          options.create_if_missing = true;
-          return options;
-        }()),
+      : store_(dir_ / "models.db",
+               [] {
+                 SqliteModelStoreOptions options;
+                 options.create_if_missing = true;
+                 return options;
+               }()),
         catalogue_(store_, DescriptorVariant::kCeddLire, {}) {
     catalogue_.Load();
     for (const ObjectModel& model : CoilObjects(1, 4, EvenView)) {
@@ -98,15 +99,14 @@ TEST_F(FrameAnswerTest, AFrameIsAnsweredStampedAndCountedABadOneRefusedWithoutEf
   EXPECT_EQ(update.candidates(0).name(), "obj3");
   EXPECT_EQ(update.timestamp_us(), 1234);
   EXPECT_GE(update.processing_time_us(), 0);
-  EXPECT_THAT(metrics_.Expose(),
-              HasSubstr("orbit_frames_processed_total{engine=\"vci-hmm\"} 1\n"));
+  EXPECT_THAT(metrics_.Expose(), HasSubstr("orbit_frames_processed_total{engine=\"vci-hmm\"} 1\n"));
 
   v1::Frame blurred = Frame(3, 55);
   blurred.mutable_quality()->set_blur(2);
   v1::SessionUpdate refused;
-  const grpc::Status status = AnswerFrame(blurred, std::chrono::steady_clock::now(),
-                                          catalogue_.Snapshot(), Environment(), session,
-                                          &refused, &reason);
+  const grpc::Status status =
+      AnswerFrame(blurred, std::chrono::steady_clock::now(), catalogue_.Snapshot(), Environment(),
+                  session, &refused, &reason);
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(status.error_message(), "frame.quality.blur must be in [0, 1], got 2");
   EXPECT_EQ(reason, RefusalReason::kInvalidField);

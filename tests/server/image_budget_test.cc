@@ -49,8 +49,8 @@ std::string BigEndian32(std::uint32_t value) {
 // A PNG chunk: length, type, data, CRC of type and data.
 std::string PngChunk(const std::string& type, const std::string& data) {
   const std::string body = type + data;
-  const auto crc = crc32(0, reinterpret_cast<const Bytef*>(body.data()),
-                         static_cast<uInt>(body.size()));
+  const auto crc =
+      crc32(0, reinterpret_cast<const Bytef*>(body.data()), static_cast<uInt>(body.size()));
   return BigEndian32(static_cast<std::uint32_t>(data.size())) + body +
          BigEndian32(static_cast<std::uint32_t>(crc));
 }
@@ -58,8 +58,8 @@ std::string PngChunk(const std::string& type, const std::string& data) {
 std::string Ihdr(std::uint32_t width, std::uint32_t height, int depth = 8, int colour = 2,
                  int interlace = 0) {
   return PngChunk("IHDR", BigEndian32(width) + BigEndian32(height) +
-                              std::string{static_cast<char>(depth), static_cast<char>(colour), 0,
-                                          0, static_cast<char>(interlace)});
+                              std::string{static_cast<char>(depth), static_cast<char>(colour), 0, 0,
+                                          static_cast<char>(interlace)});
 }
 
 const std::string kPngSignature = "\x89PNG\r\n\x1a\n";
@@ -81,8 +81,8 @@ std::string JpegSegment(std::uint8_t code, const std::string& data) {
 std::string Sof(std::uint8_t code, std::uint32_t width, std::uint32_t height, int components = 3,
                 int precision = 8) {
   std::string data{static_cast<char>(precision), static_cast<char>(height >> 8),
-                   static_cast<char>(height), static_cast<char>(width >> 8),
-                   static_cast<char>(width), static_cast<char>(components)};
+                   static_cast<char>(height),    static_cast<char>(width >> 8),
+                   static_cast<char>(width),     static_cast<char>(components)};
   for (int c = 1; c <= components; ++c) data += std::string{static_cast<char>(c), 0x11, 0};
   return JpegSegment(code, data);
 }
@@ -148,26 +148,27 @@ TEST(ImageBudgetTest, JpegSegmentsAreSkippedByTheirLengthAsLibjpegDoes) {
   const std::string rest = image.substr(2);  // after SOI
   // An EXIF-like APP1 carrying a whole 8x8 thumbnail, SOF included: the image is 120x90.
   const std::string thumbnail = Encode(".jpg", Noise(8, 8, CV_8UC3));
-  const std::string with_thumbnail = kSoi + JpegSegment(0xe1, std::string("Exif\0\0", 6) + thumbnail) + rest;
+  const std::string with_thumbnail =
+      kSoi + JpegSegment(0xe1, std::string("Exif\0\0", 6) + thumbnail) + rest;
   ExpectSizeAsDecoded(with_thumbnail, ImageFormat::kJpeg, 120, 90);
   // A comment holding bytes that look like a frame header.
   ExpectSizeAsDecoded(kSoi + JpegSegment(0xfe, Sof(0xc0, 9999, 9999)) + rest, ImageFormat::kJpeg,
                       120, 90);
   // Stray bytes and 0xFF fill bytes between segments, which libjpeg skips with a warning.
-  ExpectSizeAsDecoded(kSoi + kApp0 + std::string("junk\xff\x00more", 10) + "\xff\xff\xff" +
-                          rest.substr(1),
-                      ImageFormat::kJpeg, 120, 90);
+  ExpectSizeAsDecoded(
+      kSoi + kApp0 + std::string("junk\xff\x00more", 10) + "\xff\xff\xff" + rest.substr(1),
+      ImageFormat::kJpeg, 120, 90);
 }
 
 TEST(ImageBudgetTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
   // A decompression bomb: a PNG claiming 20000x20000 (1.2 GB decoded).
-  const grpc::Status bomb = CheckImageBudget(Read(PngClaiming(20000, 20000)), kDefaultMax,
-                                             "frame.image");
+  const grpc::Status bomb =
+      CheckImageBudget(Read(PngClaiming(20000, 20000)), kDefaultMax, "frame.image");
   EXPECT_EQ(bomb.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(bomb.error_message(),
             "frame.image is 20000x20000 pixels; at most 16777216 pixels (4096x4096) are decoded");
-  const grpc::Status jpeg = CheckImageBudget(Read(JpegClaiming(65535, 65535, 0xc2)), kDefaultMax,
-                                             "view.image");
+  const grpc::Status jpeg =
+      CheckImageBudget(Read(JpegClaiming(65535, 65535, 0xc2)), kDefaultMax, "view.image");
   EXPECT_EQ(jpeg.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_EQ(jpeg.error_message(),
             "view.image is 65535x65535 pixels; at most 16777216 pixels (4096x4096) are decoded");
@@ -183,19 +184,17 @@ TEST(ImageBudgetTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
   // Another maximum: its side is shown only when it is a square.
   EXPECT_EQ(CheckImageBudget(Read(PngClaiming(1001, 1000)), 1000000, "frame.image").error_message(),
             "frame.image is 1001x1000 pixels; at most 1000000 pixels (1000x1000) are decoded");
-  EXPECT_EQ(CheckImageBudget(Read(PngClaiming(4000, 3001)), 12000000, "frame.image").error_message(),
-            "frame.image is 4000x3001 pixels; at most 12000000 pixels are decoded");
+  EXPECT_EQ(
+      CheckImageBudget(Read(PngClaiming(4000, 3001)), 12000000, "frame.image").error_message(),
+      "frame.image is 4000x3001 pixels; at most 12000000 pixels are decoded");
 }
 
 TEST(ImageBudgetTest, SizesWhoseProductOverflowsAreRefusedNotWrapped) {
   // 65536 x 65536 = 2^32, 0 in 32 bits; 2^31-1 squared is near 2^62.
-  for (const auto& [width, height] :
-       std::vector<std::pair<std::uint32_t, std::uint32_t>>{{65536, 65536},
-                                                            {0x7fffffff, 0x7fffffff},
-                                                            {0x7fffffff, 2},
-                                                            {4294967, 1001}}) {
-    const grpc::Status s = CheckImageBudget(Read(PngClaiming(width, height)), kDefaultMax,
-                                            "frame.image");
+  for (const auto& [width, height] : std::vector<std::pair<std::uint32_t, std::uint32_t>>{
+           {65536, 65536}, {0x7fffffff, 0x7fffffff}, {0x7fffffff, 2}, {4294967, 1001}}) {
+    const grpc::Status s =
+        CheckImageBudget(Read(PngClaiming(width, height)), kDefaultMax, "frame.image");
     EXPECT_EQ(s.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << width << "x" << height;
     EXPECT_THAT(s.error_message(), StartsWith("frame.image is " + std::to_string(width) + "x" +
                                               std::to_string(height) + " pixels"));
@@ -223,8 +222,8 @@ TEST(ImageBudgetTest, OtherFormatsAndGarbageAreRefusedListingTheAcceptedOnes) {
   ExpectInvalid(Encode(".bmp", Noise(8, 8, CV_8UC3)), message);
   ExpectInvalid(Encode(".tiff", Noise(8, 8, CV_8UC3)), message);
   ExpectInvalid(std::string("GIF89a\x10\x00\x10\x00", 10), message);
-  ExpectInvalid("\xff\xd8", message);          // SOI alone is not what OpenCV calls a JPEG
-  ExpectInvalid("\x89PNG\r\n\x1a", message);   // 7 of the signature's 8 bytes
+  ExpectInvalid("\xff\xd8", message);         // SOI alone is not what OpenCV calls a JPEG
+  ExpectInvalid("\x89PNG\r\n\x1a", message);  // 7 of the signature's 8 bytes
 }
 
 TEST(ImageBudgetTest, TruncatedHeadersAreRefused) {
@@ -248,11 +247,14 @@ TEST(ImageBudgetTest, MalformedPngHeadersAreRefused) {
                 "frame.image is a PNG whose first chunk is not a 13-byte header (IHDR)");
   ExpectInvalid(kPngSignature + PngChunk("IHDR", std::string(14, '\0')),
                 "frame.image is a PNG whose first chunk is not a 13-byte header (IHDR)");
-  ExpectInvalid(PngClaiming(10, 10, 8, 5), "frame.image is a PNG whose header gives an unknown colour type 5");
-  ExpectInvalid(PngClaiming(10, 10, 4, 2),
-                "frame.image is a PNG whose header gives bit depth 4, not allowed for colour type 2");
-  ExpectInvalid(PngClaiming(10, 10, 16, 3),
-                "frame.image is a PNG whose header gives bit depth 16, not allowed for colour type 3");
+  ExpectInvalid(PngClaiming(10, 10, 8, 5),
+                "frame.image is a PNG whose header gives an unknown colour type 5");
+  ExpectInvalid(
+      PngClaiming(10, 10, 4, 2),
+      "frame.image is a PNG whose header gives bit depth 4, not allowed for colour type 2");
+  ExpectInvalid(
+      PngClaiming(10, 10, 16, 3),
+      "frame.image is a PNG whose header gives bit depth 16, not allowed for colour type 3");
   ExpectInvalid(PngClaiming(10, 10, 8, 2, 2),
                 "frame.image is a PNG whose header gives an unknown compression, filter or "
                 "interlace method");
@@ -266,8 +268,10 @@ TEST(ImageBudgetTest, MalformedOrUnsupportedJpegHeadersAreRefused) {
                 "frame.image is a JPEG without a frame header (SOF) before its image data");
   ExpectInvalid(kSoi + kApp0 + kEoi,
                 "frame.image is a JPEG without a frame header (SOF) before its image data");
-  ExpectInvalid(kSoi + kApp0 + kSoi + sof, "frame.image is a JPEG with a second start-of-image marker");
-  ExpectInvalid(kSoi + JpegSegment(0xf0, "x") + sof, "frame.image is a JPEG with an unknown marker 0xFFF0");
+  ExpectInvalid(kSoi + kApp0 + kSoi + sof,
+                "frame.image is a JPEG with a second start-of-image marker");
+  ExpectInvalid(kSoi + JpegSegment(0xf0, "x") + sof,
+                "frame.image is a JPEG with an unknown marker 0xFFF0");
   ExpectInvalid(kSoi + std::string("\xff\xe0\x00\x01", 4) + sof,
                 "frame.image is a JPEG with a marker segment shorter than 2 bytes");
   ExpectInvalid(kSoi + Sof(0xc3, 64, 48),
@@ -347,14 +351,9 @@ TEST(ImageBudgetTest, NeverDisagreesWithTheDecoderOnMutatedImages) {
       // Mutations land in the headers (the first 700 bytes), where the size is.
       const std::size_t at = random() % std::min<std::size_t>(bytes.size(), 700);
       switch (trial % 3) {
-        case 0:
-          bytes[at] = static_cast<char>(random());
-          break;
-        case 1:
-          bytes.insert(at, 1 + random() % 4, static_cast<char>(random()));
-          break;
-        default:
-          bytes.erase(at, 1 + random() % 4);
+        case 0: bytes[at] = static_cast<char>(random()); break;
+        case 1: bytes.insert(at, 1 + random() % 4, static_cast<char>(random())); break;
+        default: bytes.erase(at, 1 + random() % 4);
       }
       ImageHeader header;
       if (!ReadImageHeader(bytes, "frame.image", &header).ok()) continue;

@@ -62,7 +62,8 @@ TEST(ImageDecodingTest, RefusalsNameTheField) {
 
   s = DecodeImage(png.substr(0, 60), "frame.image", kMaxPixels, &image);  // header, no data
   EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
-  EXPECT_EQ(s.error_message(), "frame.image cannot be decoded: its PNG data is corrupt or truncated");
+  EXPECT_EQ(s.error_message(),
+            "frame.image cannot be decoded: its PNG data is corrupt or truncated");
 }
 
 }  // namespace

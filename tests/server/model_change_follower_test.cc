@@ -25,11 +25,11 @@ namespace orbit::server {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using std::chrono::milliseconds;
-using orbit::testing::WaitUntil;
 using orbit::testing::SyntheticObject;
 using orbit::testing::SyntheticView;
 using orbit::testing::TestDatabase;
+using orbit::testing::WaitUntil;
+using std::chrono::milliseconds;
 
 // A replica: its own store on the shared database, its catalogue, and its follower.
 struct Replica {
@@ -112,12 +112,14 @@ TEST(PostgresModelChangeFollowerTest, DroppedConnectionsLoseNoChange) {
 
   std::vector<ObjectId> enrolled;
   for (int i = 0; i < 12; ++i) {
-    enrolled.push_back(a.store.Enroll(SyntheticObject(std::string("o").append(std::to_string(i)), 2, i * 10)));
+    enrolled.push_back(
+        a.store.Enroll(SyntheticObject(std::string("o").append(std::to_string(i)), 2, i * 10)));
     if (i % 3 == 0) {
       // Every session of the database but this one, waiting until each has ended: A's pooled
       // connections are then seen closed and replaced on its next call.
-      database.Execute("SELECT pg_terminate_backend(pid, 5000) FROM pg_stat_activity "
-                       "WHERE datname = current_database() AND pid <> pg_backend_pid()");
+      database.Execute(
+          "SELECT pg_terminate_backend(pid, 5000) FROM pg_stat_activity "
+          "WHERE datname = current_database() AND pid <> pg_backend_pid()");
     }
   }
   ASSERT_TRUE(WaitUntil([&] { return b.catalogue.Snapshot()->object_count() == enrolled.size(); }))

@@ -1,7 +1,7 @@
 // The Models service's enrollment (server/models_service.h) against a real `orbit serve`
 // process: however a view reaches the store, the same image stores the same numbers.
-#include "core/engines/product_pipeline.h"
 #include "server/models_service.h"
+#include "core/engines/product_pipeline.h"
 
 #include <filesystem>
 #include <fstream>
@@ -120,10 +120,8 @@ TEST(ModelsServiceTest, EveryEnrollmentPathStoresTheSameNumbersForTheSameImage) 
   std::vector<Numbers> evaluated;
   for (std::size_t i = 0; i < kAzimuths.size(); ++i) {
     const DatasetImage image{CoilFile(kObject, kAzimuths[i]), "obj3", double(kAzimuths[i]), {}};
-    const ModelView view = DescribeImage(image, i, {Product().variant}, {},
-                                         EvaluationOptions{}.seed)
-                               .at(0)
-                               .view;
+    const ModelView view =
+        DescribeImage(image, i, {Product().variant}, {}, EvaluationOptions{}.seed).at(0).view;
     evaluated.push_back({Cedd(view.descriptor), view.typical_distance});
   }
 

@@ -16,8 +16,8 @@
 
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
-#include "core/engines/product_pipeline.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "storage/postgres_connection.h"
@@ -40,10 +40,10 @@ std::string CoilCedd(int object, int azimuth) {
   std::lock_guard lock(mutex);
   auto& bytes = cache[{object, azimuth}];
   if (bytes.empty()) {
-    const cv::Mat image = ReadImageFile((testing::DataDir() / "coil-100" /
-                                         ("obj" + std::to_string(object) + "__" +
-                                          std::to_string(azimuth) + ".png"))
-                                            .string());
+    const cv::Mat image =
+        ReadImageFile((testing::DataDir() / "coil-100" /
+                       ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+                          .string());
     const Descriptor d = ExtractCedd(image, Product().variant);  // the server's
     bytes.assign(d.values.begin(), d.values.end());
   }
@@ -51,17 +51,18 @@ std::string CoilCedd(int object, int azimuth) {
 }
 
 double CoilTypicalDistance(int object, int azimuth) {
-  const cv::Mat image = ReadImageFile((testing::DataDir() / "coil-100" /
-                                       ("obj" + std::to_string(object) + "__" +
-                                        std::to_string(azimuth) + ".png"))
-                                          .string());
+  const cv::Mat image =
+      ReadImageFile((testing::DataDir() / "coil-100" /
+                     ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+                        .string());
   return DescribeView(image, Product().variant, 7).typical_distance;
 }
 
 class Client {
  public:
-  explicit Client(const std::string& address, std::string token = "",
-                  std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials())
+  explicit Client(
+      const std::string& address, std::string token = "",
+      std::shared_ptr<grpc::ChannelCredentials> credentials = grpc::InsecureChannelCredentials())
       : channel_(grpc::CreateChannel(address, credentials)),
         models_(v1::Models::NewStub(channel_)),
         recognition_(v1::Recognition::NewStub(channel_)),
@@ -91,7 +92,8 @@ class Client {
     return EnrollRaw(requests, info);
   }
 
-  grpc::Status EnrollRaw(const std::vector<v1::EnrollRequest>& requests, v1::ObjectInfo* info) const {
+  grpc::Status EnrollRaw(const std::vector<v1::EnrollRequest>& requests,
+                         v1::ObjectInfo* info) const {
     grpc::ClientContext context;
     Prepare(context);
     auto writer = models_->Enroll(&context, info);
@@ -102,7 +104,8 @@ class Client {
     return writer->Finish();
   }
 
-  grpc::Status List(v1::ListObjectsResponse* response, int page_size = 0, std::string token = "") const {
+  grpc::Status List(v1::ListObjectsResponse* response, int page_size = 0,
+                    std::string token = "") const {
     grpc::ClientContext context;
     Prepare(context);
     v1::ListObjectsRequest request;
@@ -168,8 +171,8 @@ class Client {
     EXPECT_TRUE(stream->Write(open));
     return stream;
   }
-  std::unique_ptr<grpc::ClientWriter<v1::EnrollRequest>> models_for_test(grpc::ClientContext* context,
-                                                                         v1::ObjectInfo* info) {
+  std::unique_ptr<grpc::ClientWriter<v1::EnrollRequest>> models_for_test(
+      grpc::ClientContext* context, v1::ObjectInfo* info) {
     return models_->Enroll(context, info);
   }
 
@@ -189,7 +192,8 @@ v1::SessionRequest CoilFrame(int object, int azimuth, double device_azimuth) {
 
 // Frames of `object` at model azimuths start, start+step, ..., seen by a device whose compass
 // is off by `offset` degrees.
-std::vector<v1::SessionRequest> CoilSweep(int object, int start, int step, int count, double offset) {
+std::vector<v1::SessionRequest> CoilSweep(int object, int start, int step, int count,
+                                          double offset) {
   std::vector<v1::SessionRequest> frames;
   for (int k = 0; k < count; ++k) {
     const int azimuth = (start + k * step) % 360;
@@ -289,7 +293,8 @@ TEST(Server, RecognizeAnswersABatchLikeASession) {
     ASSERT_EQ(session.updates[k].candidates_size(), response.updates(k).candidates_size());
     for (int c = 0; c < response.updates(k).candidates_size(); ++c) {
       EXPECT_EQ(session.updates[k].candidates(c).id(), response.updates(k).candidates(c).id());
-      EXPECT_DOUBLE_EQ(session.updates[k].candidates(c).score(), response.updates(k).candidates(c).score());
+      EXPECT_DOUBLE_EQ(session.updates[k].candidates(c).score(),
+                       response.updates(k).candidates(c).score());
     }
   }
 }
@@ -302,7 +307,8 @@ TEST(Server, RecognizeAnswersABatchLikeASession) {
 TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
   ServerProcess server;
   Client client(server.address());
-  ASSERT_NO_FATAL_FAILURE(EnrollCoilObjects(client, {11, 12, 13}, AzimuthsAwayFrom(60, 90), /*typical=*/true));
+  ASSERT_NO_FATAL_FAILURE(
+      EnrollCoilObjects(client, {11, 12, 13}, AzimuthsAwayFrom(60, 90), /*typical=*/true));
   v1::SessionOptions options;
   options.set_rejection(v1::REJECTION_TH);  // the thesis' rule, by name
   options.set_threshold(1.0);
@@ -317,7 +323,8 @@ TEST(Server, AcceptsAKnownObjectAndCallsAnUntrainedOneUnknown) {
   // Without typical distances there is nothing to judge by.
   v1::ObjectInfo info;
   ASSERT_TRUE(client.Enroll("obj14", 14, &info).ok());
-  ASSERT_TRUE(client.Delete("obj11").ok() && client.Delete("obj12").ok() && client.Delete("obj13").ok());
+  ASSERT_TRUE(client.Delete("obj11").ok() && client.Delete("obj12").ok() &&
+              client.Delete("obj13").ok());
   const auto untyped = client.Session(options, CoilSweep(14, 60, 10, 2, 0));
   EXPECT_EQ(untyped.updates.back().decision(), v1::DECISION_UNDECIDED);
 }
@@ -366,7 +373,8 @@ TEST(Server, SixteenConcurrentSessionsDoNotCrossTalk) {
     const auto result = sessions[i].get();
     ASSERT_TRUE(result.status.ok()) << result.status.error_message();
     ASSERT_EQ(result.updates.size(), 4u);
-    for (std::size_t k = 0; k < 4; ++k) EXPECT_EQ(result.updates[k].frame_index(), static_cast<int>(k));
+    for (std::size_t k = 0; k < 4; ++k)
+      EXPECT_EQ(result.updates[k].frame_index(), static_cast<int>(k));
     EXPECT_EQ(result.updates.back().candidates(0).name(), "obj" + std::to_string(objects[i]));
   }
 }
@@ -403,15 +411,24 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
   } cases[] = {
       {"short descriptor", {}, FrameWith(std::string(100, '\1'), 0), grpc::INVALID_ARGUMENT, "144"},
       {"value out of range", {}, FrameWith(too_big, 0), grpc::INVALID_ARGUMENT, "index 17"},
-      {"NaN azimuth", {}, FrameWith(CoilCedd(60, 0), std::nan("")), grpc::INVALID_ARGUMENT, "azimuth"},
-      {"infinite azimuth", {}, FrameWith(CoilCedd(60, 0), std::numeric_limits<double>::infinity()),
-       grpc::INVALID_ARGUMENT, "azimuth"},
-      {"other variant", full_variant, FrameWith(CoilCedd(60, 0), 0), grpc::INVALID_ARGUMENT, "cedd-full"},
+      {"NaN azimuth",
+       {},
+       FrameWith(CoilCedd(60, 0), std::nan("")),
+       grpc::INVALID_ARGUMENT,
+       "azimuth"},
+      {"infinite azimuth",
+       {},
+       FrameWith(CoilCedd(60, 0), std::numeric_limits<double>::infinity()),
+       grpc::INVALID_ARGUMENT,
+       "azimuth"},
+      {"other variant", full_variant, FrameWith(CoilCedd(60, 0), 0), grpc::INVALID_ARGUMENT,
+       "cedd-full"},
       {"empty frame", {}, FrameWith("", 0), grpc::INVALID_ARGUMENT, "cedd"},
   };
   for (const Case& c : cases) {
     const auto result = client.Session(c.options, {c.request});
-    EXPECT_EQ(result.status.error_code(), c.code) << c.what << ": " << result.status.error_message();
+    EXPECT_EQ(result.status.error_code(), c.code)
+        << c.what << ": " << result.status.error_message();
     EXPECT_NE(result.status.error_message().find(c.message_part), std::string::npos)
         << c.what << ": " << result.status.error_message();
     EXPECT_TRUE(result.updates.empty()) << c.what;
@@ -571,7 +588,8 @@ TEST(Server, ClosesIdleSessionsWithDeadlineExceeded) {
 // ---- access control, TLS ----
 
 std::filesystem::path WriteFile(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()));
+  const auto path =
+      std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()));
   std::ofstream(path) << text;
   return path;
 }
@@ -675,9 +693,9 @@ TEST(Server, PostgresStoreIsSharedByServersStartedOnIt) {
   const auto session = client.Session(v1::SessionOptions(), {CoilFrame(92, 45, 0)});
   ASSERT_TRUE(session.status.ok()) << session.status.error_message();
   EXPECT_EQ(session.updates.at(0).candidates(0).name(), "obj92");
-  EXPECT_NE(second.Log().find("model store         PostgreSQL user=orbit dbname=" +
-                              database.name()),
-            std::string::npos)
+  EXPECT_NE(
+      second.Log().find("model store         PostgreSQL user=orbit dbname=" + database.name()),
+      std::string::npos)
       << second.Log();
 }
 
@@ -704,7 +722,8 @@ TEST(Server, PostgresReplicaIsNotServingUntilItHasLoadedItsIndex) {
   });
   std::optional<int> health;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
-  while (!(health = testing::HealthStatus(address)) && std::chrono::steady_clock::now() < deadline) {
+  while (!(health = testing::HealthStatus(address)) &&
+         std::chrono::steady_clock::now() < deadline) {
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   EXPECT_EQ(health, testing::kNotServing);

@@ -56,7 +56,7 @@ TEST(RejectionCalibratorTest, RecalibrationIsDueAfterOnePercentOfTheObjectsOrFiv
   EXPECT_TRUE(RecalibrationDue(1, 1000, 0, false));    // no calibration yet
   EXPECT_TRUE(RecalibrationDue(1, 100, 0, true));      // up to 100 objects: every change
   EXPECT_TRUE(RecalibrationDue(1, 2, 0, true));
-  EXPECT_FALSE(RecalibrationDue(1, 150, 0, true));     // 1.5 needed
+  EXPECT_FALSE(RecalibrationDue(1, 150, 0, true));  // 1.5 needed
   EXPECT_TRUE(RecalibrationDue(2, 150, 0, true));
   EXPECT_FALSE(RecalibrationDue(9, 1000, 0, true));
   EXPECT_TRUE(RecalibrationDue(10, 1000, 0, true));

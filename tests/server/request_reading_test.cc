@@ -17,8 +17,8 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "client/image_file.h"
-#include "core/descriptor/cedd.h"
 #include "core/descriptor/blur_estimate.h"
+#include "core/descriptor/cedd.h"
 #include "core/descriptor/noise_estimate.h"
 #include "core/descriptor/view_description.h"
 #include "server/image_budget.h"
@@ -57,7 +57,9 @@ std::string PngBomb(int width, std::uint32_t height) {
   return png;
 }
 
-std::string Cedd(std::uint8_t fill) { return std::string(kDescriptorSize, static_cast<char>(fill)); }
+std::string Cedd(std::uint8_t fill) {
+  return std::string(kDescriptorSize, static_cast<char>(fill));
+}
 
 void ExpectInvalid(const grpc::Status& status, const std::string& message) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << message;
@@ -132,27 +134,33 @@ TEST(RequestReadingTest, TheDevicesQualityReadingsReachTheEngine) {
 TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   QueryFrame query;
   v1::Frame frame;
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "a frame needs exactly one of cedd and image");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "a frame needs exactly one of cedd and image");
   frame.set_cedd(Cedd(1));
   frame.set_image("x");
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "a frame needs exactly one of cedd and image");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "a frame needs exactly one of cedd and image");
   frame.clear_image();
   frame.set_cedd(Cedd(8));
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.cedd value 8 at index 0 is outside 0..7");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.cedd value 8 at index 0 is outside 0..7");
   frame.set_cedd("abc");
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.cedd has 3 values, expected 144");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.cedd has 3 values, expected 144");
   frame.set_cedd(Cedd(1));
   frame.set_azimuth_deg(kNaN);
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.azimuth_deg must be a finite number");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.azimuth_deg must be a finite number");
   frame.set_azimuth_deg(0);
   frame.set_elevation_deg(INFINITY);
-  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query), "frame.elevation_deg must be a finite number");
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.elevation_deg must be a finite number");
   frame.clear_elevation_deg();
   for (const auto& [sigma, text] : {std::pair{-1.0, "-1"}, {255.5, "255.5"}, {kNaN, "nan"}}) {
     frame.mutable_quality()->set_noise_sigma(sigma);
-    ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
-                  std::string("frame.quality.noise_sigma must be in [0, 255] grey levels, got ") +
-                      text);
+    ExpectInvalid(
+        ToQueryFrame(frame, kLire, kLimits, &query),
+        std::string("frame.quality.noise_sigma must be in [0, 255] grey levels, got ") + text);
   }
   frame.mutable_quality()->set_noise_sigma(3);
   for (const auto& [blur, text] : {std::pair{-0.5, "-0.5"}, {1.5, "1.5"}, {kNaN, "nan"}}) {

@@ -93,8 +93,7 @@ TEST(ServerMetricsTest, AFrameCountsForItsEngineAndItsInput) {
   EXPECT_EQ(Sample(text, R"(orbit_frame_processing_seconds_bucket{input="image",le="0.005"})"), 1);
   // A value outside the proto's engines is still counted, apart.
   metrics.ForEngine(static_cast<v1::Engine>(99)).Record(FrameInput::kCedd, {});
-  EXPECT_EQ(
-      Sample(metrics.Expose(), R"(orbit_frames_processed_total{engine="unknown"})"), 1);
+  EXPECT_EQ(Sample(metrics.Expose(), R"(orbit_frames_processed_total{engine="unknown"})"), 1);
 }
 
 TEST(ServerMetricsTest, RefuseCountsByCodeAndReasonAndPassesTheStatusOn) {

@@ -139,7 +139,8 @@ TEST(SessionReactorTest, ImageFramesNeverDelayAnotherSessionsDescriptorFrames) {
   ASSERT_TRUE(session->Write(open));
   v1::SessionUpdate update;
   int answered = 0;
-  for (int k = 0; k < kDescriptorFrames && session->Write(Frame(k)) && session->Read(&update); ++k) {
+  for (int k = 0; k < kDescriptorFrames && session->Write(Frame(k)) && session->Read(&update);
+       ++k) {
     ++answered;
   }
   const int images_done_meanwhile = image_updates.load();

@@ -75,8 +75,7 @@ TYPED_TEST(ModelStoreTest, GetReturnsTheEnrolledObjectWithViewsOrderedByAzimuth)
   EXPECT_EQ(stored->views[1].typical_distance, 0.1);
   EXPECT_EQ(stored->views[0].elevation, std::nullopt);
   EXPECT_EQ(stored->views[2].elevation, -12.5);
-  EXPECT_THAT(stored->thumbnails,
-              ElementsAre(std::string("\0\x01\x02", 3), "jpeg-bytes-1", ""));
+  EXPECT_THAT(stored->thumbnails, ElementsAre(std::string("\0\x01\x02", 3), "jpeg-bytes-1", ""));
   EXPECT_EQ(store.Get(id + 1), std::nullopt);
 }
 
@@ -121,9 +120,9 @@ TYPED_TEST(ModelStoreTest, DeleteRemovesTheObjectAndAllItsViews) {
   EXPECT_EQ(store.Get(gone), std::nullopt);
   EXPECT_EQ(store.Find("gone"), std::nullopt);
   EXPECT_EQ(this->backend_.Int("SELECT count(*) FROM views"), 3);
-  EXPECT_EQ(this->backend_.Int("SELECT count(*) FROM views WHERE object_id = " +
-                               std::to_string(gone)),
-            0);
+  EXPECT_EQ(
+      this->backend_.Int("SELECT count(*) FROM views WHERE object_id = " + std::to_string(gone)),
+      0);
   const auto [code, message] = StoreErrorOf([&] { store.Delete(gone); });
   EXPECT_EQ(code, StoreError::Code::kNotFound);
   EXPECT_EQ(message, "no object with id 2");

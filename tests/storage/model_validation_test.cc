@@ -9,8 +9,8 @@
 #include <gtest/gtest.h>
 
 #include "storage/sqlite_model_store.h"
-#include "tests/support/test_data.h"
 #include "tests/support/storage_test_support.h"
+#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -60,7 +60,9 @@ TEST_F(RefusalTest, DescriptorValuesOutsideZeroToSeven) {
             "view 2: descriptor value 9 at index 17 is outside 0..7");
   bad.descriptor[17] = 0;
   bad.descriptor[143] = 255;
-  EXPECT_EQ(ErrorMessageOf([&] { store_.AddViews(keep_, {SyntheticView(2, 0), bad}); }),
+  EXPECT_EQ(ErrorMessageOf([&] {
+              store_.AddViews(keep_, {SyntheticView(2, 0), bad});
+            }),
             "view 1: descriptor value 255 at index 143 is outside 0..7");
   ExpectUnchanged();
 }

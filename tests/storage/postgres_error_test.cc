@@ -23,9 +23,9 @@ TEST(PostgresErrorTest, SqlStatesMapToWhatACallerCanDo) {
 }
 
 TEST(PostgresErrorTest, TheMessageIsTheContextThenTheServersWords) {
-  EXPECT_STREQ(PostgresError("23514", "ERROR:  injected failure\n", "PostgreSQL refused `INSERT`")
-                   .what(),
-               "PostgreSQL refused `INSERT`: ERROR:  injected failure");
+  EXPECT_STREQ(
+      PostgresError("23514", "ERROR:  injected failure\n", "PostgreSQL refused `INSERT`").what(),
+      "PostgreSQL refused `INSERT`: ERROR:  injected failure");
 }
 
 }  // namespace

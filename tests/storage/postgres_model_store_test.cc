@@ -49,7 +49,7 @@ TEST(PostgresModelStoreTest, ChangesAfterListsEachCommittedWriteInOrderUpToTheLa
   const ObjectId jar = store.Enroll(SyntheticObject("jar", 2));
   store.AddViews(mug, {SyntheticView(9, 90)});
   store.Rename(jar, "pot");
-  store.Rename(jar, "pot");                                     // no change: not logged
+  store.Rename(jar, "pot");                                           // no change: not logged
   EXPECT_THROW(store.Enroll(SyntheticObject("mug", 2)), StoreError);  // refused: not logged
   store.Delete(mug);
 
@@ -99,8 +99,8 @@ TEST(PostgresModelStoreTest, EachWriteNotifiesListenersWithItsSeqWhenCommitted) 
   PQfinish(listener);
   const std::vector<ModelChange> changes = store.ChangesAfter(0);
   ASSERT_EQ(changes.size(), 2u);
-  EXPECT_THAT(payloads, ElementsAre(std::to_string(changes[0].seq),
-                                    std::to_string(changes[1].seq)));
+  EXPECT_THAT(payloads,
+              ElementsAre(std::to_string(changes[0].seq), std::to_string(changes[1].seq)));
 }
 
 // Two replicas writing at once: every write is logged once, and seq order is commit order (ids

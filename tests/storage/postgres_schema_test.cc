@@ -39,8 +39,7 @@ TEST(PostgresSchemaTest, AStoreInItsOwnSchemaSharesADatabaseWithOtherTables) {
   TestDatabase database;
   database.Execute("CREATE TABLE invoices (id int); CREATE SCHEMA models");
 
-  const auto [code, message] =
-      StoreErrorOf([&] { PostgresModelStore store(database.conninfo()); });
+  const auto [code, message] = StoreErrorOf([&] { PostgresModelStore store(database.conninfo()); });
   EXPECT_EQ(code, StoreError::Code::kIncompatible);
   EXPECT_THAT(message, HasSubstr("is not an Orbit model store"));
   EXPECT_THAT(message, HasSubstr("search_path"));
@@ -57,11 +56,10 @@ TEST(PostgresSchemaTest, ANewerSchemaIsRefusedAndLeftUntouched) {
   database.Execute("INSERT INTO schema_version (version) VALUES (" +
                    std::to_string(kPostgresSchemaVersion + 1) + ")");
 
-  const auto [code, message] =
-      StoreErrorOf([&] { PostgresModelStore store(database.conninfo()); });
+  const auto [code, message] = StoreErrorOf([&] { PostgresModelStore store(database.conninfo()); });
   EXPECT_EQ(code, StoreError::Code::kIncompatible);
-  EXPECT_THAT(message, HasSubstr("newer than the versions 1.." +
-                                 std::to_string(kPostgresSchemaVersion)));
+  EXPECT_THAT(message,
+              HasSubstr("newer than the versions 1.." + std::to_string(kPostgresSchemaVersion)));
   EXPECT_EQ(database.Int("SELECT count(*) FROM schema_version"), kPostgresSchemaVersion + 1);
 }
 

@@ -61,10 +61,11 @@ void WriteVersion1Store(const std::filesystem::path& file) {
   raw.Execute(
       "INSERT INTO objects VALUES (7, 'mug', 'cedd-full', '2024-01-02T03:04:05.006Z', "
       "'2024-01-02T03:04:05.006Z');"
-      "INSERT INTO views VALUES (1, 7, 90, NULL, " + HexBlob(SyntheticView(1, 0).descriptor) +
+      "INSERT INTO views VALUES (1, 7, 90, NULL, " +
+      HexBlob(SyntheticView(1, 0).descriptor) +
       ", 0.125);"
-      "INSERT INTO views VALUES (2, 7, 45, 10.5, " + HexBlob(SyntheticView(2, 0).descriptor) +
-      ", 0.25);");
+      "INSERT INTO views VALUES (2, 7, 45, 10.5, " +
+      HexBlob(SyntheticView(2, 0).descriptor) + ", 0.25);");
 }
 
 std::string ReadBytes(const std::filesystem::path& file) {
@@ -204,7 +205,7 @@ TEST(SchemaMigrationTest, ANewerStoreIsRefusedUntouched) {
   EXPECT_EQ(std::string(error.what()),
             "cannot open model store " + (dir / "future.db").string() + ": " +
                 (dir / "future.db").string() +
-                 " has schema version 4, newer than the versions 1..3 this program knows: use a "
+                " has schema version 4, newer than the versions 1..3 this program knows: use a "
                 "newer orbit");
   RawDatabase raw(dir / "future.db");
   EXPECT_EQ(raw.Int("SELECT count(*) FROM pragma_table_info('objects') WHERE name = 'metadata'"),

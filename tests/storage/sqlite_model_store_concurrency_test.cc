@@ -35,8 +35,8 @@ void ExpectWholeObjects(const std::vector<ObjectModel>& models) {
 TEST(StoreConcurrencyTest, ReadersDoNotWaitForAnOpenWriteAndSeeOnlyCommittedObjects) {
   ScratchDir dir;
   // A reader that had to wait for the writer would fail after 100 ms with kBusy.
-  SqliteModelStore store(dir / "models.db",
-                         {.create_if_missing = true, .busy_timeout = std::chrono::milliseconds(100)});
+  SqliteModelStore store(dir / "models.db", {.create_if_missing = true,
+                                             .busy_timeout = std::chrono::milliseconds(100)});
   store.Enroll(SyntheticObject("a", 3));
   store.Enroll(SyntheticObject("b", 3));
   RawDatabase writer(dir / "models.db");

@@ -39,9 +39,10 @@ std::set<std::string> ExpectIntactAfterCrash(const std::filesystem::path& file,
     EXPECT_EQ(raw.Text("PRAGMA integrity_check"), "ok");
     EXPECT_EQ(raw.Int("SELECT count(*) FROM views WHERE object_id NOT IN (SELECT id FROM objects)"),
               0);
-    EXPECT_THAT(raw.Column("SELECT DISTINCT (SELECT count(*) FROM views v WHERE v.object_id = o.id) "
-                           "FROM objects o"),
-                ::testing::Each(std::to_string(views_per_object)));
+    EXPECT_THAT(
+        raw.Column("SELECT DISTINCT (SELECT count(*) FROM views v WHERE v.object_id = o.id) "
+                   "FROM objects o"),
+        ::testing::Each(std::to_string(views_per_object)));
     for (const std::string& name : raw.Column("SELECT name FROM objects")) present.insert(name);
   }
   for (const std::string& name : acknowledged) {
@@ -80,9 +81,9 @@ TEST(StoreCrashTest, KillingAnImportMidwayLeavesOnlyWholeObjectsAndItResumes) {
   EXPECT_LT(present.size(), 12u);
 
   // Run again, it carries on: the objects already there are skipped, the rest enrolled.
-  const orbit::testing::CommandResult resumed = orbit::testing::RunCommand(
-      orbit::testing::OrbitBinary() + " import --db " + db + " --layout coil100 --data " + coil +
-      " --objects 1-12");
+  const orbit::testing::CommandResult resumed =
+      orbit::testing::RunCommand(orbit::testing::OrbitBinary() + " import --db " + db +
+                                 " --layout coil100 --data " + coil + " --objects 1-12");
   EXPECT_EQ(resumed.exit_code, 0) << resumed.err;
   EXPECT_THAT(resumed.out, ::testing::HasSubstr("skipped obj1 (already in the store as id 1)"));
   EXPECT_EQ(ExpectIntactAfterCrash(db, 72, {}).size(), 12u);

@@ -90,8 +90,8 @@ TEST(StoreWriterLockTest, AWriterWaitsForAnotherWriterThenCommits) {
 
 TEST(StoreWriterLockTest, AWriterGivesUpAfterTheBusyTimeoutWithAClearError) {
   ScratchDir dir;
-  SqliteModelStore store(dir / "models.db",
-                         {.create_if_missing = true, .busy_timeout = std::chrono::milliseconds(100)});
+  SqliteModelStore store(dir / "models.db", {.create_if_missing = true,
+                                             .busy_timeout = std::chrono::milliseconds(100)});
   RawDatabase other(dir / "models.db");
   other.Execute("BEGIN IMMEDIATE");
 

@@ -30,9 +30,9 @@ TEST(StoreVariantTest, IsThatOfTheStoredObjectsAndNoneForAnEmptyStore) {
 TEST(LoadViewIndexTest, EveryStoredViewIsFoundAtItsObjectAndAzimuth) {
   ScratchDir dir;
   SqliteModelStore store(dir / "models.db", {.create_if_missing = true});
-  store.Enroll(SyntheticObject("a", 4, 1));    // views at 0, 90, 180, 270 with seeds 1..4
-  store.Enroll(SyntheticObject("b", 4, 11));   // seeds 11..14
-  store.Enroll(SyntheticObject("c", 4, 21));   // seeds 21..24
+  store.Enroll(SyntheticObject("a", 4, 1));   // views at 0, 90, 180, 270 with seeds 1..4
+  store.Enroll(SyntheticObject("b", 4, 11));  // seeds 11..14
+  store.Enroll(SyntheticObject("c", 4, 21));  // seeds 21..24
 
   for (SearchMode mode : {SearchMode::kExact, SearchMode::kKdTree}) {
     const std::unique_ptr<ViewIndex> index =

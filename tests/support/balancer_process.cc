@@ -91,7 +91,8 @@ std::string BalancerProcess::Log() const {
   return text.str();
 }
 
-bool BalancerProcess::WaitForLine(const std::string& text, std::chrono::milliseconds timeout) const {
+bool BalancerProcess::WaitForLine(const std::string& text,
+                                  std::chrono::milliseconds timeout) const {
   const Clock::time_point deadline = Clock::now() + timeout;
   while (Log().find(text) == std::string::npos) {
     if (Clock::now() > deadline) return false;

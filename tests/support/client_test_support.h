@@ -11,9 +11,9 @@
 
 #include "client/connection.h"
 #include "client/enroller.h"
+#include "client/image_file.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
-#include "client/image_file.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::testing {

@@ -27,9 +27,10 @@ inline const ObjectModel& CoilObject(int number) {
     model.name = "obj" + std::to_string(number);
     model.variant = DescriptorVariant::kCeddLire;
     for (int azimuth = 0; azimuth < 360; azimuth += 5) {
-      const std::string file = (DataDir() / "coil-100" /
-                                ("obj" + std::to_string(number) + "__" + std::to_string(azimuth) +
-                                 ".png")).string();
+      const std::string file =
+          (DataDir() / "coil-100" /
+           ("obj" + std::to_string(number) + "__" + std::to_string(azimuth) + ".png"))
+              .string();
       ModelView view;
       view.descriptor = ExtractCedd(ReadImageFile(file), DescriptorVariant::kCeddLire).values;
       view.azimuth = azimuth;
@@ -45,7 +46,8 @@ inline std::vector<ObjectModel> CoilObjects(int first, int last,
   std::vector<ObjectModel> models;
   for (int n = first; n <= last; ++n) {
     ObjectModel model = CoilObject(n);
-    std::erase_if(model.views, [&](const ModelView& v) { return !keep(static_cast<int>(v.azimuth)); });
+    std::erase_if(model.views,
+                  [&](const ModelView& v) { return !keep(static_cast<int>(v.azimuth)); });
     models.push_back(std::move(model));
   }
   return models;

@@ -19,7 +19,8 @@ inline constexpr int kNotServing = 2;
 
 // The status `address` reports for `service` ("" for the whole server); nullopt when the call
 // fails (nothing listening, a status other than OK).
-inline std::optional<int> HealthStatus(const std::string& address, const std::string& service = "") {
+inline std::optional<int> HealthStatus(const std::string& address,
+                                       const std::string& service = "") {
   const auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
   grpc::GenericStub stub(channel);
   std::string request;  // HealthCheckRequest: field 1 (service), a string

@@ -48,7 +48,8 @@ std::string Program(const char* name) {
 
 // Runs `arguments` (the program first) as the server's user in `folder`, its output appended to
 // folder/commands.log; returns the exit status (-1 when it did not exit normally).
-int RunAsServerUser(const std::filesystem::path& folder, const std::vector<std::string>& arguments) {
+int RunAsServerUser(const std::filesystem::path& folder,
+                    const std::vector<std::string>& arguments) {
   const ServerUser user = UnprivilegedUser();
   std::vector<char*> argv;
   for (const std::string& argument : arguments) argv.push_back(const_cast<char*>(argument.c_str()));
@@ -100,9 +101,9 @@ void PostgresTestCluster::Start(const std::filesystem::path& folder) {
     throw std::runtime_error("cannot hand " + folder.string() + " to the server's user");
   }
   const std::string data = (folder / "data").string();
-  if (RunAsServerUser(folder, {initdb, "--pgdata", data, "--username", "orbit", "--auth", "trust",
-                               "--encoding", "UTF8", "--locale", "C", "--no-sync",
-                               "--no-instructions"}) != 0) {
+  if (RunAsServerUser(
+          folder, {initdb, "--pgdata", data, "--username", "orbit", "--auth", "trust", "--encoding",
+                   "UTF8", "--locale", "C", "--no-sync", "--no-instructions"}) != 0) {
     throw std::runtime_error("initdb failed in " + folder.string() + ":\n" +
                              FileText(folder / "commands.log"));
   }

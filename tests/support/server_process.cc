@@ -87,7 +87,8 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   for (;;) {
     const std::string log = Slurp(log_file_);
-    if (const auto at = log.find(marker); at != std::string::npos && log.find('\n', at) != std::string::npos) {
+    if (const auto at = log.find(marker);
+        at != std::string::npos && log.find('\n', at) != std::string::npos) {
       address_ = log.substr(at + marker.size(), log.find('\n', at) - at - marker.size());
       port_ = std::stoi(address_.substr(address_.rfind(':') + 1));
       // Printed before "listening on", as "metrics on http://HOST:PORT/metrics".
@@ -102,7 +103,8 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
     if (code >= 0 || std::chrono::steady_clock::now() > deadline) {
       if (code < 0) Stop(SIGKILL);
       pid_ = -1;
-      throw std::runtime_error("orbit serve did not start (exit " + std::to_string(code) + "):\n" + log);
+      throw std::runtime_error("orbit serve did not start (exit " + std::to_string(code) + "):\n" +
+                               log);
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
@@ -123,8 +125,10 @@ ServerProcess::~ServerProcess() {
     }
   }
   std::error_code ignored;
-  if (owns_database_) std::filesystem::remove_all(temp_dir_, ignored);
-  else std::filesystem::remove(log_file_, ignored);
+  if (owns_database_)
+    std::filesystem::remove_all(temp_dir_, ignored);
+  else
+    std::filesystem::remove(log_file_, ignored);
 }
 
 int ServerProcess::Stop(int signal, std::chrono::seconds timeout) {
@@ -154,17 +158,16 @@ RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args) {
 
 void MakeSelfSignedCertificate(const std::filesystem::path& dir, const std::string& common_name,
                                const std::string& subject_alt_names) {
-  const std::string command = "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=" +
-                              common_name + " -addext subjectAltName=" + subject_alt_names +
-                              " -keyout " + (dir / "key.pem").string() + " -out " +
-                              (dir / "cert.pem").string() + " 2>/dev/null";
+  const std::string command =
+      "openssl req -x509 -newkey rsa:2048 -nodes -days 2 -subj /CN=" + common_name +
+      " -addext subjectAltName=" + subject_alt_names + " -keyout " + (dir / "key.pem").string() +
+      " -out " + (dir / "cert.pem").string() + " 2>/dev/null";
   if (std::system(command.c_str()) != 0) {
     throw std::runtime_error("openssl could not make a test certificate in " + dir.string());
   }
 }
 
-ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir,
-                                          const std::string& host,
+ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir, const std::string& host,
                                           const std::string& admin_token,
                                           const std::string& reader_token) {
   std::filesystem::create_directories(dir);

@@ -24,13 +24,14 @@ struct ServerProcessOptions {
   // A PostgreSQL model store (`--store`, a connection string) instead of the SQLite file.
   std::optional<std::string> store = std::nullopt;
   std::string listen = "127.0.0.1:0";  // port 0: the server picks a free one
-  int workers = 2;  // --workers
+  int workers = 2;                     // --workers
   std::optional<std::filesystem::path> tokens_file = std::nullopt;
   std::optional<std::filesystem::path> tls_cert = std::nullopt;
   std::optional<std::filesystem::path> tls_key = std::nullopt;
   // --metrics-listen 127.0.0.1:0: the Prometheus endpoint on a free loopback port.
   bool metrics = false;
-  std::vector<std::string> extra_args = {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
+  std::vector<std::string> extra_args =
+      {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };
 
 // Writes a self-signed certificate for `subject_alt_names` (e.g. "DNS:orbit.test" or
@@ -43,8 +44,7 @@ void MakeSelfSignedCertificate(const std::filesystem::path& dir, const std::stri
 // (dir/cert.pem, as MakeSelfSignedCertificate), a token file granting `admin_token` the admin
 // role and `reader_token` the recognize role, and dir/reader.token holding the reader's token
 // behind a comment line, as an operator hands it to a device.
-ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir,
-                                          const std::string& host,
+ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir, const std::string& host,
                                           const std::string& admin_token,
                                           const std::string& reader_token);
 

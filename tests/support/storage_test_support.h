@@ -3,7 +3,6 @@
 // the store.
 #pragma once
 
-
 #include <cstdint>
 #include <filesystem>
 #include <random>

@@ -13,7 +13,7 @@ TEST(AnglesTest, WrapDegreesLandsInMinus180To180) {
   EXPECT_EQ(WrapDegrees(0), 0);
   EXPECT_EQ(WrapDegrees(190), -170);
   EXPECT_EQ(WrapDegrees(-190), 170);
-  EXPECT_EQ(WrapDegrees(180), 180);   // the interval is (-180, 180]
+  EXPECT_EQ(WrapDegrees(180), 180);  // the interval is (-180, 180]
   EXPECT_EQ(WrapDegrees(-180), 180);
   EXPECT_EQ(WrapDegrees(540), 180);
   EXPECT_EQ(WrapDegrees(359), -1);

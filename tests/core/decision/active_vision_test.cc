@@ -16,7 +16,8 @@ IndexedObject Object(ObjectId id, int odd_sector, const DescriptorValues& odd) {
   common[30] = 2;
   ObjectModel model;
   model.id = id;
-  for (int s = 0; s < 8; ++s) model.views.push_back({s == odd_sector ? odd : common, s * 45.0, {}, 0});
+  for (int s = 0; s < 8; ++s)
+    model.views.push_back({s == odd_sector ? odd : common, s * 45.0, {}, 0});
   return IndexedObject(model);
 }
 
@@ -52,7 +53,7 @@ TEST(ActiveVisionTest, PrefersTheSideNotYetSeen) {
   const IndexedObject a = Object(1, 2, Bin(10, 7));
   const IndexedObject b = Object(2, 2, Bin(100, 7));
   const std::vector<MoveCandidate> at_50 = {{&a, 50}, {&b, 50}};  // the views differ on the right
-  const std::vector<double> came_from_the_right = {40};  // a frame 40 degrees to the right
+  const std::vector<double> came_from_the_right = {40};           // a frame 40 degrees to the right
   EXPECT_EQ(SuggestMove(at_50, 8, came_from_the_right), SuggestedMove::kLeft);
   const std::vector<double> came_from_the_left = {-30, -60};
   EXPECT_EQ(SuggestMove(at_50, 8, came_from_the_left), SuggestedMove::kRight);

@@ -28,10 +28,9 @@ ObjectModel Object(ObjectId id, std::vector<std::pair<double, DescriptorValues>>
 TEST(EnrollmentFeedbackTest, FindsGapsAcrossZeroAndRepeatedViews) {
   // Views at 350, 10, 20 and 120: gaps 20 -> 120 (100) and 120 -> 350 (230); 350 -> 10 is 20.
   // The view at 20 equals the one at 10: a repeat (the earlier one in azimuth order stays).
-  const ObjectModel object = Object(1, {{120, Bins({{0, 7}})},
-                                        {10, Bins({{1, 7}})},
-                                        {20, Bins({{1, 7}})},
-                                        {350, Bins({{2, 7}})}});
+  const ObjectModel object = Object(
+      1,
+      {{120, Bins({{0, 7}})}, {10, Bins({{1, 7}})}, {20, Bins({{1, 7}})}, {350, Bins({{2, 7}})}});
   const auto empty = ViewIndex(DescriptorVariant::kCeddLire).Snapshot();
   const EnrollmentFeedback feedback = AssessEnrollment(object, *empty);
   ASSERT_EQ(feedback.gaps.size(), 2u);
@@ -53,10 +52,8 @@ TEST(EnrollmentFeedbackTest, RanksTheObjectsItCouldBeTakenFor) {
   // obj2 holds {0:4, 1:4}: TC 16 / (16 + 32 - 16) = 0.5 with A and with B: similarity 0.5,
   // 2 views closer; ties go to the lower id, so obj1 first.
   // obj4 holds {2:4}: similarity 0.
-  const ViewIndex index({Object(1, {{0, Bins({{0, 4}})}}),
-                         Object(2, {{0, Bins({{0, 4}, {1, 4}})}}),
-                         Object(4, {{0, Bins({{2, 4}})}}),
-                         object});
+  const ViewIndex index({Object(1, {{0, Bins({{0, 4}})}}), Object(2, {{0, Bins({{0, 4}, {1, 4}})}}),
+                         Object(4, {{0, Bins({{2, 4}})}}), object});
   const EnrollmentFeedback feedback = AssessEnrollment(object, *index.Snapshot());
   ASSERT_EQ(feedback.confusable.size(), 3u);  // the object itself is not among them
   EXPECT_EQ(feedback.confusable[0].object, 1);

@@ -12,15 +12,15 @@
 #include <gtest/gtest.h>
 
 #include "client/image_file.h"
+#include "core/decision/rejection_calibration.h"
 #include "core/descriptor/blur_estimate.h"
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/distortion.h"
 #include "core/descriptor/noise_estimate.h"
-#include "core/engines/product_pipeline.h"
-#include "core/engines/engine_registry.h"
-#include "core/engines/recognition_engine.h"
-#include "core/decision/rejection_calibration.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/engine_registry.h"
+#include "core/engines/product_pipeline.h"
+#include "core/engines/recognition_engine.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -67,8 +67,8 @@ std::shared_ptr<const ViewIndexSnapshot> ProductIndex() {
       model.variant = Product().variant;
       for (int azimuth = 0; azimuth < 360; azimuth += 10) {
         const ViewDescription d = DescribeView(CoilImage(object, azimuth), Product().variant);
-        model.views.push_back({d.descriptor, static_cast<double>(azimuth), std::nullopt,
-                               d.typical_distance});
+        model.views.push_back(
+            {d.descriptor, static_cast<double>(azimuth), std::nullopt, d.typical_distance});
       }
     }
     return ViewIndex(models).Snapshot();
@@ -137,9 +137,7 @@ TEST(QualityAllowanceTest, NoisyKnownObjectsAreAcceptedWhenTheFramesCarryTheirNo
 TEST(QualityAllowanceTest, BlurredKnownObjectsAreAcceptedWhenTheFramesCarryTheirBlur) {
   // The same sweeps shaken: motion blur of 21 px at 75 degrees (not a length or angle the
   // slope was fitted on).
-  const auto shaken = [](const cv::Mat& image, std::uint64_t) {
-    return MotionBlur(image, 21, 75);
-  };
+  const auto shaken = [](const cv::Mat& image, std::uint64_t) { return MotionBlur(image, 21, 75); };
   const Accepted without = DecideSweeps(shaken, false);
   const Accepted with = DecideSweeps(shaken, true);
   EXPECT_LE(without.known, 34) << "of 40";

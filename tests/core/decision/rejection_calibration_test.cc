@@ -63,10 +63,8 @@ TEST(RejectionCalibrationTest, ThresholdIsTheNullQuantileOfTheTargetRate) {
 TEST(RejectionCalibrationTest, IsTheSameForTheSameSeed) {
   const RejectionCalibration again = RejectionCalibration::FromIndex(*KnownIndex());
   EXPECT_EQ(again.Threshold(8, 0.15), KnownCalibration().Threshold(8, 0.15));
-  const RejectionCalibration other =
-      RejectionCalibration::FromIndex(*KnownIndex(), {.max_sampled_views = 2048,
-                                                      .windows_per_length = 2000,
-                                                      .seed = 2});
+  const RejectionCalibration other = RejectionCalibration::FromIndex(
+      *KnownIndex(), {.max_sampled_views = 2048, .windows_per_length = 2000, .seed = 2});
   EXPECT_NE(other.Threshold(8, 0.15), KnownCalibration().Threshold(8, 0.15));
 }
 

@@ -29,9 +29,9 @@ QueryFrame Frame(const DescriptorValues& values) {
   return {{DescriptorVariant::kCeddLire, values}, std::nullopt};
 }
 
-const DescriptorValues kQuery = Bins({{0, 4}});           // q.q = 16
-const DescriptorValues kHalf = Bins({{0, 4}, {1, 4}});    // q.v = 16, v.v = 32: TC 1/2
-const DescriptorValues kDisjoint = Bins({{1, 4}});        // TC 0
+const DescriptorValues kQuery = Bins({{0, 4}});         // q.q = 16
+const DescriptorValues kHalf = Bins({{0, 4}, {1, 4}});  // q.v = 16, v.v = 32: TC 1/2
+const DescriptorValues kDisjoint = Bins({{1, 4}});      // TC 0
 
 TEST(UnknownStatisticTest, IsZeroWhenTheFramesAreTheWinnersViews) {
   const IndexedObject winner = Object(1, {{kQuery, 0.1}, {kDisjoint, 0.1}});

@@ -1,5 +1,5 @@
-// EstimateBlur (core/descriptor/blur_estimate.h): by hand on patterns whose re-blurred variation is known,
-// and on COIL-100 views, where motion blur of any direction raises it and noise lowers it.
+// EstimateBlur (core/descriptor/blur_estimate.h): by hand on patterns whose re-blurred variation is
+// known, and on COIL-100 views, where motion blur of any direction raises it and noise lowers it.
 #include "core/descriptor/blur_estimate.h"
 
 #include <stdexcept>

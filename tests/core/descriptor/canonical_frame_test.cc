@@ -1,5 +1,6 @@
-// CanonicalFrame (core/descriptor/canonical_frame.h): its size, its brightness rule on hand-computed
-// colours, and what it is for: a frame's descriptor that stays put under gain and noise.
+// CanonicalFrame (core/descriptor/canonical_frame.h): its size, its brightness rule on
+// hand-computed colours, and what it is for: a frame's descriptor that stays put under gain and
+// noise.
 #include "core/descriptor/canonical_frame.h"
 
 #include <stdexcept>
@@ -31,7 +32,7 @@ TEST(CanonicalFrameTest, ResamplesToAbout128x128KeepingTheAspectRatio) {
   EXPECT_EQ(size(640, 480), cv::Size(148, 111));  // scale 0.23094: 147.8 x 110.9
   EXPECT_EQ(size(64, 32), cv::Size(181, 91));     // scale 2.8284: 181.0 x 90.5
   EXPECT_EQ(size(1, 1), cv::Size(128, 128));
-  EXPECT_EQ(size(1000, 1), cv::Size(4048, 4));    // scale 4.0477
+  EXPECT_EQ(size(1000, 1), cv::Size(4048, 4));  // scale 4.0477
 }
 
 TEST(CanonicalFrameTest, ScalesTheBrightestChannelsPercentileTo200) {
@@ -60,8 +61,7 @@ TEST(CanonicalFrameTest, LeavesANearlyBlackFrameAlone) {
 TEST(CanonicalFrameTest, RefusesWhatItCannotPrepare) {
   EXPECT_THROW(CanonicalFrame(cv::Mat()), std::invalid_argument);
   EXPECT_THROW(CanonicalFrame(cv::Mat(8, 8, CV_8UC1, cv::Scalar(1))), std::invalid_argument);
-  EXPECT_THROW(CanonicalFrame(cv::Mat(8, 8, CV_32FC3, cv::Scalar::all(1))),
-               std::invalid_argument);
+  EXPECT_THROW(CanonicalFrame(cv::Mat(8, 8, CV_32FC3, cv::Scalar::all(1))), std::invalid_argument);
 }
 
 // What the canonical frame is for, on real views: a dimmer exposure and sensor noise barely move

@@ -9,8 +9,8 @@
 #include <opencv2/imgproc.hpp>
 
 #include "client/image_file.h"
-#include "core/descriptor/cedd.h"
 #include "core/descriptor/canonical_frame.h"
+#include "core/descriptor/cedd.h"
 #include "core/descriptor/cedd_colour.h"
 #include "core/descriptor/cedd_quantisation.h"
 #include "core/descriptor/cedd_texture.h"
@@ -35,8 +35,8 @@ cv::Mat Coil(int object, int azimuth) {
 }
 
 TEST(Cedd, RegionsOnePixelThinHaveNoLireBlocksAndGiveZeros) {
-  for (const cv::Size size : {cv::Size(1, 1), cv::Size(1, 9), cv::Size(9, 1), cv::Size(1, 500),
-                              cv::Size(700, 1)}) {
+  for (const cv::Size size :
+       {cv::Size(1, 1), cv::Size(1, 9), cv::Size(9, 1), cv::Size(1, 500), cv::Size(700, 1)}) {
     const cv::Mat image(size, CV_8UC3, cv::Scalar(30, 200, 90));
     const Descriptor d = ExtractCedd(image, kLire);
     EXPECT_EQ(Total(d.values), 0) << size;
@@ -116,8 +116,8 @@ TEST(Cedd, TranslucentBgraIsCompositedOverBlack) {
 }
 
 TEST(Cedd, RegionOfInterestEqualsTheCroppedImage) {
-  const cv::Mat image = ReadImageFile(
-      (testing::DataDir() / "cedd-conformance/synth/shapes_640x480.png").string());
+  const cv::Mat image =
+      ReadImageFile((testing::DataDir() / "cedd-conformance/synth/shapes_640x480.png").string());
   for (const cv::Rect roi : {cv::Rect(10, 20, 300, 200), cv::Rect(600, 0, 40, 480),
                              cv::Rect(0, 0, 640, 480), cv::Rect(5, 7, 3, 2)}) {
     for (const DescriptorVariant v : {kLire, kFull}) {
@@ -128,8 +128,8 @@ TEST(Cedd, RegionOfInterestEqualsTheCroppedImage) {
 
 // cedd-robust is cedd-full of the canonical frame, whatever the region's size or where it lies.
 TEST(Cedd, RobustVariantIsFullOfTheCanonicalFrame) {
-  const cv::Mat image = ReadImageFile(
-      (testing::DataDir() / "cedd-conformance/synth/shapes_640x480.png").string());
+  const cv::Mat image =
+      ReadImageFile((testing::DataDir() / "cedd-conformance/synth/shapes_640x480.png").string());
   const Descriptor robust = ExtractCedd(image, DescriptorVariant::kCeddRobust);
   EXPECT_EQ(robust.variant, DescriptorVariant::kCeddRobust);
   EXPECT_EQ(robust.values, ExtractCedd(CanonicalFrame(image), kFull).values);
@@ -217,10 +217,15 @@ cv::Mat RandomImage(std::mt19937& rng) {
       cv::Vec3b& p = image.at<cv::Vec3b>(y, x);
       const auto b = static_cast<std::uint8_t>(byte(rng));
       switch (style) {
-        case 0: p = cv::Vec3b(b, static_cast<std::uint8_t>(byte(rng)), static_cast<std::uint8_t>(byte(rng))); break;
-        case 1: p = cv::Vec3b(b, b, b); break;                                 // grey
+        case 0:
+          p = cv::Vec3b(b, static_cast<std::uint8_t>(byte(rng)),
+                        static_cast<std::uint8_t>(byte(rng)));
+          break;
+        case 1: p = cv::Vec3b(b, b, b); break;                                      // grey
         case 2: p = ((x / 7 + y / 5) % 3 == 0) ? cv::Vec3b(b, b, b) : flat; break;  // patches
-        default: p = (x < image.cols / 2) == (y < image.rows / 3) ? flat : cv::Vec3b(0, 0, 0); break;
+        default:
+          p = (x < image.cols / 2) == (y < image.rows / 3) ? flat : cv::Vec3b(0, 0, 0);
+          break;
       }
     }
   }

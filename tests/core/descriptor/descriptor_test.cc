@@ -1,5 +1,5 @@
-// The descriptor's vocabulary (core/descriptor/descriptor.h): variant names and the one check of values
-// that arrive from outside.
+// The descriptor's vocabulary (core/descriptor/descriptor.h): variant names and the one check of
+// values that arrive from outside.
 #include "core/descriptor/descriptor.h"
 
 #include <functional>

@@ -6,7 +6,6 @@
 
 #include <gtest/gtest.h>
 
-
 namespace orbit {
 namespace {
 
@@ -28,16 +27,16 @@ TEST(MotionBlurKernelTest, MatchesFspecialMotion15At20Degrees) {
   ASSERT_EQ(k.cols, 15);
   const auto at = [&k](int r, int c) { return k.at<double>(r, c) * kUnnormalisedSum; };
 
-  EXPECT_NEAR(at(3, 7), 1.0, 1e-12);                       // (0,0): on the line
-  EXPECT_NEAR(at(3, 8), 1 - kSin20, 1e-12);                // (0,1): 0.658
-  EXPECT_NEAR(at(3, 9), 1 - 2 * kSin20, 1e-12);            // (0,2): 0.316
-  EXPECT_EQ(k.at<double>(3, 10), 0);                       // (0,3): 3 sin 20 > 1, outside
-  EXPECT_NEAR(at(2, 7), 1 - kCos20, 1e-12);                // (1,0): 0.060
+  EXPECT_NEAR(at(3, 7), 1.0, 1e-12);                                 // (0,0): on the line
+  EXPECT_NEAR(at(3, 8), 1 - kSin20, 1e-12);                          // (0,1): 0.658
+  EXPECT_NEAR(at(3, 9), 1 - 2 * kSin20, 1e-12);                      // (0,2): 0.316
+  EXPECT_EQ(k.at<double>(3, 10), 0);                                 // (0,3): 3 sin 20 > 1, outside
+  EXPECT_NEAR(at(2, 7), 1 - kCos20, 1e-12);                          // (1,0): 0.060
   EXPECT_NEAR(at(2, 10), 1 - std::abs(kCos20 - 3 * kSin20), 1e-12);  // (1,3): 0.914
   EXPECT_NEAR(at(1, 13), 1 - std::abs(2 * kCos20 - 6 * kSin20), 1e-12);  // (2,6): 0.827
   // (3,7) lies beyond the end point (radius sqrt(58) >= 7): distance to the end point.
-  const double d37 = 3 * kCos20 - 7 * kSin20;                        // 0.42494
-  const double x37 = 7 - std::abs((7 + d37 * kSin20) / kCos20);      // -0.60393
+  const double d37 = 3 * kCos20 - 7 * kSin20;                           // 0.42494
+  const double x37 = 7 - std::abs((7 + d37 * kSin20) / kCos20);         // -0.60393
   EXPECT_NEAR(at(0, 14), 1 - std::sqrt(d37 * d37 + x37 * x37), 1e-12);  // 0.26157
   EXPECT_NEAR(at(0, 14), 0.26157, 1e-5);
   // (2,7) also: 0.42245.
@@ -78,11 +77,11 @@ TEST(MotionBlurTest, SmearsAPointAlongTheLineRisingToTheRight) {
   ASSERT_EQ(blurred.size(), image.size());
   ASSERT_EQ(blurred.type(), CV_8UC1);
   // out(cy + dy, cx + dx) = round(255 * kernel(3 - dy, 7 - dx)).
-  EXPECT_EQ(blurred.at<std::uint8_t>(cy, cx), 17);          // 255 / 15.2124 = 16.76
-  EXPECT_EQ(blurred.at<std::uint8_t>(cy, cx + 1), 11);      // 16.76 * 0.658 = 11.03
-  EXPECT_EQ(blurred.at<std::uint8_t>(cy - 3, cx + 7), 4);   // 16.76 * 0.2616 = 4.38
+  EXPECT_EQ(blurred.at<std::uint8_t>(cy, cx), 17);         // 255 / 15.2124 = 16.76
+  EXPECT_EQ(blurred.at<std::uint8_t>(cy, cx + 1), 11);     // 16.76 * 0.658 = 11.03
+  EXPECT_EQ(blurred.at<std::uint8_t>(cy - 3, cx + 7), 4);  // 16.76 * 0.2616 = 4.38
   EXPECT_EQ(blurred.at<std::uint8_t>(cy + 3, cx - 7), 4);
-  EXPECT_EQ(blurred.at<std::uint8_t>(cy + 3, cx + 7), 0);   // the other diagonal stays dark
+  EXPECT_EQ(blurred.at<std::uint8_t>(cy + 3, cx + 7), 0);  // the other diagonal stays dark
   EXPECT_EQ(blurred.at<std::uint8_t>(cy - 3, cx - 7), 0);
 }
 

@@ -61,8 +61,10 @@ TEST(NoiseEstimateTest, OnCoilViewsItGrowsWithTheNoiseAdded) {
     for (const double variance : {0.002, 0.006, 0.012, 0.03}) {
       const double estimate = EstimateNoiseSigma(AddGaussianNoise(view, variance, 3));
       EXPECT_GT(estimate, previous + 2) << "obj" << object << ", var " << variance;
-      EXPECT_LT(estimate, 255 * std::sqrt(variance) + clean) << "obj" << object << ", var " << variance;
-      EXPECT_GT(estimate, 0.75 * 255 * std::sqrt(variance)) << "obj" << object << ", var " << variance;
+      EXPECT_LT(estimate, 255 * std::sqrt(variance) + clean)
+          << "obj" << object << ", var " << variance;
+      EXPECT_GT(estimate, 0.75 * 255 * std::sqrt(variance))
+          << "obj" << object << ", var " << variance;
       previous = estimate;
     }
     EXPECT_LT(EstimateNoiseSigma(MotionBlur(view)), clean);

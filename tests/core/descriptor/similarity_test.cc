@@ -42,7 +42,8 @@ TEST(Tanimoto, ZeroVectors) {
 TEST(RollOrientation, MovesDirectionalClassesAndKeepsTheOthers) {
   // One block per class, each marked with its class number + 1 at colour bin 5.
   DescriptorValues v{};
-  for (int cls = 0; cls < kTextureClasses; ++cls) v[Bin(cls, 5)] = static_cast<std::uint8_t>(cls + 1);
+  for (int cls = 0; cls < kTextureClasses; ++cls)
+    v[Bin(cls, 5)] = static_cast<std::uint8_t>(cls + 1);
   const DescriptorValues once = RollOrientation(v, 1);
   EXPECT_EQ(once[Bin(0, 5)], 1);  // non-edge stays
   EXPECT_EQ(once[Bin(1, 5)], 2);  // non-directional stays

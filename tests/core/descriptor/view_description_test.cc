@@ -1,5 +1,5 @@
-// DescribeView and its seed rule (core/descriptor/view_description.h): the numbers every enrollment path
-// stores for a view image.
+// DescribeView and its seed rule (core/descriptor/view_description.h): the numbers every enrollment
+// path stores for a view image.
 #include "core/descriptor/view_description.h"
 
 #include <gtest/gtest.h>
@@ -38,8 +38,7 @@ TEST(ViewDescriptionTest, IsTheCeddAndTypicalDistanceOverTheSeededCopies) {
     EXPECT_EQ(described.descriptor, original);
     const std::uint64_t seed = ViewNoiseSeed(original, 3);
     const DescriptorValues blurred = ExtractCedd(MotionBlur(view, 15, 20), variant).values;
-    const DescriptorValues noisy =
-        ExtractCedd(AddGaussianNoise(view, 0.012, seed), variant).values;
+    const DescriptorValues noisy = ExtractCedd(AddGaussianNoise(view, 0.012, seed), variant).values;
     EXPECT_EQ(described.distorted[0], blurred);
     EXPECT_EQ(described.distorted[1], noisy);
     const double expected =
@@ -72,8 +71,8 @@ TEST(ViewDescriptionTest, DistortedCopiesStayCloserThanAnotherObject) {
   const cv::Mat other = Coil("obj2__0.png");
   for (const auto variant : {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull}) {
     const double typical = DescribeView(view, variant).typical_distance;
-    const double to_other = TanimotoDistance(ExtractCedd(view, variant).values,
-                                             ExtractCedd(other, variant).values);
+    const double to_other =
+        TanimotoDistance(ExtractCedd(view, variant).values, ExtractCedd(other, variant).values);
     EXPECT_LT(typical, to_other) << VariantName(variant);
     EXPECT_GT(typical, 0.01) << VariantName(variant);
   }

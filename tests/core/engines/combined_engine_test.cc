@@ -21,8 +21,8 @@ using testing::EvenView;
 std::vector<QueryFrame> Frames(int object, const std::vector<int>& azimuths) {
   std::vector<QueryFrame> frames;
   for (int azimuth : azimuths) {
-    frames.push_back({{DescriptorVariant::kCeddLire, CoilView(object, azimuth)},
-                      static_cast<double>(azimuth)});
+    frames.push_back(
+        {{DescriptorVariant::kCeddLire, CoilView(object, azimuth)}, static_cast<double>(azimuth)});
   }
   return frames;
 }
@@ -66,8 +66,8 @@ TEST(CombinedEngineTest, FramesOneByOneEqualTheBatchAndResetStartsOver) {
   const std::vector<QueryFrame> frames = Frames(7, {95, 105, 115, 125, 135});
   FrameUpdate last;
   for (const QueryFrame& frame : frames) last = engine->Observe(index.Snapshot(), frame);
-  const FrameUpdate batch = CreateEngine("vci-hmm", {.window = 3})
-                                ->ObserveSequence(index.Snapshot(), frames);
+  const FrameUpdate batch =
+      CreateEngine("vci-hmm", {.window = 3})->ObserveSequence(index.Snapshot(), frames);
   EXPECT_EQ(last.frame_index, 4);
   EXPECT_EQ(batch.frame_index, 4);
   ASSERT_EQ(last.ranking.size(), batch.ranking.size());

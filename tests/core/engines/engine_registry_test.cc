@@ -14,13 +14,13 @@
 namespace orbit {
 namespace {
 
-using ::testing::ElementsAre;
 using testing::CoilObjects;
+using ::testing::ElementsAre;
 using testing::EvenView;
 
 TEST(EngineRegistryTest, NamesTheEightEnginesInOrder) {
-  EXPECT_THAT(EngineNames(), ElementsAre("eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm",
-                                         "vci-hmm"));
+  EXPECT_THAT(EngineNames(),
+              ElementsAre("eis", "siis", "eiis", "vci-bm", "vci-w0", "vci", "hmm", "vci-hmm"));
   for (const EngineKind& kind : EngineKinds()) {
     EXPECT_FALSE(kind.summary.empty()) << kind.name;
     EXPECT_EQ(kind.keeps_hmm, kind.name == "hmm" || kind.name == "vci-hmm") << kind.name;

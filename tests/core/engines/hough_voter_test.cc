@@ -89,8 +89,10 @@ TEST(HoughVoterTest, DynamicProgrammeEqualsBruteForceOnRandomCases) {
 TEST(HoughVoterTest, BestPathRejectsMalformedInput) {
   EXPECT_THROW(BestHoughPath({}, {}, 0.5), std::invalid_argument);
   const std::vector<std::vector<HoughEntry>> hole = {{{0, 0, 1}}, {}};
-  EXPECT_THROW(BestHoughPath(hole, std::vector<std::optional<double>>{0, 0}, 0.5), std::invalid_argument);
-  EXPECT_THROW(BestHoughPath(kEntries, std::vector<std::optional<double>>{0}, 0.5), std::invalid_argument);
+  EXPECT_THROW(BestHoughPath(hole, std::vector<std::optional<double>>{0, 0}, 0.5),
+               std::invalid_argument);
+  EXPECT_THROW(BestHoughPath(kEntries, std::vector<std::optional<double>>{0}, 0.5),
+               std::invalid_argument);
 }
 
 }  // namespace

@@ -1,15 +1,15 @@
 #include "core/engines/orientation_hmm.h"
 
 #include <cmath>
-#include <random>
 #include <map>
+#include <random>
 #include <stdexcept>
 
 #include <gtest/gtest.h>
 
-#include "core/index/indexed_object.h"
 #include "core/engines/engine_registry.h"
 #include "core/engines/recognition_engine.h"
+#include "core/index/indexed_object.h"
 #include "core/index/view_index.h"
 #include "tests/support/coil_models.h"
 #include "tests/support/test_data.h"
@@ -117,7 +117,6 @@ TEST(OrientationHmmTest, ViterbiRejectsMismatchedSizes) {
                std::invalid_argument);
   EXPECT_THROW(Viterbi(initial, std::vector<Matrix>{}, EmissionRows{{1.0}}), std::invalid_argument);
 }
-
 
 // The engine decodes all objects at once in SIMD lanes, with floats (BatchViterbi). Here it must
 // agree, frame by frame as the window slides, with the textbook pipeline applied object by

@@ -1,5 +1,5 @@
-// The product pipeline (core/engines/product_pipeline.h): what it says it is, and the robustness smoke:
-// on a few COIL-100 objects, with degraded frames at strengths the team does not tune on, it
+// The product pipeline (core/engines/product_pipeline.h): what it says it is, and the robustness
+// smoke: on a few COIL-100 objects, with degraded frames at strengths the team does not tune on, it
 // must not fall below the thesis' methods, and must beat them far under noise.
 #include "core/engines/product_pipeline.h"
 
@@ -46,8 +46,8 @@ TEST(ProductPipelineTest, RobustnessSmokeProductIsNeverBelowTheFaithfulMethods) 
                          ParseDistortionSpec("gain:0.7")};
   options.query_lengths = {1, 4};
   options.trials = 3;
-  const EvaluationReport report = RunEvaluation(
-      ListCoil100(testing::CoilDir(), ParseObjectRange("41-48")), {}, options);
+  const EvaluationReport report =
+      RunEvaluation(ListCoil100(testing::CoilDir(), ParseObjectRange("41-48")), {}, options);
 
   std::map<std::pair<std::string, int>, int> product, best_faithful;
   for (const EvaluationCell& cell : report.cells) {

@@ -14,9 +14,9 @@
 #include <gtest/gtest.h>
 
 #include "client/image_file.h"
-#include "core/index/indexed_object.h"
 #include "core/descriptor/similarity.h"
 #include "core/descriptor/view_description.h"
+#include "core/index/indexed_object.h"
 #include "tests/support/coil_models.h"
 
 namespace orbit {
@@ -105,8 +105,8 @@ TEST(RecognitionEngineTest, IncrementalFramesEqualTheBatchForm) {
     ExpectSameUpdate(last, all, std::string(name));
     // The window holds only the last three frames: a fresh session given just those agrees
     // on everything but the frame index.
-    FrameUpdate tail = batch->ObserveSequence(CoilIndex(SearchMode::kKdTree),
-                                              std::span(frames).subspan(3));
+    FrameUpdate tail =
+        batch->ObserveSequence(CoilIndex(SearchMode::kKdTree), std::span(frames).subspan(3));
     tail.frame_index = all.frame_index;
     ExpectSameUpdate(tail, all, std::string(name) + " tail");
   }
@@ -302,10 +302,11 @@ TEST(RecognitionEngineTest, AModelChangeGivesTheAnswerOfAFreshSessionOnTheNewInd
     const auto session = CreateEngine(name, {.window = kWindow});
     // Before frame k, change the index as listed.
     const std::map<std::size_t, std::function<void()>> changes = {
-        {4, [&] { index.Add(four); }},                     // enrolled: the frames' object
-        {5, [&] { index.Replace(three_complete); }},       // views added to a seen object
-        {6, [&] { ASSERT_TRUE(index.Remove(2)); }},        // deleted
-        {8, [&] {                                          // two changes between frames
+        {4, [&] { index.Add(four); }},                // enrolled: the frames' object
+        {5, [&] { index.Replace(three_complete); }},  // views added to a seen object
+        {6, [&] { ASSERT_TRUE(index.Remove(2)); }},   // deleted
+        {8,
+         [&] {  // two changes between frames
            ASSERT_TRUE(index.Remove(4));
            index.Add(CoilObjects(11, 11, EvenView)[0]);
          }},
@@ -315,8 +316,8 @@ TEST(RecognitionEngineTest, AModelChangeGivesTheAnswerOfAFreshSessionOnTheNewInd
       const FrameUpdate update = session->Observe(index.Snapshot(), frames[k]);
       const std::size_t first = k + 1 > kWindow ? k + 1 - kWindow : 0;
       const auto fresh = CreateEngine(name, {.window = kWindow});
-      FrameUpdate expected = fresh->ObserveSequence(
-          index.Snapshot(), std::span(frames).subspan(first, k + 1 - first));
+      FrameUpdate expected =
+          fresh->ObserveSequence(index.Snapshot(), std::span(frames).subspan(first, k + 1 - first));
       expected.frame_index = static_cast<std::int64_t>(k);
       ExpectSameUpdate(update, expected, std::string(name) + " frame " + std::to_string(k));
     }
@@ -369,7 +370,9 @@ TEST(RecognitionEngineTest, EmptyIndexGivesAnEmptyUndecidedAnswer) {
 TEST(RecognitionEngineTest, BaselineScoresByHand) {
   const DescriptorValues q = Bins({{0, 2}}), a = Bins({{0, 2}, {1, 1}});
   const DescriptorValues b = Bins({{0, 1}, {2, 2}}), c = Bins({{5, 3}});
-  const ObjectModel one{1, "one", DescriptorVariant::kCeddLire,
+  const ObjectModel one{1,
+                        "one",
+                        DescriptorVariant::kCeddLire,
                         {View(a, 0), View(c, 90), View(a, 180), View(a, 270)}};
   const ObjectModel two{2, "two", DescriptorVariant::kCeddLire, {View(b, 45)}};
   ViewIndex index({one, two});
@@ -396,10 +399,10 @@ TEST(RecognitionEngineTest, BaselineScoresByHand) {
 // Object 2 has one view q + (bin 2: 1): TC 8 / (8 + 9 - 8) = 8/9 both ways. The HMM alone
 // ranks 1 (1.0) over 2 (8/9); half from the nearest views, 2 (8/9) over 1 (0.75).
 TEST(RecognitionEngineTest, NearestViewBlendByHand) {
-  const ObjectModel one{1, "one", DescriptorVariant::kCeddLire,
-                        {View(Bins({{0, 4}}), 0), View(Bins({{1, 4}}), 10)}};
-  const ObjectModel two{2, "two", DescriptorVariant::kCeddLire,
-                        {View(Bins({{0, 2}, {1, 2}, {2, 1}}), 100)}};
+  const ObjectModel one{
+      1, "one", DescriptorVariant::kCeddLire, {View(Bins({{0, 4}}), 0), View(Bins({{1, 4}}), 10)}};
+  const ObjectModel two{
+      2, "two", DescriptorVariant::kCeddLire, {View(Bins({{0, 2}, {1, 2}, {2, 1}}), 100)}};
   ViewIndex index({one, two});
   const std::vector<QueryFrame> frame = {
       {{DescriptorVariant::kCeddLire, Bins({{0, 2}, {1, 2}})}, 5}};
@@ -468,9 +471,10 @@ TEST(RecognitionEngineTest, UnknownObjectsAreRejectedKnownOnesAccepted) {
   std::vector<ObjectModel> models = CoilObjects(1, 6, EvenView);
   for (ObjectModel& model : models) {
     for (ModelView& view : model.views) {
-      const std::string file = (testing::DataDir() / "coil-100" /
-                                (model.name + "__" + std::to_string(static_cast<int>(view.azimuth)) +
-                                 ".png")).string();
+      const std::string file =
+          (testing::DataDir() / "coil-100" /
+           (model.name + "__" + std::to_string(static_cast<int>(view.azimuth)) + ".png"))
+              .string();
       view.typical_distance =
           DescribeView(ReadImageFile(file), DescriptorVariant::kCeddLire).typical_distance;
     }

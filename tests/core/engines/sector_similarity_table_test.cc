@@ -65,8 +65,8 @@ TEST(SectorSimilarityTableTest, ComputeObjectGivesTheTablesValuesBitForBit) {
     for (const DescriptorValues& query : Queries()) {
       table.Compute(query, all);
       for (std::size_t o = 0; o < objects; ++o) {
-        SectorSimilarityTable::ComputeObject(
-            query, snapshot->objects()[o].object->Sectors(states), one);
+        SectorSimilarityTable::ComputeObject(query, snapshot->objects()[o].object->Sectors(states),
+                                             one);
         for (int i = 0; i < states; ++i) {
           ASSERT_EQ(one[i], all[i * objects + o])
               << states << " states, object " << o << ", state " << i;
@@ -121,8 +121,7 @@ TEST(SectorSimilarityTableTest, ComputeObjectRefusesTooSmallASpan) {
   std::vector<float> too_small(7);
   EXPECT_EQ(testing::ErrorMessageOf([&] {
               SectorSimilarityTable::ComputeObject(
-                  DescriptorValues{}, index.Snapshot()->objects()[0].object->Sectors(8),
-                  too_small);
+                  DescriptorValues{}, index.Snapshot()->objects()[0].object->Sectors(8), too_small);
             }),
             "SectorSimilarityTable: result span too small");
 }

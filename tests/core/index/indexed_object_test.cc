@@ -60,12 +60,14 @@ TEST(IndexedObjectTest, AzimuthsAreNormalisedAndOrdered) {
 TEST(IndexedObjectTest, AModelWithoutViewsOrWithABadViewIsRefused) {
   EXPECT_EQ(testing::ErrorMessageOf([] { IndexedObject object(Model({}, {})); }),
             "object 9 has no views");
+  EXPECT_EQ(
+      testing::ErrorMessageOf([] {
+        IndexedObject object(Model({Bins({{0, 1}})}, {std::numeric_limits<double>::infinity()}));
+      }),
+      "object 9: a view's azimuth is not finite");
   EXPECT_EQ(testing::ErrorMessageOf([] {
-              IndexedObject object(
-                  Model({Bins({{0, 1}})}, {std::numeric_limits<double>::infinity()}));
+              IndexedObject object(Model({Bins({{4, 8}})}, {0}));
             }),
-            "object 9: a view's azimuth is not finite");
-  EXPECT_EQ(testing::ErrorMessageOf([] { IndexedObject object(Model({Bins({{4, 8}})}, {0})); }),
             "object 9 descriptor value 8 at index 4 is outside 0..7");
 }
 

@@ -35,7 +35,8 @@ TEST(ViewBinsTest, EveryValueReadsBackForAnyViewCount) {
     EXPECT_EQ(bins.padded_count(), (count + 1) / 2 * 2);
     for (std::size_t d = 0; d < kDescriptorSize; ++d) {
       for (std::size_t v = 0; v < count; ++v) {
-        ASSERT_EQ(bins.Value(d, v), ValueOf(v, d)) << count << " views, bin " << d << ", view " << v;
+        ASSERT_EQ(bins.Value(d, v), ValueOf(v, d))
+            << count << " views, bin " << d << ", view " << v;
       }
     }
   }

@@ -83,9 +83,9 @@ TEST(ViewIndexTest, ChangeSinceNamesWhatChangedAndIsSharedByEverySessionComingFr
   ViewIndex index(SmallModels(), {.search = SearchMode::kExact});
   const auto first = index.Snapshot();  // objects 1, 2
   index.Add(Model(3, {{kC, 10}}));
-  index.Replace(Model(1, {{kA, 0}}));   // a new version of 1: removed and added
+  index.Replace(Model(1, {{kA, 0}}));  // a new version of 1: removed and added
   index.Remove(2);
-  const auto last = index.Snapshot();   // objects 3, 1 (the new version, added last)
+  const auto last = index.Snapshot();  // objects 3, 1 (the new version, added last)
   EXPECT_LT(first->serial(), last->serial());
 
   const std::shared_ptr<const SnapshotChange> change = last->ChangeSince(*first);
@@ -117,7 +117,7 @@ TEST(ViewIndexTest, ChangeSinceNamesWhatChangedAndIsSharedByEverySessionComingFr
 
 TEST(ViewIndexTest, APreparationRunsOnEveryNewSnapshotBeforeItIsPublished) {
   ViewIndex index(SmallModels(), {.search = SearchMode::kExact});  // objects 1, 2
-  std::vector<std::pair<std::size_t, std::size_t>> seen;  // (next, previous) object counts
+  std::vector<std::pair<std::size_t, std::size_t>> seen;           // (next, previous) object counts
   bool published_before_prepared = false;
   int builds = 0;
   const auto build = [&builds] {
@@ -218,8 +218,7 @@ TEST(ViewIndexTest, SnapshotsNeverSeeLaterAddsOrRemoves) {
 }
 
 TEST(ViewIndexTest, RejectsMixedVariantsDuplicatesAndInvalidViews) {
-  EXPECT_THROW(ViewIndex({Model(1, {{kA, 0}}),
-                          Model(2, {{kB, 0}}, DescriptorVariant::kCeddFull)}),
+  EXPECT_THROW(ViewIndex({Model(1, {{kA, 0}}), Model(2, {{kB, 0}}, DescriptorVariant::kCeddFull)}),
                std::invalid_argument);
   EXPECT_THROW(ViewIndex({Model(1, {{kA, 0}}), Model(1, {{kB, 0}})}), std::invalid_argument);
   EXPECT_THROW(ViewIndex({Model(1, {})}), std::invalid_argument);
@@ -287,8 +286,9 @@ TEST(ViewIndexTest, SimilarityToEveryViewIsTanimotoPerSlot) {
   ASSERT_EQ(snapshot->objects().size(), 4u);
   for (const ObjectSlot& slot : snapshot->objects()) {
     for (int v = 0; v < slot.object->view_count(); ++v) {
-      EXPECT_FLOAT_EQ(similarities[slot.first_slot + v],
-                      static_cast<float>(Tanimoto(query, slot.object->model().views[v].descriptor)));
+      EXPECT_FLOAT_EQ(
+          similarities[slot.first_slot + v],
+          static_cast<float>(Tanimoto(query, slot.object->model().views[v].descriptor)));
     }
   }
 }
