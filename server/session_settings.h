@@ -16,7 +16,7 @@ namespace orbit::server {
 struct ServerLimits {
   int max_sessions = 256;             // concurrent Session streams
   double max_frames_per_second = 60;  // per session, averaged over a 2-second burst allowance
-  int max_window = kMaxWindow;        // W a session may ask for (1..64)
+  int max_window = kMaxWindow;        // W a session may ask for (1..kMaxWindow)
   int max_message_bytes = 4 << 20;    // any single request message
   int idle_timeout_seconds = 120;     // a session without a frame for this long is closed
   // window x hmm_states a session running the HMM may ask for: the HMM keeps about 10 bytes per
@@ -26,9 +26,8 @@ struct ServerLimits {
   // width x height of an uploaded image (Frame.image, View.image), read from its header before
   // decoding (server/image_budget.h). 4096 x 4096 passes a 12 MP phone photo (4032 x 3024), a 4K
   // frame (3840 x 2160) and anything smaller, while a decoded image stays under 128 MiB (at most
-  // 8 bytes a pixel: 4 channels of 16 bits; 48 MiB for a colour JPEG) and about 0.3 s of CPU;
-  // CEDD needs far fewer pixels than that. Unchecked, a 1.2 MB PNG could claim 20000 x 20000 and
-  // cost 1.2 GB and 7 s.
+  // 8 bytes a pixel: 4 channels of 16 bits); CEDD needs far fewer pixels than that. Unchecked, a
+  // small compressed file could claim 20000 x 20000 pixels, gigabytes once decoded.
   int max_image_pixels = 4096 * 4096;
 };
 

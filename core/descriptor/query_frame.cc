@@ -8,27 +8,31 @@
 #include "core/base/angles.h"
 
 namespace orbit {
+namespace {
+
+// "<field> must be in <range>, got <value>".
+std::string OutOfRange(std::string_view field, std::string_view range, double value) {
+  std::ostringstream message;
+  message << field << " must be in " << range << ", got " << value;
+  return message.str();
+}
+
+}  // namespace
 
 void ValidateQueryFrame(const QueryFrame& frame, const QueryFrameFields& fields) {
   if (frame.azimuth && !std::isfinite(*frame.azimuth)) {
     throw std::invalid_argument(std::string(fields.azimuth) + " must be a finite number");
   }
-  const auto require = [](bool in_range, std::string_view field, std::string_view range,
-                          double value) {
-    if (in_range) return;
-    std::ostringstream message;
-    message << field << " must be in " << range << ", got " << value;
-    throw std::invalid_argument(message.str());
-  };
   // Written so that NaN fails.
-  if (frame.noise_sigma) {
-    require(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma, fields.noise_sigma,
-            "[0, " + std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels",
-            *frame.noise_sigma);
+  if (frame.noise_sigma && !(*frame.noise_sigma >= 0 && *frame.noise_sigma <= kMaxNoiseSigma)) {
+    throw std::invalid_argument(
+        OutOfRange(fields.noise_sigma,
+                   "[0, " + std::to_string(static_cast<int>(kMaxNoiseSigma)) + "] grey levels",
+                   *frame.noise_sigma));
   }
-  if (frame.blur) {
-    require(*frame.blur >= 0 && *frame.blur <= kMaxBlur, fields.blur,
-            "[0, " + std::to_string(static_cast<int>(kMaxBlur)) + "]", *frame.blur);
+  if (frame.blur && !(*frame.blur >= 0 && *frame.blur <= kMaxBlur)) {
+    throw std::invalid_argument(OutOfRange(
+        fields.blur, "[0, " + std::to_string(static_cast<int>(kMaxBlur)) + "]", *frame.blur));
   }
   ValidateDescriptorValues(frame.descriptor.values, fields.descriptor);
 }
