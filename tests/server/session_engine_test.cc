@@ -7,24 +7,15 @@
 #include <gtest/gtest.h>
 
 #include "api/engine_names.h"
-#include "core/engines/sector_similarity_table.h"
 #include "tests/support/coil_models.h"
+#include "tests/support/sector_table.h"
 
 namespace orbit::server {
 namespace {
 
 using testing::CoilObjects;
 using testing::EvenView;
-
-// Whether `snapshot` already holds the sector table for `states`: asking for it builds nothing.
-bool HoldsSectorTable(const ViewIndexSnapshot& snapshot, int states) {
-  bool built = false;
-  snapshot.Derived({SectorSimilarityTable::kDerivedName, states}, [&built] {
-    built = true;
-    return std::make_shared<const int>(0);
-  });
-  return !built;
-}
+using testing::HoldsSectorTable;
 
 TEST(SessionEngineTest, TheWriterPreparesTheHmmsSectorTableBeforeSessionsSeeTheSnapshot) {
   const SessionSettings product;  // the HMM (core/engines/product_pipeline.h)

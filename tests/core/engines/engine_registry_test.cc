@@ -8,8 +8,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "core/engines/sector_similarity_table.h"
 #include "tests/support/coil_models.h"
+#include "tests/support/sector_table.h"
 
 namespace orbit {
 namespace {
@@ -17,6 +17,7 @@ namespace {
 using testing::CoilObjects;
 using ::testing::ElementsAre;
 using testing::EvenView;
+using testing::HoldsSectorTable;
 
 TEST(EngineRegistryTest, NamesTheEightEnginesInOrder) {
   EXPECT_THAT(EngineNames(),
@@ -54,16 +55,6 @@ TEST(EngineRegistryTest, AnUnknownNameIsRefusedListingTheEngines) {
               "unknown engine \"vci+hmm\" (known: eis, siis, eiis, vci-bm, vci-w0, vci, hmm, "
               "vci-hmm)");
   }
-}
-
-// Whether `snapshot` already holds the sector table for `states`: asking for it builds nothing.
-bool HoldsSectorTable(const ViewIndexSnapshot& snapshot, int states) {
-  bool built = false;
-  snapshot.Derived({SectorSimilarityTable::kDerivedName, states}, [&built] {
-    built = true;
-    return std::make_shared<const int>(0);
-  });
-  return !built;
 }
 
 TEST(EngineRegistryTest, PreparingASnapshotBuildsTheSectorTableOnlyForEnginesWithAnHmm) {
