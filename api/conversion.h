@@ -27,13 +27,22 @@ DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant);
 // "cedd-lire", "cedd-full", "unspecified" or "unknown (N)": for messages.
 std::string ProtoVariantName(v1::DescriptorVariant variant);
 
-// A `cedd` field: exactly 144 bytes, each 0..7 (core/descriptor/descriptor.h's check). Throws
-// std::invalid_argument naming `field`, e.g. "frame.cedd value 9 at index 17 is outside 0..7".
-DescriptorValues DescriptorFromWire(const std::string& bytes, std::string_view field);
+// The descriptor a message carries in `variant`: its `cedd` field, exactly 144 bytes, and its
+// `appearance` field, exactly DescriptorLength(variant) - 144 bytes (none in the CEDD variants),
+// each 0..7 (core/descriptor/descriptor.h's check). Throws std::invalid_argument naming the
+// field of `message`, e.g. "frame.cedd value 9 at index 17 is outside 0..7" or
+// "frame.appearance has 0 values, expected 336 for cedd-hsv-hog".
+DescriptorValues DescriptorFromWire(const std::string& cedd, const std::string& appearance,
+                                    DescriptorVariant variant, std::string_view message);
 
-// A stored view on the wire: its CEDD, azimuth, elevation when known, typical distance and
-// `thumbnail` (empty: none).
-v1::View ToProtoView(const ModelView& view, const std::string& thumbnail = "");
+// The inverse: `values` of `variant` split into a message's `cedd` and `appearance` fields.
+void SetWireDescriptor(const DescriptorValues& values, DescriptorVariant variant, std::string* cedd,
+                       std::string* appearance);
+
+// A stored view of an object of `variant` on the wire: its descriptor, azimuth, elevation when
+// known, typical distance and `thumbnail` (empty: none).
+v1::View ToProtoView(const ModelView& view, DescriptorVariant variant,
+                     const std::string& thumbnail = "");
 
 v1::Decision ToProtoDecision(Decision decision);
 v1::Move ToProtoMove(SuggestedMove move);

@@ -26,7 +26,7 @@ int RunDescriptor(const DescriptorOptions& options) {
     try {
       const Descriptor descriptor = ExtractCedd(ReadImageFile(file), variant);
       line = file;
-      for (std::uint8_t v : descriptor.values) {
+      for (std::uint8_t v : DescriptorBytes(descriptor.values, variant)) {
         line += ' ';
         line += static_cast<char>('0' + v);
       }
@@ -51,14 +51,17 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
   auto options = std::make_shared<DescriptorOptions>();
   CLI::App* command = app.add_subcommand(
       "descriptor",
-      "Print the CEDD descriptor of each image: one line per file, `FILE v0 v1 ... v143`,\n"
-      "values 0..7 (docs/design.md). A file that cannot be read is reported on stderr and\n"
+      "Print the descriptor of each image: one line per file, `FILE v0 v1 ... v143` (v479 in\n"
+      "cedd-hsv-hog: CEDD, then its appearance channels), values 0..7 (docs/design.md). A file "
+      "that cannot be read is reported on stderr and\n"
       "makes the exit status 1; the other files are still processed.");
   command
       ->add_option("--variant", options->variant,
                    "cedd-lire: bit-exact with LIRE (reads only LIRE's block grid);\n"
                    "cedd-full: a 40x40 grid covering every pixel;\n"
-                   "cedd-robust: cedd-full of the canonical frame (the product's variant)")
+                   "cedd-robust: cedd-full of the canonical frame (the product's variant);\n"
+                   "cedd-hsv-hog: cedd-robust, then a colour histogram and gradient cells of the\n"
+                   "same frame (for real objects that look alike)")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();

@@ -37,6 +37,8 @@ struct EvalOptions {
   std::string layout = "coil100";
   std::string data;
   std::string manifest;
+  std::string boxes;        // boxes.csv: describe each image's box instead of the whole image
+  double box_margin = 0.1;  // share of the box's size added on each side
   std::vector<std::string> methods = EvaluationOptions{}.methods;
   std::vector<std::string> variants = Names(EvaluationOptions{}.variants, VariantName);
   std::vector<std::string> distortions =
@@ -117,8 +119,13 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
 
 int RunEval(const EvalOptions& o) {
   try {
-    const auto [known, unknown] =
+    auto [known, unknown] =
         SelectDataset({o.layout, o.data, o.manifest, o.objects, o.unknown_objects});
+    if (!o.boxes.empty()) {
+      const std::map<std::string, ImageBox> boxes = ReadBoxes(o.boxes);
+      AttachBoxes(known, boxes, o.box_margin);
+      AttachBoxes(unknown, boxes, o.box_margin);
+    }
     EvaluationOptions options = ToEvaluationOptions(o);
     std::unique_ptr<ProgressBar> progress;
     if (!o.no_progress) {
@@ -272,6 +279,14 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                    "from the client library, and the calibrated rule allows noisy and blurred "
                    "windows more (core/decision/quality_allowance.h); ignore: they carry none")
       ->check(CLI::IsMember({"use", "ignore"}))
+      ->capture_default_str();
+  command->add_option("--boxes", o->boxes,
+                      "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each "
+                      "image's box, grown by --box-margin, instead of the whole image");
+  command
+      ->add_option("--box-margin", o->box_margin,
+                   "share of a box's width (height) added left and right (above and below)")
+      ->check(CLI::Range(0.0, 1.0))
       ->capture_default_str();
   command->add_option("--objects", o->objects,
                       "objects in the model set, e.g. 1-20 or 1-5,9 (coil100: object numbers; "

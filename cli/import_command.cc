@@ -127,7 +127,8 @@ ImportTarget ServerTarget(const ImportOptions& options) {
   // `connection` is captured so that it outlives the enroller that refers to it.
   target.enroll = [connection, enroller](const Enrollment& enrollment) {
     std::vector<v1::View> views;
-    for (const ModelView& view : enrollment.views) views.push_back(ToProtoView(view));
+    for (const ModelView& view : enrollment.views)
+      views.push_back(ToProtoView(view, enrollment.variant));
     const v1::ObjectInfo object = enroller->EnrollViews(enrollment.name, views);
     return std::make_pair(object.id(), object.report());
   };

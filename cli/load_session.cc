@@ -38,7 +38,8 @@ bool LoadSession::SendFrame(std::int64_t k, Clock::time_point due) {
   if (image_frames_) {
     frame->set_image(view.encoded);
   } else {
-    frame->set_cedd(view.cedd.data(), view.cedd.size());
+    frame->set_cedd(view.cedd);
+    frame->set_appearance(view.appearance);
   }
   // The turntable keeps turning: each lap adds 360 degrees.
   frame->set_azimuth_deg(view.azimuth + 360.0 * static_cast<double>(position / turntable_.size()) +

@@ -38,9 +38,9 @@ namespace orbit {
 
 // One view of an object, as a session sends it.
 struct TurntableView {
-  DescriptorValues cedd;
-  std::string encoded;  // the encoded image file, for image frames
-  double azimuth = 0;   // degrees
+  std::string cedd, appearance;  // the view's descriptor as a frame carries it
+  std::string encoded;           // the encoded image file, for image frames
+  double azimuth = 0;            // degrees
 };
 
 // The load's time span, shared by every session.

@@ -93,7 +93,8 @@ std::vector<std::vector<TurntableView>> DescribeTurntables(const Dataset& datase
   std::vector<TurntableView> views(dataset.images.size());
   ParallelFor(views.size(), AvailableCpus(), [&](std::size_t i) {
     const DatasetImage& image = dataset.images[i];
-    views[i].cedd = ExtractCedd(ReadImageFile(image.path), variant).values;
+    SetWireDescriptor(ExtractCedd(ReadImageFile(image.path), variant).values, variant,
+                      &views[i].cedd, &views[i].appearance);
     if (keep_encoded) views[i].encoded = ReadBytes(image.path);
     views[i].azimuth = image.azimuth;
   });

@@ -24,7 +24,7 @@ v1::View ComputeView(const EnrollmentImage& image, DescriptorVariant variant,
   view.azimuth = image.azimuth_deg;
   view.elevation = image.elevation_deg;
   view.typical_distance = described.typical_distance;
-  return ToProtoView(view);
+  return ToProtoView(view, variant);
 }
 
 Enroller::Enroller(const Connection& connection, EnrollerOptions options)

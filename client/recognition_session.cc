@@ -4,6 +4,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "api/conversion.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
 #include "core/descriptor/cedd.h"
@@ -121,12 +122,12 @@ std::int64_t RecognitionSession::Push(const cv::Mat& image, std::optional<double
                         quality);
 }
 
-std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& cedd,
+std::int64_t RecognitionSession::PushDescriptor(const DescriptorValues& descriptor,
                                                 std::optional<double> azimuth_deg,
                                                 std::optional<std::int64_t> timestamp_us,
                                                 std::optional<FrameQuality> quality) {
   v1::Frame frame;
-  frame.set_cedd(cedd.data(), cedd.size());
+  SetWireDescriptor(descriptor, variant_, frame.mutable_cedd(), frame.mutable_appearance());
   if (azimuth_deg) frame.set_azimuth_deg(*azimuth_deg);
   if (timestamp_us) frame.set_timestamp_us(*timestamp_us);
   if (quality) *frame.mutable_quality() = ToProtoFrameQuality(*quality);

@@ -108,7 +108,7 @@ class RecognitionSession {
       ABSL_LOCKS_EXCLUDED(write_mu_);
 
   // Sends a descriptor computed elsewhere, in variant(). As Push otherwise.
-  std::int64_t PushDescriptor(const DescriptorValues& cedd, std::optional<double> azimuth_deg,
+  std::int64_t PushDescriptor(const DescriptorValues& descriptor, std::optional<double> azimuth_deg,
                               std::optional<std::int64_t> timestamp_us = std::nullopt,
                               std::optional<FrameQuality> quality = std::nullopt)
       ABSL_LOCKS_EXCLUDED(write_mu_);

@@ -333,6 +333,43 @@ std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
   return images;
 }
 
+std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv) {
+  std::map<std::string, ImageBox> boxes;
+  for (const CsvRow& row : ReadCsvTable(csv, {"path", "x", "y", "w", "h"}, 5, "path,x,y,w,h",
+                                        "path,x,y,w,h", "boxes")) {
+    const auto whole = [&](const std::string& column, int least) {
+      const double value = *RowNumber(row, csv, column, false);
+      if (value != std::floor(value) || value < least || value > 1e9) {
+        throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column +
+                                 " must be a whole number of at least " + std::to_string(least));
+      }
+      return static_cast<int>(value);
+    };
+    const ImageBox box{whole("x", 0), whole("y", 0), whole("w", 1), whole("h", 1)};
+    if (!boxes.emplace(std::filesystem::path(RowPath(row, csv)).lexically_normal().string(), box)
+             .second) {
+      throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": path \"" +
+                               row.field.at("path") + "\" has a box already");
+    }
+  }
+  return boxes;
+}
+
+void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, ImageBox>& boxes,
+                 double margin) {
+  if (!(margin >= 0 && margin <= 1)) {
+    throw std::invalid_argument("box margin must be in 0..1, got " + std::to_string(margin));
+  }
+  for (DatasetImage& image : images) {
+    const auto found = boxes.find(std::filesystem::path(image.path).lexically_normal().string());
+    if (found == boxes.end()) throw std::invalid_argument("no box for " + image.path);
+    const ImageBox& box = found->second;
+    const int dx = static_cast<int>(std::lround(margin * box.width));
+    const int dy = static_cast<int>(std::lround(margin * box.height));
+    image.box = ImageBox{box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy};
+  }
+}
+
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
   std::vector<CaptureFrame> frames;
   for (const CsvRow& row : ReadCsvTable(

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -18,12 +19,23 @@
 
 namespace orbit {
 
+// A rectangle of an image in pixels: where the object is (a tracker's or an annotator's box).
+struct ImageBox {
+  int x = 0, y = 0;           // top-left corner
+  int width = 0, height = 0;  // > 0
+
+  friend bool operator==(const ImageBox&, const ImageBox&) = default;
+};
+
 // One image of one object, at a known orientation.
 struct DatasetImage {
   std::string path;                 // image file; absolute, or relative to the working directory
   std::string object;               // object name, e.g. "obj7"; images of one object share it
   double azimuth = 0;               // degrees, normalised to [0, 360)
   std::optional<double> elevation;  // degrees, when the dataset records it
+  // The object's region, when the dataset has boxes (AttachBoxes): what is described of the
+  // image, as a device describes its tracker's box. Empty: the whole image.
+  std::optional<ImageBox> box;
 
   friend bool operator==(const DatasetImage&, const DatasetImage&) = default;
 };
@@ -60,6 +72,19 @@ std::vector<DatasetImage> ListCoil100(
 // fields, a path or object is empty, or an azimuth or elevation is not a finite number; and
 // "FILE: no images" when there are no data rows. Image files are not opened here.
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
+
+// Reads boxes: a CSV file whose header names path, x, y, w and h (`path,x,y,w,h`, as
+// eth-80-dev's and epfl-cars' boxes.csv), paths resolved as the manifest's. Returns each
+// resolved path's box. Throws std::runtime_error "FILE:LINE: problem" as ReadManifest does, and
+// for a coordinate that is not a whole number, a width or height below 1, or a path given twice.
+std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv);
+
+// Gives every image its box from `boxes` (ReadBoxes' keys), grown by `margin` of its width on
+// the left and on the right and of its height above and below (0.1: 10% a side; the image's
+// edges clip it when it is described). Throws std::invalid_argument naming the first image
+// that has no box, or for a margin outside 0..1.
+void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, ImageBox>& boxes,
+                 double margin);
 
 // One frame of a query capture (`orbit eval --queries`): what a user's own camera took of an
 // object, to be recognised against a model set. Consecutive frames of one sequence form one

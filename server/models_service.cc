@@ -232,7 +232,8 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
                                 request->include_thumbnails() && i < object->thumbnails.size()
                                     ? object->thumbnails[i]
                                     : none;
-                            *response->add_views() = ToProtoView(object->views[i], thumbnail);
+                            *response->add_views() =
+                                ToProtoView(object->views[i], object->summary.variant, thumbnail);
                           }
                         }
                         return grpc::Status::OK;

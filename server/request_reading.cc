@@ -17,9 +17,12 @@
 namespace orbit::server {
 namespace {
 
-grpc::Status ReadCedd(const std::string& bytes, std::string_view field, DescriptorValues* out) {
+// The descriptor of a frame's or view's `cedd` and `appearance` fields.
+template <typename Message>
+grpc::Status ReadDescriptor(const Message& message, DescriptorVariant variant,
+                            std::string_view name, DescriptorValues* out) {
   try {
-    *out = DescriptorFromWire(bytes, field);
+    *out = DescriptorFromWire(message.cedd(), message.appearance(), variant, name);
   } catch (const std::invalid_argument& e) {
     return InvalidArgument(e.what());
   }
@@ -97,7 +100,7 @@ grpc::Status ToQueryFrame(const v1::Frame& frame, DescriptorVariant variant,
   out->descriptor.variant = variant;
   const bool has_cedd = !frame.cedd().empty(), has_image = !frame.image().empty();
   if (has_cedd == has_image) return InvalidArgument("a frame needs exactly one of cedd and image");
-  if (has_cedd) return ReadCedd(frame.cedd(), "frame.cedd", &out->descriptor.values);
+  if (has_cedd) return ReadDescriptor(frame, variant, "frame", &out->descriptor.values);
   RequestImage image;
   if (auto s = ReadRequestImage(frame.image(), "frame.image", limits, frame.region(),
                                 frame.has_region(), &image);
@@ -141,7 +144,7 @@ grpc::Status ToModelView(const v1::View& view, DescriptorVariant variant,
       }
       out->typical_distance = t;
     }
-    return ReadCedd(view.cedd(), "view.cedd", &out->descriptor);
+    return ReadDescriptor(view, variant, "view", &out->descriptor);
   }
   RequestImage image;
   if (auto s = ReadRequestImage(view.image(), "view.image", limits, view.region(),

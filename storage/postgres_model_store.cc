@@ -49,14 +49,15 @@ ObjectSummary SummaryFromRow(const PostgresResult& rows, int row) {
 }
 
 // The view in columns first_column.. of `row`: azimuth, elevation, descriptor, typical distance.
-ModelView ViewFromRow(const PostgresResult& rows, int row, int first_column, ObjectId object) {
+ModelView ViewFromRow(const PostgresResult& rows, int row, int first_column, ObjectId object,
+                      DescriptorVariant variant) {
   ModelView view;
   view.azimuth = rows.Double(row, first_column);
   if (!rows.IsNull(row, first_column + 1)) view.elevation = rows.Double(row, first_column + 1);
   const std::string descriptor = rows.Bytes(row, first_column + 2);
   try {
     view.descriptor = DescriptorFromBytes(
-        {reinterpret_cast<const std::uint8_t*>(descriptor.data()), descriptor.size()});
+        {reinterpret_cast<const std::uint8_t*>(descriptor.data()), descriptor.size()}, variant);
   } catch (const std::invalid_argument& e) {
     throw StoreError(StoreError::Code::kCorrupt,
                      "a view of object " + std::to_string(object) + ": " + e.what());
@@ -164,7 +165,7 @@ ObjectId PostgresModelStore::Enroll(const Enrollment& enrollment) {
                   .Add(VariantName(enrollment.variant))
                   .Add(std::string_view(enrollment.metadata)))
           .Int64(0, 0);
-  InsertViews(connection, id, enrollment.views, enrollment.thumbnails);
+  InsertViews(connection, id, enrollment.variant, enrollment.views, enrollment.thumbnails);
   RecordChange(connection, id, ModelChangeKind::kEnroll);
   transaction.Commit();
   return id;
@@ -179,9 +180,11 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
   PostgresConnection& connection = *lease;
   PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
   const PostgresResult count = connection.Query(
-      "SELECT (SELECT count(*) FROM views WHERE object_id = $1) FROM objects WHERE id = $1",
+      "SELECT (SELECT count(*) FROM views WHERE object_id = $1), variant FROM objects "
+      "WHERE id = $1",
       PostgresParams().Add(id));
   if (count.rows() == 0) throw ObjectNotFound(id);
+  const DescriptorVariant variant = VariantFromColumn(count.Text(0, 1), id);
   const auto existing = static_cast<std::size_t>(count.Int64(0, 0));
   if (existing + views.size() > kMaxViewsPerObject) {
     throw std::invalid_argument("object " + std::to_string(id) + " has " +
@@ -189,14 +192,14 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
                                 std::to_string(views.size()) + " more would exceed the limit of " +
                                 std::to_string(kMaxViewsPerObject) + " per object");
   }
-  InsertViews(connection, id, views, thumbnails);
+  InsertViews(connection, id, variant, views, thumbnails);
   connection.Query("UPDATE objects SET updated_at = now() WHERE id = $1", PostgresParams().Add(id));
   RecordChange(connection, id, ModelChangeKind::kAddViews);
   transaction.Commit();
 }
 
 void PostgresModelStore::InsertViews(PostgresConnection& connection, ObjectId id,
-                                     const std::vector<ModelView>& views,
+                                     DescriptorVariant variant, const std::vector<ModelView>& views,
                                      const std::vector<std::string>& thumbnails) {
   // One statement for all the views (at most kMaxViewsPerObject x 6 parameters, far below
   // PostgreSQL's 65535): one round trip, however many views.
@@ -217,7 +220,7 @@ void PostgresModelStore::InsertViews(PostgresConnection& connection, ObjectId id
     } else {
       params.AddNull();
     }
-    params.AddBytes(view.descriptor).Add(view.typical_distance);
+    params.AddBytes(DescriptorBytes(view.descriptor, variant)).Add(view.typical_distance);
     if (i < thumbnails.size() && !thumbnails[i].empty()) {
       const std::string& thumbnail = thumbnails[i];
       params.AddBytes({reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
@@ -294,7 +297,7 @@ std::optional<StoredObject> PostgresModelStore::Get(ObjectId id) {
       "WHERE object_id = $1 ORDER BY azimuth, id",
       PostgresParams().Add(id));
   for (int row = 0; row < views.rows(); ++row) {
-    object.views.push_back(ViewFromRow(views, row, 0, id));
+    object.views.push_back(ViewFromRow(views, row, 0, id, object.summary.variant));
     object.thumbnails.push_back(views.Bytes(row, 4));
   }
   snapshot.Commit();
@@ -335,7 +338,8 @@ std::vector<ObjectModel> PostgresModelStore::LoadAll() {
         "ORDER BY object_id, azimuth, id");
     for (int row = 0; row < views.rows(); ++row) {
       const ObjectId object = views.Int64(row, 0);
-      models[position.at(object)].views.push_back(ViewFromRow(views, row, 1, object));
+      ObjectModel& model = models[position.at(object)];
+      model.views.push_back(ViewFromRow(views, row, 1, object, model.variant));
     }
   }
   snapshot.Commit();

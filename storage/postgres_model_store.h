@@ -96,8 +96,8 @@ class PostgresModelStore final : public ModelStore {
  private:
   class Lease;  // a pooled connection, returned to the pool when it goes out of scope
 
-  void InsertViews(PostgresConnection& connection, ObjectId id, const std::vector<ModelView>& views,
-                   const std::vector<std::string>& thumbnails)
+  void InsertViews(PostgresConnection& connection, ObjectId id, DescriptorVariant variant,
+                   const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   const std::string conninfo_;

@@ -49,6 +49,14 @@ constexpr const char* kMigrations[] = {
         committed_at timestamptz NOT NULL DEFAULT clock_timestamp()
       );
     )sql",
+    // 2: the cedd-hsv-hog variant, whose descriptors are 480 bytes.
+    R"sql(
+      ALTER TABLE objects DROP CONSTRAINT objects_variant_check,
+        ADD CONSTRAINT objects_variant_check
+          CHECK (variant IN ('cedd-lire', 'cedd-full', 'cedd-robust', 'cedd-hsv-hog'));
+      ALTER TABLE views DROP CONSTRAINT views_descriptor_check,
+        ADD CONSTRAINT views_descriptor_check CHECK (length(descriptor) IN (144, 480));
+    )sql",
 };
 static_assert(std::size(kMigrations) == kPostgresSchemaVersion);
 

@@ -65,6 +65,43 @@ constexpr const char* kMigrations[] = {
       DROP TABLE objects;
       ALTER TABLE objects_v3 RENAME TO objects;
     )sql",
+    // 4: the cedd-hsv-hog variant, whose descriptors are 480 bytes. Both tables are rebuilt as
+    // in 3 (views keeps its ids; its index is rebuilt with it).
+    R"sql(
+      CREATE TABLE objects_v4 (
+        id INTEGER PRIMARY KEY AUTOINCREMENT,
+        name TEXT NOT NULL UNIQUE CHECK (length(name) BETWEEN 1 AND 64),
+        variant TEXT NOT NULL
+          CHECK (variant IN ('cedd-lire', 'cedd-full', 'cedd-robust', 'cedd-hsv-hog')),
+        created_at TEXT NOT NULL,
+        updated_at TEXT NOT NULL,
+        metadata TEXT NOT NULL DEFAULT '{}'
+          CHECK (json_valid(metadata) AND json_type(metadata) = 'object')
+      ) STRICT;
+      INSERT INTO objects_v4 (id, name, variant, created_at, updated_at, metadata)
+        SELECT id, name, variant, created_at, updated_at, metadata FROM objects;
+      DELETE FROM sqlite_sequence WHERE name = 'objects_v4';
+      INSERT INTO sqlite_sequence (name, seq)
+        SELECT 'objects_v4', seq FROM sqlite_sequence WHERE name = 'objects';
+      DROP TABLE objects;
+      ALTER TABLE objects_v4 RENAME TO objects;
+      CREATE TABLE views_v4 (
+        id INTEGER PRIMARY KEY,
+        object_id INTEGER NOT NULL REFERENCES objects (id) ON DELETE CASCADE,
+        azimuth REAL NOT NULL CHECK (azimuth >= 0 AND azimuth < 360),
+        elevation REAL CHECK (elevation BETWEEN -90 AND 90),
+        descriptor BLOB NOT NULL CHECK (length(descriptor) IN (144, 480)),
+        typical_distance REAL NOT NULL CHECK (typical_distance BETWEEN 0 AND 1),
+        thumbnail BLOB CHECK (length(thumbnail) <= 65536)
+      ) STRICT;
+      INSERT INTO views_v4 (id, object_id, azimuth, elevation, descriptor, typical_distance,
+                            thumbnail)
+        SELECT id, object_id, azimuth, elevation, descriptor, typical_distance, thumbnail
+        FROM views;
+      DROP TABLE views;
+      ALTER TABLE views_v4 RENAME TO views;
+      CREATE INDEX views_by_object ON views (object_id, azimuth);
+    )sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

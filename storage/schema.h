@@ -12,7 +12,7 @@ namespace orbit {
 
 // Version 1: objects and views (the recognition data). Version 2: objects.metadata (JSON text)
 // and views.thumbnail. Version 3: objects.variant may be cedd-robust.
-inline constexpr int kSchemaVersion = 3;
+inline constexpr int kSchemaVersion = 4;
 
 // The schema version of the database on `connection`: 0 for an empty database.
 // Throws StoreError kIncompatible when the database has tables but is not an Orbit model store.

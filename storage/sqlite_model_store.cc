@@ -56,21 +56,24 @@ ObjectSummary SummaryFromRow(const SqliteStatement& row) {
   return summary;
 }
 
-// The descriptor stored in a views row; the schema guarantees 144 bytes, not their range.
-DescriptorValues DescriptorFromColumn(const SqliteStatement& row, int column, ObjectId object) {
+// The descriptor stored in a views row of an object of `variant`; the schema guarantees one of
+// the variants' lengths, not the object's nor the values' range.
+DescriptorValues DescriptorFromColumn(const SqliteStatement& row, int column, ObjectId object,
+                                      DescriptorVariant variant) {
   try {
-    return DescriptorFromBytes(row.ColumnBlob(column));
+    return DescriptorFromBytes(row.ColumnBlob(column), variant);
   } catch (const std::invalid_argument& e) {
     throw StoreError(StoreError::Code::kCorrupt,
                      "a view of object " + std::to_string(object) + ": " + e.what());
   }
 }
 
-ModelView ViewFromRow(const SqliteStatement& row, int first_column, ObjectId object) {
+ModelView ViewFromRow(const SqliteStatement& row, int first_column, ObjectId object,
+                      DescriptorVariant variant) {
   ModelView view;
   view.azimuth = row.ColumnDouble(first_column);
   if (!row.IsNull(first_column + 1)) view.elevation = row.ColumnDouble(first_column + 1);
-  view.descriptor = DescriptorFromColumn(row, first_column + 2, object);
+  view.descriptor = DescriptorFromColumn(row, first_column + 2, object, variant);
   view.typical_distance = row.ColumnDouble(first_column + 3);
   return view;
 }
@@ -210,7 +213,7 @@ ObjectId SqliteModelStore::Enroll(const Enrollment& enrollment) {
     id = insert->ColumnInt64(0);
     insert->Run();  // RETURNING: the row is only written once the statement has run to its end
   }
-  InsertViews(id, enrollment.views, enrollment.thumbnails);
+  InsertViews(id, enrollment.variant, enrollment.views, enrollment.thumbnails);
   CommitWrite(transaction);
   return id;
 }
@@ -221,12 +224,15 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
 
   MutexLock lock(&write_mutex_);
   SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  DescriptorVariant variant{};
   {
     StatementLease count = writer_->Prepare(
-        "SELECT (SELECT count(*) FROM views WHERE object_id = ?1) FROM objects WHERE id = ?1");
+        "SELECT (SELECT count(*) FROM views WHERE object_id = ?1), variant FROM objects "
+        "WHERE id = ?1");
     count->Bind(1, id);
     if (!count->Step()) throw ObjectNotFound(id);
     const auto existing = static_cast<std::size_t>(count->ColumnInt64(0));
+    variant = VariantFromColumn(count->ColumnText(1), id);
     if (existing + views.size() > kMaxViewsPerObject) {
       throw std::invalid_argument(
           "object " + std::to_string(id) + " has " + std::to_string(existing) + " views; " +
@@ -234,7 +240,7 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
           std::to_string(kMaxViewsPerObject) + " per object");
     }
   }
-  InsertViews(id, views, thumbnails);
+  InsertViews(id, variant, views, thumbnails);
   {
     StatementLease touch =
         writer_->Prepare(std::string("UPDATE objects SET updated_at = ") + kNow + " WHERE id = ?1");
@@ -244,7 +250,8 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
   CommitWrite(transaction);
 }
 
-void SqliteModelStore::InsertViews(ObjectId id, const std::vector<ModelView>& views,
+void SqliteModelStore::InsertViews(ObjectId id, DescriptorVariant variant,
+                                   const std::vector<ModelView>& views,
                                    const std::vector<std::string>& thumbnails) {
   StatementLease insert = writer_->Prepare(
       "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, thumbnail) "
@@ -258,7 +265,7 @@ void SqliteModelStore::InsertViews(ObjectId id, const std::vector<ModelView>& vi
     } else {
       insert->BindNull(3);
     }
-    insert->BindBlob(4, view.descriptor);
+    insert->BindBlob(4, DescriptorBytes(view.descriptor, variant));
     insert->Bind(5, view.typical_distance);
     if (i < thumbnails.size() && !thumbnails[i].empty()) {
       const std::string& thumbnail = thumbnails[i];
@@ -360,7 +367,7 @@ std::optional<StoredObject> SqliteModelStore::Get(ObjectId id) {
       "WHERE object_id = ?1 ORDER BY azimuth, id");
   views->Bind(1, id);
   while (views->Step()) {
-    object.views.push_back(ViewFromRow(*views, 0, id));
+    object.views.push_back(ViewFromRow(*views, 0, id, object.summary.variant));
     const std::span<const std::uint8_t> thumbnail = views->ColumnBlob(4);
     object.thumbnails.emplace_back(thumbnail.begin(), thumbnail.end());
   }
@@ -401,7 +408,8 @@ std::vector<ObjectModel> SqliteModelStore::LoadAll() {
         "ORDER BY id");
     while (views->Step()) {
       const ObjectId object = views->ColumnInt64(0);
-      models[position.at(object)].views.push_back(ViewFromRow(*views, 1, object));
+      ObjectModel& model = models[position.at(object)];
+      model.views.push_back(ViewFromRow(*views, 1, object, model.variant));
     }
   }
   for (ObjectModel& model : models) {

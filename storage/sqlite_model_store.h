@@ -68,7 +68,7 @@ class SqliteModelStore final : public ModelStore {
  private:
   class Reader;  // a pooled read connection, returned to the pool when it goes out of scope
 
-  void InsertViews(ObjectId id, const std::vector<ModelView>& views,
+  void InsertViews(ObjectId id, DescriptorVariant variant, const std::vector<ModelView>& views,
                    const std::vector<std::string>& thumbnails)
       ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
   // Commits a write and, when the log has grown enough, checkpoints it.

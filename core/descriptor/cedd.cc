@@ -8,6 +8,8 @@
 // double-precision sum is replayed pixel by pixel.
 #include "core/descriptor/cedd.h"
 
+#include "core/descriptor/appearance_channels.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -152,8 +154,9 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
                                 std::to_string(image.cols) + "x" + std::to_string(image.rows) +
                                 " image");
   }
-  const cv::Mat bgr = variant == DescriptorVariant::kCeddRobust ? CanonicalFrame(ToBgr(image(area)))
-                                                                : ToBgr(image(area));
+  const bool canonical =
+      variant == DescriptorVariant::kCeddRobust || variant == DescriptorVariant::kCeddHsvHog;
+  const cv::Mat bgr = canonical ? CanonicalFrame(ToBgr(image(area))) : ToBgr(image(area));
   const bool lire = variant == DescriptorVariant::kCeddLire;
   const Grid grid = lire ? cedd::LireGrid(bgr.cols, bgr.rows) : cedd::FullGrid(bgr.cols, bgr.rows);
 
@@ -216,6 +219,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
     }
   }
   descriptor.values = cedd::Quantise(histogram);
+  if (variant == DescriptorVariant::kCeddHsvHog) AddAppearanceChannels(bgr, descriptor.values);
   return descriptor;
 }
 

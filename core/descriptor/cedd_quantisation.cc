@@ -27,7 +27,7 @@ DescriptorValues Quantise(const Histogram& histogram) {
   double sum = 0;
   for (double bin : histogram) sum += bin;
   if (sum == 0) return values;
-  for (int i = 0; i < kDescriptorSize; ++i) {
+  for (int i = 0; i < kCeddSize; ++i) {
     const double v = histogram[i] / sum;
     const double* levels = kLevels[kLevelsOfClass[i / kColourBins]];
     int best = 0;

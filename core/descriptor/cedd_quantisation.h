@@ -7,7 +7,7 @@
 
 namespace orbit::cedd {
 
-using Histogram = double[kDescriptorSize];
+using Histogram = double[kCeddSize];
 
 // Normalises by the sum (added in index order) and quantises each bin as LIRE's CEDDQuant does
 // (nearest level, ties to the lower). An all-zero histogram (a region with no blocks) gives all

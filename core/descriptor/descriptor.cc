@@ -11,6 +11,7 @@ std::string_view VariantName(DescriptorVariant variant) {
     case DescriptorVariant::kCeddLire: return "cedd-lire";
     case DescriptorVariant::kCeddFull: return "cedd-full";
     case DescriptorVariant::kCeddRobust: return "cedd-robust";
+    case DescriptorVariant::kCeddHsvHog: return "cedd-hsv-hog";
   }
   return "unknown";
 }
@@ -40,15 +41,27 @@ void ValidateDescriptorValues(std::span<const std::uint8_t> values, std::string_
   }
 }
 
-DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes, std::string_view what) {
-  if (bytes.size() != static_cast<std::size_t>(kDescriptorSize)) {
+int DescriptorLength(DescriptorVariant variant) {
+  return variant == DescriptorVariant::kCeddHsvHog ? kDescriptorSize : kCeddSize;
+}
+
+DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes, DescriptorVariant variant,
+                                     std::string_view what) {
+  const int length = DescriptorLength(variant);
+  if (bytes.size() != static_cast<std::size_t>(length)) {
     throw std::invalid_argument(std::string(what) + " has " + std::to_string(bytes.size()) +
-                                " values, expected " + std::to_string(kDescriptorSize));
+                                " values, expected " + std::to_string(length));
   }
   ValidateDescriptorValues(bytes, what);
-  DescriptorValues values;
+  DescriptorValues values{};
   std::copy(bytes.begin(), bytes.end(), values.begin());
   return values;
+}
+
+std::span<const std::uint8_t> DescriptorBytes(const DescriptorValues& values,
+                                              DescriptorVariant variant) {
+  return std::span<const std::uint8_t>(values.data(),
+                                       static_cast<std::size_t>(DescriptorLength(variant)));
 }
 
 }  // namespace orbit

@@ -1,9 +1,12 @@
-// The CEDD descriptor as the rest of the product sees it: 144 values in 0..7, tagged with the
-// variant of the extractor that produced it (docs/design.md#variants).
+// A view's descriptor as the rest of the product sees it: up to kDescriptorSize values in 0..7,
+// tagged with the variant of the extractor that produced it (docs/design.md#variants).
 //
-// Layout (docs/design.md#histogram): value i belongs to texture class i / 24 and fuzzy colour bin
-// i % 24. Classes: 0 non-edge, 1 non-directional, 2 horizontal, 3 vertical, 4 diagonal 45,
-// 5 diagonal 135.
+// Layout: values 0..143 are CEDD's histogram (docs/design.md#histogram): value i belongs to
+// texture class i / 24 and fuzzy colour bin i % 24. Classes: 0 non-edge, 1 non-directional,
+// 2 horizontal, 3 vertical, 4 diagonal 45, 5 diagonal 135. The CEDD variants stop there; the
+// cedd-hsv-hog variant appends its appearance channels (core/descriptor/appearance_channels.h).
+// Values past a variant's DescriptorLength are 0, so one Tanimoto over every value serves
+// every variant.
 #pragma once
 
 #include <array>
@@ -16,7 +19,8 @@
 
 namespace orbit {
 
-inline constexpr int kDescriptorSize = 144;
+inline constexpr int kCeddSize = 144;          // CEDD's histogram
+inline constexpr int kDescriptorSize = 480;    // values a descriptor holds: the longest variant's
 inline constexpr int kDescriptorMaxValue = 7;  // each value is quantised to 3 bits
 inline constexpr int kColourBins = 24;         // fuzzy colour bins per texture class
 inline constexpr int kTextureClasses = 6;
@@ -29,12 +33,17 @@ enum class DescriptorVariant {
   // cedd-full of the region's canonical frame (core/descriptor/canonical_frame.h: canonical size,
   // blur and brightness): the product's variant, robust to blur, noise, compression and light
   kCeddRobust,
+  // cedd-robust's CEDD followed by the appearance channels of the same canonical frame
+  // (core/descriptor/appearance_channels.h): the product's variant for real objects that look
+  // alike (docs/design.md#appearance-channels)
+  kCeddHsvHog,
 };
-inline constexpr std::array<DescriptorVariant, 3> kDescriptorVariants = {
-    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust};
+inline constexpr std::array<DescriptorVariant, 4> kDescriptorVariants = {
+    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust,
+    DescriptorVariant::kCeddHsvHog};
 
 // The variant's name as it appears on the command line, in the API and in the model store:
-// "cedd-lire", "cedd-full" or "cedd-robust".
+// "cedd-lire", "cedd-full", "cedd-robust" or "cedd-hsv-hog".
 std::string_view VariantName(DescriptorVariant variant);
 
 // Inverse of VariantName; nullopt for any other text.
@@ -49,11 +58,19 @@ std::vector<std::string> VariantNames();
 void ValidateDescriptorValues(std::span<const std::uint8_t> values,
                               std::string_view what = "descriptor");
 
-// The descriptor held in `bytes` (a store's blob, a request's `cedd` field): exactly
-// kDescriptorSize values, each valid. Throws std::invalid_argument
-// "<what> has N values, expected 144", or as ValidateDescriptorValues.
-DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes,
+// How many values a descriptor of `variant` has: kCeddSize for the CEDD variants, kDescriptorSize
+// for cedd-hsv-hog. A store's blob and the wire carry exactly these.
+int DescriptorLength(DescriptorVariant variant);
+
+// The descriptor held in `bytes` (a store's blob, a request's fields): exactly
+// DescriptorLength(variant) values, each valid. Throws std::invalid_argument
+// "<what> has N values, expected L", or as ValidateDescriptorValues.
+DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes, DescriptorVariant variant,
                                      std::string_view what = "descriptor");
+
+// The first DescriptorLength(variant) values of `values`: what a store or the wire holds.
+std::span<const std::uint8_t> DescriptorBytes(const DescriptorValues& values,
+                                              DescriptorVariant variant);
 
 struct Descriptor {
   DescriptorVariant variant = DescriptorVariant::kCeddLire;

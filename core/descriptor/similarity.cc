@@ -47,14 +47,14 @@ double TanimotoRotationTolerant(const DescriptorValues& q, const DescriptorValue
 
 double LireDistance(const DescriptorValues& a, const DescriptorValues& b) {
   double sum_a = 0, sum_b = 0;
-  for (int i = 0; i < kDescriptorSize; ++i) {
+  for (int i = 0; i < kCeddSize; ++i) {
     sum_a += a[i];
     sum_b += b[i];
   }
   if (sum_a == 0 && sum_b == 0) return 0.0;
   if (sum_a == 0 || sum_b == 0) return 100.0;
   double ab = 0, bb = 0, aa = 0;
-  for (int i = 0; i < kDescriptorSize; ++i) {
+  for (int i = 0; i < kCeddSize; ++i) {
     const double na = a[i] / sum_a;
     const double nb = b[i] / sum_b;
     ab += na * nb;

@@ -6,10 +6,11 @@
 namespace orbit {
 namespace {
 
-// FNV-1a, 64 bits: a byte-order- and platform-independent hash of the descriptor's values.
+// FNV-1a, 64 bits: a byte-order- and platform-independent hash of the descriptor's CEDD values.
 std::uint64_t Fnv1a64(const DescriptorValues& values) {
   std::uint64_t hash = 0xcbf29ce484222325ULL;
-  for (const std::uint8_t value : values) {
+  for (int i = 0; i < kCeddSize; ++i) {
+    const std::uint8_t value = values[i];
     hash ^= value;
     hash *= 0x100000001b3ULL;
   }

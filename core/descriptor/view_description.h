@@ -6,7 +6,7 @@
 //
 // The seed rule. The Gaussian noise of a view's noisy copy (core/descriptor/typical_distance.h) is
 // seeded from the view itself:
-//   ViewNoiseSeed(descriptor, base) = MixSeed(base, FNV-1a 64 of the 144 descriptor values)
+//   ViewNoiseSeed(descriptor, base) = MixSeed(base, FNV-1a 64 of the 144 CEDD values)
 // with base = kDefaultViewNoiseSeed unless a caller asks otherwise (`orbit import --seed`,
 // EnrollerOptions::seed, `orbit eval --seed`). It depends on neither the object's name, nor the
 // view's position, nor the thread count, nor the platform's std::hash; two views with equal

@@ -148,12 +148,12 @@ void SectorSimilarityTable::ComputeObject(const DescriptorValues& query, const S
   squared_norms.resize(count);
   // Over the query's non-zero bins only, as Compute: a COIL-100 CEDD has about 21 of 144.
   std::int32_t query_norm = 0;
-  std::array<std::uint8_t, kDescriptorSize> bins;
+  std::array<std::uint16_t, kDescriptorSize> bins;  // the non-zero bins' indices
   std::size_t used = 0;
   for (int d = 0; d < kDescriptorSize; ++d) {
     if (query[d] == 0) continue;
     query_norm += query[d] * query[d];
-    bins[used++] = static_cast<std::uint8_t>(d);
+    bins[used++] = static_cast<std::uint16_t>(d);
   }
   for (std::size_t i = 0; i < count; ++i) {
     const ViewSum& sum = sectors.sum[i];

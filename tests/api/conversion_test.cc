@@ -32,21 +32,56 @@ TEST(ConversionTest, VariantsRoundTripAndUnknownOnesAreRefusedByName) {
 }
 
 TEST(ConversionTest, DescriptorFromWireNamesTheField) {
-  std::string bytes(kDescriptorSize, '\x07');
+  constexpr auto kFull = DescriptorVariant::kCeddFull;
+  std::string bytes(kCeddSize, '\x07');
   bytes[3] = '\x02';
-  EXPECT_EQ(DescriptorFromWire(bytes, "frame.cedd")[3], 2);
+  EXPECT_EQ(DescriptorFromWire(bytes, "", kFull, "frame")[3], 2);
   bytes[17] = '\x09';
   try {
-    DescriptorFromWire(bytes, "frame.cedd");
+    DescriptorFromWire(bytes, "", kFull, "frame");
     ADD_FAILURE() << "accepted a 9";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "frame.cedd value 9 at index 17 is outside 0..7");
   }
   try {
-    DescriptorFromWire(std::string(10, '\0'), "view.cedd");
+    DescriptorFromWire(std::string(10, '\0'), "", kFull, "view");
     ADD_FAILURE() << "accepted 10 bytes";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "view.cedd has 10 values, expected 144");
+  }
+}
+
+TEST(ConversionTest, AppearanceChannelsTravelBesideTheCedd) {
+  constexpr auto kHsvHog = DescriptorVariant::kCeddHsvHog;
+  const std::string cedd(kCeddSize, '\x01');
+  std::string appearance(kDescriptorSize - kCeddSize, '\x03');
+  appearance[0] = '\x05';
+  const DescriptorValues values = DescriptorFromWire(cedd, appearance, kHsvHog, "frame");
+  EXPECT_EQ(values[kCeddSize - 1], 1);
+  EXPECT_EQ(values[kCeddSize], 5);
+  EXPECT_EQ(values[kDescriptorSize - 1], 3);
+  std::string cedd_back, appearance_back;
+  SetWireDescriptor(values, kHsvHog, &cedd_back, &appearance_back);
+  EXPECT_EQ(cedd_back, cedd);
+  EXPECT_EQ(appearance_back, appearance);
+  try {
+    DescriptorFromWire(cedd, "", kHsvHog, "frame");
+    ADD_FAILURE() << "accepted a frame without its appearance channels";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "frame.appearance has 0 values, expected 336 for cedd-hsv-hog");
+  }
+  try {
+    DescriptorFromWire(cedd, appearance, DescriptorVariant::kCeddRobust, "frame");
+    ADD_FAILURE() << "accepted appearance channels in a CEDD variant";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "frame.appearance has 336 values, expected 0 for cedd-robust");
+  }
+  appearance[7] = '\x08';
+  try {
+    DescriptorFromWire(cedd, appearance, kHsvHog, "view");
+    ADD_FAILURE() << "accepted an 8";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "view.appearance value 8 at index 7 is outside 0..7");
   }
 }
 
@@ -56,20 +91,29 @@ TEST(ConversionTest, ViewCarriesEveryStoredField) {
   view.descriptor[143] = 1;
   view.azimuth = 35;
   view.typical_distance = 0.25;
-  v1::View wire = ToProtoView(view);
+  v1::View wire = ToProtoView(view, DescriptorVariant::kCeddFull);
   ASSERT_EQ(wire.cedd().size(), 144u);
+  EXPECT_TRUE(wire.appearance().empty());
   EXPECT_EQ(wire.cedd()[0], '\x07');
   EXPECT_EQ(wire.cedd()[143], '\x01');
   EXPECT_EQ(wire.azimuth_deg(), 35);
   EXPECT_FALSE(wire.has_elevation_deg());
   EXPECT_EQ(wire.typical_distance(), 0.25);
   EXPECT_TRUE(wire.thumbnail().empty());
-  EXPECT_EQ(DescriptorFromWire(wire.cedd(), "view.cedd"), view.descriptor);
+  EXPECT_EQ(
+      DescriptorFromWire(wire.cedd(), wire.appearance(), DescriptorVariant::kCeddFull, "view"),
+      view.descriptor);
 
   view.elevation = -12.5;
-  wire = ToProtoView(view, "png bytes");
+  wire = ToProtoView(view, DescriptorVariant::kCeddFull, "png bytes");
   EXPECT_EQ(wire.elevation_deg(), -12.5);
   EXPECT_EQ(wire.thumbnail(), "png bytes");
+
+  view.descriptor[kDescriptorSize - 1] = 6;
+  wire = ToProtoView(view, DescriptorVariant::kCeddHsvHog);
+  EXPECT_EQ(wire.cedd().size(), 144u);
+  ASSERT_EQ(wire.appearance().size(), 336u);
+  EXPECT_EQ(wire.appearance()[335], '\x06');
 }
 
 TEST(ConversionTest, DecisionsAndMoves) {

@@ -15,7 +15,7 @@ std::string ReferenceLine(const std::string& relative, const std::string& shown_
   for (const auto& ref : testing::ReadReferenceVectors(DataDir() / "coil-100-lire-cedd.txt")) {
     if (ref.path == relative) {
       std::string line = shown_path;
-      for (auto v : ref.values) {
+      for (auto v : DescriptorBytes(ref.values, DescriptorVariant::kCeddLire)) {
         line += ' ';
         line += static_cast<char>('0' + v);
       }

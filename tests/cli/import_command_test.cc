@@ -184,7 +184,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
     ASSERT_EQ(remote.views_size(), static_cast<int>(local->views.size()));
     for (int f = 0; f < remote.views_size(); ++f) {
       const ModelView& view = local->views[f];
-      const std::string cedd(view.descriptor.begin(), view.descriptor.end());
+      const std::string cedd(view.descriptor.begin(), view.descriptor.begin() + kCeddSize);
       EXPECT_EQ(remote.views(f).cedd(), cedd);
       EXPECT_EQ(remote.views(f).azimuth_deg(), view.azimuth);
       EXPECT_DOUBLE_EQ(remote.views(f).typical_distance(), view.typical_distance);

@@ -28,7 +28,7 @@ TEST(EnrollerTest, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
   const v1::View view =
       ComputeView({image, 40.0, std::nullopt, 12.5}, DescriptorVariant::kCeddLire, /*seed=*/9);
   const DescriptorValues expected = ExtractCedd(image, DescriptorVariant::kCeddLire).values;
-  EXPECT_EQ(view.cedd(), std::string(expected.begin(), expected.end()));
+  EXPECT_EQ(view.cedd(), std::string(expected.begin(), expected.begin() + kCeddSize));
   EXPECT_EQ(view.azimuth_deg(), 40.0);
   EXPECT_EQ(view.elevation_deg(), 12.5);
   ASSERT_TRUE(view.has_typical_distance());
@@ -43,7 +43,7 @@ TEST(EnrollerTest, ComputeViewIsTheCeddAndTypicalDistanceOfTheImageOrRegion) {
       ComputeView({image, 40.0, region, std::nullopt}, DescriptorVariant::kCeddFull, 9);
   const cv::Mat crop = image(region).clone();
   const DescriptorValues crop_cedd = ExtractCedd(crop, DescriptorVariant::kCeddFull).values;
-  EXPECT_EQ(cropped.cedd(), std::string(crop_cedd.begin(), crop_cedd.end()));
+  EXPECT_EQ(cropped.cedd(), std::string(crop_cedd.begin(), crop_cedd.begin() + kCeddSize));
   EXPECT_DOUBLE_EQ(cropped.typical_distance(),
                    DescribeView(crop, DescriptorVariant::kCeddFull, 9).typical_distance);
   EXPECT_FALSE(cropped.has_elevation_deg());

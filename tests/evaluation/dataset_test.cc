@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -57,6 +58,48 @@ TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000000000"); }), HasSubstr("too large"));
 }
 
+TEST(BoxesTest, Eth80BoxesAreAttachedGrownByTheMargin) {
+  const auto folder = testing::DataDir() / "eth-80-dev";
+  const std::map<std::string, ImageBox> boxes = ReadBoxes(folder / "boxes.csv");
+  EXPECT_EQ(boxes.size(), 40u * 41u);  // every view of all.csv
+  std::vector<DatasetImage> ring = ReadManifest(folder / "ring.csv");
+  ASSERT_EQ(ring.size(), 640u);
+  AttachBoxes(ring, boxes, 0.1);
+  // The first ring view, images/apple1-090-000.jpg, boxed 32,32,192,191 in boxes.csv: grown by
+  // round(19.2) = 19 and round(19.1) = 19 a side.
+  EXPECT_EQ(boxes.at((folder / "images/apple1-090-000.jpg").lexically_normal().string()),
+            (ImageBox{32, 32, 192, 191}));
+  ASSERT_TRUE(ring[0].box.has_value());
+  EXPECT_EQ(*ring[0].box, (ImageBox{13, 13, 230, 229}));
+  for (const DatasetImage& image : ring) EXPECT_TRUE(image.box.has_value()) << image.path;
+}
+
+TEST(BoxesTest, ABoxFileIsCheckedLineByLineAndEveryImageNeedsABox) {
+  ScratchDir dir;
+  const auto file = dir.Write("boxes.csv", "path,x,y,w,h\na.png,1,2,30,40\n");
+  const std::map<std::string, ImageBox> boxes = ReadBoxes(file);
+  ASSERT_EQ(boxes.size(), 1u);
+  EXPECT_EQ(boxes.begin()->second, (ImageBox{1, 2, 30, 40}));
+  std::vector<DatasetImage> images{{(dir / "a.png").string(), "a", 0, {}, {}}};
+  AttachBoxes(images, boxes, 0.25);  // 7.5 -> 8 and 10 a side
+  EXPECT_EQ(images[0].box, (ImageBox{-7, -8, 46, 60}));
+  images.push_back({(dir / "b.png").string(), "b", 0, {}, {}});
+  EXPECT_EQ(ErrorMessageOf([&] { AttachBoxes(images, boxes, 0.1); }),
+            "no box for " + (dir / "b.png").string());
+  EXPECT_EQ(ErrorMessageOf([&] { AttachBoxes(images, boxes, 1.5); }),
+            "box margin must be in 0..1, got 1.500000");
+
+  const auto bad = dir.Write("bad.csv", "path,x,y,w,h\na.png,1,2,0,40\n");
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { ReadBoxes(bad); }),
+            bad.string() + ":2: w must be a whole number of at least 1");
+  const auto twice = dir.Write("twice.csv", "path,x,y,w,h\na.png,1,2,3,4\n./a.png,1,2,3,4\n");
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { ReadBoxes(twice); }),
+            twice.string() + ":3: path \"./a.png\" has a box already");
+  const auto columns = dir.Write("columns.csv", "path,x,y,w\n");
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ReadBoxes(columns); }),
+              HasSubstr("header lacks the column \"h\""));
+}
+
 TEST(ListCoil100Test, ListsTheSharedDataSortedByObjectThenAzimuth) {
   const auto dir = testing::DataDir() / "coil-100";
   const std::vector<DatasetImage> all = ListCoil100(dir);
@@ -87,7 +130,7 @@ TEST(ListCoil100Test, IgnoresOtherFilesAndReportsMissingObjects) {
   dir.Write("obj4_0.png", "");
   const std::vector<DatasetImage> images = ListCoil100(dir.path());
   ASSERT_EQ(images.size(), 3u);
-  EXPECT_EQ(images[0], (DatasetImage{(dir.path() / "obj2__5.png").string(), "obj2", 5, {}}));
+  EXPECT_EQ(images[0], (DatasetImage{(dir.path() / "obj2__5.png").string(), "obj2", 5, {}, {}}));
   EXPECT_EQ(images[1].azimuth, 10);
   EXPECT_EQ(images[2].object, "obj10");
 
@@ -112,9 +155,10 @@ TEST(ReadManifestTest, ResolvesRelativePathsAgainstTheCsvFolder) {
                              "cup,450,\"views/c \"\"x\"\".png\",-5.5\r\n");
   const std::vector<DatasetImage> images = ReadManifest(csv);
   ASSERT_EQ(images.size(), 3u);
-  EXPECT_EQ(images[0],
-            (DatasetImage{(dir.path() / "sets" / "views" / "a.png").string(), "cup", 90, 10.0}));
-  EXPECT_EQ(images[1], (DatasetImage{"/abs/b.png", "mug, blue", 330, std::nullopt}));
+  EXPECT_EQ(
+      images[0],
+      (DatasetImage{(dir.path() / "sets" / "views" / "a.png").string(), "cup", 90, 10.0, {}}));
+  EXPECT_EQ(images[1], (DatasetImage{"/abs/b.png", "mug, blue", 330, std::nullopt, {}}));
   EXPECT_EQ(images[2].path, (dir.path() / "sets" / "views" / "c \"x\".png").string());
   EXPECT_EQ(images[2].azimuth, 90);
   EXPECT_EQ(images[2].elevation, -5.5);
@@ -193,9 +237,9 @@ TEST(ReadQueryCapturesTest, ErrorsNameTheFileAndLine) {
 }
 
 TEST(GroupByObjectTest, ObjectsInOrderOfFirstAppearanceWithTheirPositions) {
-  const std::vector<DatasetImage> images{{"1.png", "mug", 0, {}},  {"2.png", "cup", 0, {}},
-                                         {"3.png", "mug", 90, {}}, {"4.png", "box", 0, {}},
-                                         {"5.png", "cup", 90, {}}, {"6.png", "mug", 180, {}}};
+  const std::vector<DatasetImage> images{
+      {"1.png", "mug", 0, {}, {}}, {"2.png", "cup", 0, {}, {}},  {"3.png", "mug", 90, {}, {}},
+      {"4.png", "box", 0, {}, {}}, {"5.png", "cup", 90, {}, {}}, {"6.png", "mug", 180, {}, {}}};
   EXPECT_THAT(GroupByObject(images),
               ElementsAre(DatasetObject{"mug", {0, 2, 5}}, DatasetObject{"cup", {1, 4}},
                           DatasetObject{"box", {3}}));

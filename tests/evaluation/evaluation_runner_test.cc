@@ -23,7 +23,8 @@ namespace {
 using ::testing::HasSubstr;
 
 DatasetImage Coil100Image() {
-  return {(testing::DataDir() / "coil-100" / "obj3__20.png").string(), "obj3", 20, std::nullopt};
+  return {(testing::DataDir() / "coil-100" / "obj3__20.png").string(), "obj3", 20, std::nullopt,
+          std::nullopt};
 }
 
 // The evaluation's model views are what every enrollment path stores for the same image
@@ -59,6 +60,24 @@ TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
   EXPECT_NE(described[0].view.descriptor, described[1].view.descriptor);
 }
 
+// With a box, the box alone (clipped to the image) is described and distorted, as a device
+// crops its tracker's box: the same numbers as the cropped image.
+TEST(DescribeImageTest, ABoxedImageIsDescribedAsItsBoxAlone) {
+  DatasetImage image = Coil100Image();
+  image.box = ImageBox{-10, 30, 60, 200};  // clipped to x 0..49, y 30..127
+  const cv::Mat region = ReadImageFile(image.path)(cv::Rect(0, 30, 50, 98));
+  const std::vector<DescribedImage> described =
+      DescribeImage(image, 0, {DescriptorVariant::kCeddHsvHog}, {ParseDistortionSpec("mb")}, 7);
+  const ViewDescription expected = DescribeView(region, DescriptorVariant::kCeddHsvHog, 7);
+  ASSERT_EQ(described.size(), 1u);
+  EXPECT_EQ(described[0].view.descriptor, expected.descriptor);
+  EXPECT_EQ(described[0].view.typical_distance, expected.typical_distance);
+  EXPECT_EQ(described[0].queries.at(0), expected.distorted[0]);
+  image.box = ImageBox{500, 500, 10, 10};
+  EXPECT_THROW(DescribeImage(image, 0, {DescriptorVariant::kCeddLire}, {}, 7),
+               std::invalid_argument);
+}
+
 // A query's noise is seeded by the image's position, so two places draw different noise; any
 // distortion spec is applied as ApplyDistortion applies it.
 TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
@@ -87,7 +106,7 @@ TEST(DescribeImageTest, NoiseQueryIsSeededByThePosition) {
 }
 
 TEST(DescribeImageTest, NamesAFileThatCannotBeRead) {
-  const DatasetImage missing{"/nonexistent/obj1__0.png", "obj1", 0, std::nullopt};
+  const DatasetImage missing{"/nonexistent/obj1__0.png", "obj1", 0, std::nullopt, std::nullopt};
   EXPECT_THAT(testing::ErrorMessageOf<std::runtime_error>(
                   [&] { DescribeImage(missing, 0, {DescriptorVariant::kCeddLire}, {}, 1); }),
               HasSubstr("/nonexistent/obj1__0.png"));
@@ -95,14 +114,14 @@ TEST(DescribeImageTest, NamesAFileThatCannotBeRead) {
 
 // Refusals that come before any image is read (the paths do not exist).
 TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
-  const std::vector<DatasetImage> known{{"/none/a0.png", "a", 0, {}},
-                                        {"/none/a1.png", "a", 90, {}},
-                                        {"/none/b0.png", "b", 0, {}},
-                                        {"/none/b1.png", "b", 90, {}}};
+  const std::vector<DatasetImage> known{{"/none/a0.png", "a", 0, {}, {}},
+                                        {"/none/a1.png", "a", 90, {}, {}},
+                                        {"/none/b0.png", "b", 0, {}, {}},
+                                        {"/none/b1.png", "b", 90, {}, {}}};
   EvaluationOptions options;
   options.query_lengths = {1, 2};
-  const std::vector<DatasetImage> unknown{{"/none/b2.png", "b", 180, {}},
-                                          {"/none/b3.png", "b", 270, {}}};
+  const std::vector<DatasetImage> unknown{{"/none/b2.png", "b", 180, {}, {}},
+                                          {"/none/b3.png", "b", 270, {}, {}}};
   EXPECT_EQ(testing::ErrorMessageOf([&] { RunEvaluation(known, unknown, options); }),
             "object \"b\" is both known and unknown");
   options.query_lengths = {4};

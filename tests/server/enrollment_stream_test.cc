@@ -26,7 +26,7 @@ v1::EnrollRequest Header(const std::string& name, const std::string& metadata = 
 
 v1::EnrollRequest View(std::uint8_t fill, double azimuth) {
   v1::EnrollRequest request;
-  request.mutable_view()->set_cedd(std::string(kDescriptorSize, static_cast<char>(fill)));
+  request.mutable_view()->set_cedd(std::string(kCeddSize, static_cast<char>(fill)));
   request.mutable_view()->set_azimuth_deg(azimuth);
   return request;
 }

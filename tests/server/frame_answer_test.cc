@@ -49,7 +49,7 @@ class FrameAnswerTest : public ::testing::Test {
   static v1::Frame Frame(int object, int azimuth) {
     const DescriptorValues& values = CoilView(object, azimuth);
     v1::Frame frame;
-    frame.set_cedd(std::string(values.begin(), values.end()));
+    frame.set_cedd(std::string(values.begin(), values.begin() + kCeddSize));
     frame.set_azimuth_deg(azimuth);
     return frame;
   }

@@ -55,7 +55,9 @@ std::vector<Numbers> FromWire(const v1::GetObjectResponse& object) {
   return numbers;
 }
 
-std::string Cedd(const DescriptorValues& values) { return {values.begin(), values.end()}; }
+std::string Cedd(const DescriptorValues& values) {
+  return {values.begin(), values.begin() + kCeddSize};
+}
 
 TEST(ModelsServiceTest, EveryEnrollmentPathStoresTheSameNumbersForTheSameImage) {
   ScratchDir dir;

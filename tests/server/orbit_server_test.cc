@@ -45,7 +45,8 @@ std::string CoilCedd(int object, int azimuth) {
                        ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
                           .string());
     const Descriptor d = ExtractCedd(image, Product().variant);  // the server's
-    bytes.assign(d.values.begin(), d.values.end());
+    const std::span<const std::uint8_t> wire = DescriptorBytes(d.values, d.variant);
+    bytes.assign(wire.begin(), wire.end());
   }
   return bytes;
 }

@@ -57,9 +57,7 @@ std::string PngBomb(int width, std::uint32_t height) {
   return png;
 }
 
-std::string Cedd(std::uint8_t fill) {
-  return std::string(kDescriptorSize, static_cast<char>(fill));
-}
+std::string Cedd(std::uint8_t fill) { return std::string(kCeddSize, static_cast<char>(fill)); }
 
 void ExpectInvalid(const grpc::Status& status, const std::string& message) {
   EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT) << message;
@@ -147,6 +145,15 @@ TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   frame.set_cedd("abc");
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
                 "frame.cedd has 3 values, expected 144");
+  frame.set_cedd(Cedd(1));
+  ExpectInvalid(ToQueryFrame(frame, DescriptorVariant::kCeddHsvHog, kLimits, &query),
+                "frame.appearance has 0 values, expected 336 for cedd-hsv-hog");
+  frame.set_appearance(std::string(336, '\2'));
+  ASSERT_TRUE(ToQueryFrame(frame, DescriptorVariant::kCeddHsvHog, kLimits, &query).ok());
+  EXPECT_EQ(query.descriptor.values[kDescriptorSize - 1], 2);
+  ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
+                "frame.appearance has 336 values, expected 0 for cedd-lire");
+  frame.clear_appearance();
   frame.set_cedd(Cedd(1));
   frame.set_azimuth_deg(kNaN);
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),

@@ -116,8 +116,8 @@ TEST(ServerMetricsTest, RefuseCountsByCodeAndReasonAndPassesTheStatusOn) {
 // ---- a real server, scraped ----
 
 std::string Descriptor(int seed) {
-  std::string cedd(kDescriptorSize, '\0');
-  for (int i = 0; i < kDescriptorSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
+  std::string cedd(kCeddSize, '\0');
+  for (int i = 0; i < kCeddSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
   return cedd;
 }
 

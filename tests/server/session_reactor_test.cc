@@ -22,7 +22,7 @@ using testing::ServerProcess;
 
 v1::SessionRequest Frame(std::int64_t k) {
   v1::SessionRequest request;
-  request.mutable_frame()->set_cedd(std::string(kDescriptorSize, '\1'));
+  request.mutable_frame()->set_cedd(std::string(kCeddSize, '\1'));
   request.mutable_frame()->set_azimuth_deg(static_cast<double>(k % 360));
   return request;
 }

@@ -244,6 +244,38 @@ TYPED_TEST(ModelStoreTest, LoadAllGivesEveryObjectInIdOrderWithItsVariant) {
   EXPECT_EQ(models[1].views[2].typical_distance, full.views[0].typical_distance);
 }
 
+// An object of the appearance variant keeps every one of its 480 values, through AddViews too,
+// beside an object of a CEDD variant whose 144 values are all that is stored.
+TYPED_TEST(ModelStoreTest, AppearanceVariantKeepsItsChannels) {
+  ModelStore& store = *this->store_;
+  Enrollment appearance = SyntheticObject("appearance", 2, 5);
+  appearance.variant = DescriptorVariant::kCeddHsvHog;
+  for (ModelView& view : appearance.views) {
+    for (int i = kCeddSize; i < kDescriptorSize; ++i) view.descriptor[i] = (i * 5 + 1) % 8;
+  }
+  const ObjectId id = store.Enroll(appearance);
+  ModelView added = appearance.views[0];
+  added.azimuth = 45;
+  added.descriptor[kDescriptorSize - 1] = 2;
+  store.AddViews(id, {added});
+  const ObjectId lire_id = store.Enroll(SyntheticObject("lire", 1, 9));
+
+  const std::vector<ObjectModel> models = store.LoadAll();
+  ASSERT_EQ(models.size(), 2u);
+  EXPECT_EQ(models[0].variant, DescriptorVariant::kCeddHsvHog);
+  ASSERT_EQ(models[0].views.size(), 3u);
+  EXPECT_EQ(models[0].views[0].descriptor, appearance.views[0].descriptor);  // azimuth 0
+  EXPECT_EQ(models[0].views[1].descriptor, added.descriptor);                // azimuth 45
+  EXPECT_EQ(models[0].views[1].descriptor[kDescriptorSize - 1], 2);
+  const std::optional<StoredObject> stored = store.Get(id);
+  ASSERT_TRUE(stored.has_value());
+  EXPECT_EQ(stored->views[2].descriptor, appearance.views[1].descriptor);
+  EXPECT_EQ(models[1].id, lire_id);
+  EXPECT_EQ(models[1].views[0].descriptor, SyntheticView(9, 0).descriptor);
+  EXPECT_EQ(this->backend_.Int("SELECT count(*) FROM views WHERE length(descriptor) = 480"), 3);
+  EXPECT_EQ(this->backend_.Int("SELECT count(*) FROM views WHERE length(descriptor) = 144"), 1);
+}
+
 // Two store instances on one store, as two processes (or two server replicas) would have: while
 // one enrolls, readers of both see only whole objects, never fewer than before, and every page
 // of a listing holds whole objects too.

@@ -46,10 +46,13 @@ constexpr const char* kVersion1Schema = R"sql(
   INSERT INTO schema_version VALUES (1, '2024-01-01T00:00:00.000Z');
 )sql";
 
+// A CEDD variant's blob: its 144 values.
 std::string HexBlob(const DescriptorValues& values) {
   std::ostringstream hex;
   hex << "X'";
-  for (std::uint8_t v : values) hex << '0' << static_cast<int>(v);  // values are 0..7
+  for (std::uint8_t v : DescriptorBytes(values, DescriptorVariant::kCeddFull)) {
+    hex << '0' << static_cast<int>(v);  // values are 0..7
+  }
   hex << "'";
   return hex.str();
 }
@@ -96,7 +99,7 @@ TEST(SchemaMigrationTest, AnEmptyFileBecomesACurrentStore) {
   }
   RawDatabase raw(dir / "empty.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3"));
+              ElementsAre("1", "2", "3", "4"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('objects')"),
               ElementsAre("id", "name", "variant", "created_at", "updated_at", "metadata"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('views')"),
@@ -133,7 +136,7 @@ TEST(SchemaMigrationTest, AVersion1StoreIsMigratedWithItsDataIntact) {
   EXPECT_EQ(store.Get(8)->thumbnails[0], "png");
   RawDatabase raw(dir / "v1.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3"));
+              ElementsAre("1", "2", "3", "4"));
   EXPECT_EQ(raw.Text("SELECT applied_at FROM schema_version WHERE version = 1"),
             "2024-01-01T00:00:00.000Z");
 }
@@ -196,7 +199,8 @@ TEST(SchemaMigrationTest, ANewerStoreIsRefusedUntouched) {
   WriteVersion1Store(dir / "future.db");
   {
     RawDatabase raw(dir / "future.db");
-    raw.Execute("INSERT INTO schema_version VALUES (4, '2031-01-01T00:00:00.000Z')");
+    raw.Execute("INSERT INTO schema_version VALUES (" + std::to_string(kSchemaVersion + 1) +
+                ", '2031-01-01T00:00:00.000Z')");
   }
 
   const StoreError error = ErrorOnOpen([&] { SqliteModelStore store(dir / "future.db"); });
@@ -204,9 +208,9 @@ TEST(SchemaMigrationTest, ANewerStoreIsRefusedUntouched) {
   EXPECT_EQ(error.code(), StoreError::Code::kIncompatible);
   EXPECT_EQ(std::string(error.what()),
             "cannot open model store " + (dir / "future.db").string() + ": " +
-                (dir / "future.db").string() +
-                " has schema version 4, newer than the versions 1..3 this program knows: use a "
-                "newer orbit");
+                (dir / "future.db").string() + " has schema version " +
+                std::to_string(kSchemaVersion + 1) + ", newer than the versions 1.." +
+                std::to_string(kSchemaVersion) + " this program knows: use a newer orbit");
   RawDatabase raw(dir / "future.db");
   EXPECT_EQ(raw.Int("SELECT count(*) FROM pragma_table_info('objects') WHERE name = 'metadata'"),
             0);

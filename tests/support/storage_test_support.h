@@ -25,7 +25,7 @@ namespace orbit::testing {
 inline ModelView SyntheticView(int seed, double azimuth) {
   ModelView view;
   std::mt19937 random(static_cast<std::uint32_t>(seed));
-  for (std::uint8_t& value : view.descriptor) value = static_cast<std::uint8_t>(random() % 8);
+  for (int i = 0; i < kCeddSize; ++i) view.descriptor[i] = static_cast<std::uint8_t>(random() % 8);
   view.azimuth = azimuth;
   view.typical_distance = 0.01 * (seed % 50);
   return view;

@@ -34,7 +34,9 @@ std::vector<ReferenceVector> ReadReferenceVectors(const std::filesystem::path& f
     std::istringstream fields(line);
     ReferenceVector ref;
     fields >> ref.path;
-    for (auto& v : ref.values) {
+    ref.values = {};  // CEDD's 144 values; the rest stay 0
+    for (int i = 0; i < kCeddSize; ++i) {
+      std::uint8_t& v = ref.values[i];
       int value = -1;
       fields >> value;
       if (!fields || value < 0 || value > kDescriptorMaxValue) {

@@ -17,7 +17,7 @@ using testing::ReadReferenceVectors;
 
 std::string Differences(const DescriptorValues& got, const DescriptorValues& want) {
   std::string text;
-  for (int i = 0; i < kDescriptorSize; ++i) {
+  for (int i = 0; i < kCeddSize; ++i) {
     if (got[i] != want[i]) {
       text += " bin " + std::to_string(i) + ": " + std::to_string(got[i]) + " vs " +
               std::to_string(want[i]) + ";";

@@ -173,7 +173,7 @@ DescriptorValues LiteralLireCedd(const cv::Mat& bgr) {
     max_x = 2 * (width / 2);
     max_y = 2 * (height / 2);
   }
-  double histogram[kDescriptorSize] = {};
+  double histogram[kCeddSize] = {};
   for (int y = 0; y < max_y; y += sy) {
     for (int x = 0; x < max_x; x += sx) {
       double area[4] = {0, 0, 0, 0};

@@ -22,7 +22,11 @@ TEST(DescriptorTest, VariantNamesRoundTrip) {
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddLire), "cedd-lire");
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddFull), "cedd-full");
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddRobust), "cedd-robust");
-  EXPECT_EQ(VariantNames(), (std::vector<std::string>{"cedd-lire", "cedd-full", "cedd-robust"}));
+  EXPECT_EQ(VariantName(DescriptorVariant::kCeddHsvHog), "cedd-hsv-hog");
+  EXPECT_EQ(VariantNames(),
+            (std::vector<std::string>{"cedd-lire", "cedd-full", "cedd-robust", "cedd-hsv-hog"}));
+  EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddRobust), 144);
+  EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddHsvHog), 480);
   EXPECT_EQ(ParseVariant("CEDD-LIRE"), std::nullopt);
   EXPECT_EQ(ParseVariant(""), std::nullopt);
 }
@@ -39,23 +43,32 @@ TEST(DescriptorTest, ValidateDescriptorValuesNamesTheFirstValueAbove7) {
             "descriptor value 8 at index 17 is outside 0..7");
 }
 
-TEST(DescriptorTest, DescriptorFromBytesNeedsExactly144ValuesInRange) {
-  std::vector<std::uint8_t> bytes(kDescriptorSize, 7);
+TEST(DescriptorTest, DescriptorFromBytesNeedsExactlyTheVariantsLengthInRange) {
+  constexpr auto kFull = DescriptorVariant::kCeddFull;
+  std::vector<std::uint8_t> bytes(kCeddSize, 7);
   bytes[5] = 3;
-  const DescriptorValues values = DescriptorFromBytes(bytes);
+  const DescriptorValues values = DescriptorFromBytes(bytes, kFull);
   EXPECT_EQ(values[5], 3);
   EXPECT_EQ(values[143], 7);
+  EXPECT_EQ(values[144], 0) << "values past a CEDD variant's length are 0";
   bytes.pop_back();
-  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, kFull); }),
             "descriptor has 143 values, expected 144");
   bytes.push_back(7);
   bytes.push_back(7);
-  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, "view.cedd"); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, kFull, "view.cedd"); }),
             "view.cedd has 145 values, expected 144");
   bytes.pop_back();
   bytes[0] = 8;
-  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes); }),
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, kFull); }),
             "descriptor value 8 at index 0 is outside 0..7");
+  bytes[0] = 7;
+  EXPECT_EQ(ErrorMessageOf([&] { DescriptorFromBytes(bytes, DescriptorVariant::kCeddHsvHog); }),
+            "descriptor has 144 values, expected 480");
+  bytes.resize(kDescriptorSize, 2);
+  EXPECT_EQ(DescriptorFromBytes(bytes, DescriptorVariant::kCeddHsvHog)[479], 2);
+  EXPECT_EQ(DescriptorBytes(values, kFull).size(), 144u);
+  EXPECT_EQ(DescriptorBytes(values, DescriptorVariant::kCeddHsvHog).size(), 480u);
 }
 
 }  // namespace

@@ -1,0 +1,53 @@
+// The appearance channels of the cedd-hsv-hog variant (docs/design.md#appearance-channels): what
+// look-alike real objects need and CEDD lacks. CEDD's 24 coarse colour bins cannot tell a red
+// apple from a redder one, and its texture classes move under blur; a finer colour histogram and
+// a coarse layout of gradient orientations can.
+//
+// Both channels are taken from the region's canonical frame (core/descriptor/canonical_frame.h),
+// resampled to kAppearanceSide x kAppearanceSide, so that they share CEDD's robustness to size,
+// blur, noise and light:
+//   colour    a hue x saturation x value histogram, 12 x 4 x 4 = 192 bins (bin =
+//             hue_bin * 16 + saturation_bin * 4 + value_bin, OpenCV's 8-bit HSV);
+//   gradient  unsigned gradient orientations, 9 bins over 0..180 degrees, in 4 x 4 cells of
+//             16 x 16 pixels = 144 values (value = cell * 9 + orientation bin, cells row-major),
+//             each pixel's magnitude split between its two nearest bins; each cell's histogram
+//             is normalised as HOG's L2-Hys (L2, clipped at 0.2, L2 again).
+// Each channel's square roots (a Hellinger-like scale: a bin's weight grows more slowly than its
+// count) are scaled to the channel's energy (kColourNorm, kGradientNorm: its Euclidean norm) and
+// rounded to 0..7, the range every descriptor value has. The channels' norms against CEDD's are
+// what weighs them in the one Tanimoto coefficient the engines compute over the whole
+// descriptor: the channel weights of docs/design.md#appearance-channels, chosen on held-out kinds
+// of objects.
+//
+// Pure and thread-safe.
+#pragma once
+
+#include <opencv2/core.hpp>
+
+#include "core/descriptor/descriptor.h"
+
+namespace orbit {
+
+inline constexpr int kAppearanceSide = 64;  // pixels a side the channels are taken at
+inline constexpr int kHueBins = 12;
+inline constexpr int kSaturationBins = 4;
+inline constexpr int kValueBins = 4;
+inline constexpr int kColourChannelSize = kHueBins * kSaturationBins * kValueBins;
+inline constexpr int kGradientCellsPerSide = 4;
+inline constexpr int kGradientOrientations = 9;
+inline constexpr int kGradientChannelSize =
+    kGradientCellsPerSide * kGradientCellsPerSide * kGradientOrientations;
+inline constexpr int kColourChannelOffset = kCeddSize;
+inline constexpr int kGradientChannelOffset = kColourChannelOffset + kColourChannelSize;
+static_assert(kGradientChannelOffset + kGradientChannelSize == kDescriptorSize);
+
+// Euclidean norm each channel is scaled to before rounding (values then clipped to 0..7).
+inline constexpr double kColourNorm = 24.0;
+inline constexpr double kGradientNorm = 9.0;
+
+// Writes the colour and gradient channels of `canonical` (8-bit BGR, not empty: a
+// CanonicalFrame) into values[kColourChannelOffset, kDescriptorSize). Values before are left
+// as they are. Throws std::invalid_argument for an empty image or one of another type.
+void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values);
+
+}  // namespace orbit
