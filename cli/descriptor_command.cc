@@ -61,7 +61,7 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
                    "cedd-full: a 40x40 grid covering every pixel;\n"
                    "cedd-robust: cedd-full of the canonical frame (the product's variant);\n"
                    "cedd-hsv-hog: cedd-robust, then a colour histogram and gradient cells of the\n"
-                   "same frame (for real objects that look alike)")
+                   "same frame (for real objects that look alike: orbit serve --variant)")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();

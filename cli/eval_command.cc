@@ -217,7 +217,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command
       ->add_option(
           "--variant", o->variants,
-          "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust")
+          "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust, "
+          "cedd-hsv-hog")
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();

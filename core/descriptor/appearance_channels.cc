@@ -35,9 +35,11 @@ std::array<double, kColourChannelSize> ColourHistogram(const cv::Mat& small) {
   for (int y = 0; y < hsv.rows; ++y) {
     const cv::Vec3b* row = hsv.ptr<cv::Vec3b>(y);
     for (int x = 0; x < hsv.cols; ++x) {
-      const int hue = row[x][0] * kHueBins / 180;
-      const int saturation = row[x][1] * kSaturationBins / 256;
       const int value = row[x][2] * kValueBins / 256;
+      // Hue and saturation mean nothing for a dark pixel: where sensor noise would scatter
+      // dark pixels over every hue and saturation, they are all counted as hue 0, saturation 0.
+      const int saturation = value == 0 ? 0 : row[x][1] * kSaturationBins / 256;
+      const int hue = value == 0 ? 0 : row[x][0] * kHueBins / 180;
       counts[(hue * kSaturationBins + saturation) * kValueBins + value] += 1;
     }
   }
@@ -67,7 +69,8 @@ std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small)
       const double upper_share = position - lower;
       const int cell = (y / cell_side) * kGradientCellsPerSide + x / cell_side;
       double* bins = histogram.data() + cell * kGradientOrientations;
-      bins[(lower + kGradientOrientations) % kGradientOrientations] += magnitude * (1 - upper_share);
+      bins[(lower + kGradientOrientations) % kGradientOrientations] +=
+          magnitude * (1 - upper_share);
       bins[(lower + 1) % kGradientOrientations] += magnitude * upper_share;
     }
   }
@@ -100,9 +103,9 @@ void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values) {
   const auto gradient = GradientHistogram(small);
   ScaleChannel(colour, kColourNorm,
                std::span<std::uint8_t>(values.data() + kColourChannelOffset, kColourChannelSize));
-  ScaleChannel(gradient, kGradientNorm,
-               std::span<std::uint8_t>(values.data() + kGradientChannelOffset,
-                                       kGradientChannelSize));
+  ScaleChannel(
+      gradient, kGradientNorm,
+      std::span<std::uint8_t>(values.data() + kGradientChannelOffset, kGradientChannelSize));
 }
 
 }  // namespace orbit

@@ -42,8 +42,8 @@ inline constexpr int kGradientChannelOffset = kColourChannelOffset + kColourChan
 static_assert(kGradientChannelOffset + kGradientChannelSize == kDescriptorSize);
 
 // Euclidean norm each channel is scaled to before rounding (values then clipped to 0..7).
-inline constexpr double kColourNorm = 24.0;
-inline constexpr double kGradientNorm = 9.0;
+inline constexpr double kColourNorm = 48;
+inline constexpr double kGradientNorm = 5.0;
 
 // Writes the colour and gradient channels of `canonical` (8-bit BGR, not empty: a
 // CanonicalFrame) into values[kColourChannelOffset, kDescriptorSize). Values before are left

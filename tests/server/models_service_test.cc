@@ -121,7 +121,7 @@ TEST(ModelsServiceTest, EveryEnrollmentPathStoresTheSameNumbersForTheSameImage) 
   // 5. The evaluation harness, with its default seed.
   std::vector<Numbers> evaluated;
   for (std::size_t i = 0; i < kAzimuths.size(); ++i) {
-    const DatasetImage image{CoilFile(kObject, kAzimuths[i]), "obj3", double(kAzimuths[i]), {}};
+    const DatasetImage image{CoilFile(kObject, kAzimuths[i]), "obj3", double(kAzimuths[i]), {}, {}};
     const ModelView view =
         DescribeImage(image, i, {Product().variant}, {}, EvaluationOptions{}.seed).at(0).view;
     evaluated.push_back({Cedd(view.descriptor), view.typical_distance});

@@ -14,6 +14,7 @@
 
 #include <grpcpp/grpcpp.h>
 
+#include "api/conversion.h"
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/view_description.h"
@@ -33,22 +34,32 @@ namespace {
 using testing::ServerProcess;
 using testing::ServerProcessOptions;
 
-// CEDD of a COIL-100 view as the wire carries it, cached across tests.
-std::string CoilCedd(int object, int azimuth) {
-  static std::map<std::pair<int, int>, std::string> cache;
+// The descriptor of a COIL-100 view in the server's variant, cached across tests.
+const DescriptorValues& CoilDescriptor(int object, int azimuth) {
+  static std::map<std::pair<int, int>, DescriptorValues> cache;
   static std::mutex mutex;
   std::lock_guard lock(mutex);
-  auto& bytes = cache[{object, azimuth}];
-  if (bytes.empty()) {
-    const cv::Mat image =
-        ReadImageFile((testing::DataDir() / "coil-100" /
-                       ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
-                          .string());
-    const Descriptor d = ExtractCedd(image, Product().variant);  // the server's
-    const std::span<const std::uint8_t> wire = DescriptorBytes(d.values, d.variant);
-    bytes.assign(wire.begin(), wire.end());
-  }
-  return bytes;
+  const auto found = cache.find({object, azimuth});
+  if (found != cache.end()) return found->second;
+  const cv::Mat image =
+      ReadImageFile((testing::DataDir() / "coil-100" /
+                     ("obj" + std::to_string(object) + "__" + std::to_string(azimuth) + ".png"))
+                        .string());
+  return cache[{object, azimuth}] = ExtractCedd(image, Product().variant).values;  // the server's
+}
+
+// A COIL-100 view's descriptor as a message's `cedd` and `appearance` fields carry it.
+std::pair<std::string, std::string> CoilWire(int object, int azimuth) {
+  std::pair<std::string, std::string> wire;
+  SetWireDescriptor(CoilDescriptor(object, azimuth), Product().variant, &wire.first, &wire.second);
+  return wire;
+}
+
+// Sets a frame's or view's `cedd` and `appearance` to a COIL-100 view's descriptor.
+template <typename Message>
+void SetCoilDescriptor(Message* message, int object, int azimuth) {
+  SetWireDescriptor(CoilDescriptor(object, azimuth), Product().variant, message->mutable_cedd(),
+                    message->mutable_appearance());
 }
 
 double CoilTypicalDistance(int object, int azimuth) {
@@ -85,7 +96,7 @@ class Client {
     requests[0].mutable_header()->set_name(name);
     for (int a : azimuths) {
       v1::EnrollRequest r;
-      r.mutable_view()->set_cedd(CoilCedd(object, a));
+      SetCoilDescriptor(r.mutable_view(), object, a);
       r.mutable_view()->set_azimuth_deg(a);
       if (typical) r.mutable_view()->set_typical_distance(CoilTypicalDistance(object, a));
       requests.push_back(r);
@@ -186,7 +197,7 @@ class Client {
 
 v1::SessionRequest CoilFrame(int object, int azimuth, double device_azimuth) {
   v1::SessionRequest r;
-  r.mutable_frame()->set_cedd(CoilCedd(object, azimuth));
+  SetCoilDescriptor(r.mutable_frame(), object, azimuth);
   r.mutable_frame()->set_azimuth_deg(device_azimuth);
   return r;
 }
@@ -382,9 +393,10 @@ TEST(Server, SixteenConcurrentSessionsDoNotCrossTalk) {
 
 // ---- bad input: the right status, and nothing else harmed ----
 
-v1::SessionRequest FrameWith(std::string cedd, double azimuth) {
+v1::SessionRequest FrameWith(std::string cedd, double azimuth, std::string appearance = "") {
   v1::SessionRequest r;
   r.mutable_frame()->set_cedd(std::move(cedd));
+  r.mutable_frame()->set_appearance(std::move(appearance));
   r.mutable_frame()->set_azimuth_deg(azimuth);
   return r;
 }
@@ -399,7 +411,8 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
   grpc::ClientContext context;
   auto healthy = client.OpenSession(context);
 
-  std::string too_big = CoilCedd(60, 0);
+  const auto [cedd, appearance] = CoilWire(60, 0);
+  std::string too_big = cedd;
   too_big[17] = 9;
   v1::SessionOptions full_variant;
   full_variant.set_variant(v1::CEDD_FULL);
@@ -414,15 +427,15 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
       {"value out of range", {}, FrameWith(too_big, 0), grpc::INVALID_ARGUMENT, "index 17"},
       {"NaN azimuth",
        {},
-       FrameWith(CoilCedd(60, 0), std::nan("")),
+       FrameWith(cedd, std::nan(""), appearance),
        grpc::INVALID_ARGUMENT,
        "azimuth"},
       {"infinite azimuth",
        {},
-       FrameWith(CoilCedd(60, 0), std::numeric_limits<double>::infinity()),
+       FrameWith(cedd, std::numeric_limits<double>::infinity(), appearance),
        grpc::INVALID_ARGUMENT,
        "azimuth"},
-      {"other variant", full_variant, FrameWith(CoilCedd(60, 0), 0), grpc::INVALID_ARGUMENT,
+      {"other variant", full_variant, FrameWith(cedd, 0, appearance), grpc::INVALID_ARGUMENT,
        "cedd-full"},
       {"empty frame", {}, FrameWith("", 0), grpc::INVALID_ARGUMENT, "cedd"},
   };
@@ -445,8 +458,8 @@ TEST(Server, RefusesBadFramesWithInvalidArgumentAndKeepsServing) {
   // overflows a double): the HMM session answers both frames.
   v1::SessionOptions hmm;
   hmm.set_engine(v1::ENGINE_HMM);
-  const auto far_apart =
-      client.Session(hmm, {FrameWith(CoilCedd(60, 0), 1e308), FrameWith(CoilCedd(60, 0), -1e308)});
+  const auto far_apart = client.Session(
+      hmm, {FrameWith(cedd, 1e308, appearance), FrameWith(cedd, -1e308, appearance)});
   EXPECT_TRUE(far_apart.status.ok()) << far_apart.status.error_message();
   EXPECT_EQ(far_apart.updates.size(), 2u);
   // The HMM's state grows with window x states x objects: 64 x 360 is refused (default limit
@@ -505,7 +518,7 @@ TEST(Server, RefusesBadModelRequests) {
   no_views[0].mutable_header()->set_name("empty");
   EXPECT_EQ(client.EnrollRaw(no_views, &info).error_code(), grpc::INVALID_ARGUMENT);
   std::vector<v1::EnrollRequest> no_header(1);
-  no_header[0].mutable_view()->set_cedd(CoilCedd(61, 0));
+  SetCoilDescriptor(no_header[0].mutable_view(), 61, 0);
   EXPECT_EQ(client.EnrollRaw(no_header, &info).error_code(), grpc::INVALID_ARGUMENT);
   std::vector<v1::EnrollRequest> bad_view(2);
   bad_view[0].mutable_header()->set_name("bad-view");
@@ -774,7 +787,7 @@ TEST(Server, HalfSentEnrollmentLeavesNothing) {
     header.mutable_header()->set_name("half");
     ASSERT_TRUE(writer->Write(header));
     v1::EnrollRequest view;
-    view.mutable_view()->set_cedd(CoilCedd(91, 0));
+    SetCoilDescriptor(view.mutable_view(), 91, 0);
     ASSERT_TRUE(writer->Write(view));
     context.TryCancel();  // the connection breaks before the stream ends
     EXPECT_FALSE(writer->Finish().ok());

@@ -143,9 +143,9 @@ std::vector<RealView> Eth80RingViews() {
     const cv::Rect box = boxes.at(path);
     const int dx = static_cast<int>(std::lround(0.1 * box.width));
     const int dy = static_cast<int>(std::lround(0.1 * box.height));
-    const cv::Rect grown = cv::Rect(box.x - dx, box.y - dy, box.width + 2 * dx,
-                                    box.height + 2 * dy) &
-                           cv::Rect(0, 0, image.cols, image.rows);
+    const cv::Rect grown =
+        cv::Rect(box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy) &
+        cv::Rect(0, 0, image.cols, image.rows);
     views.push_back({object, std::stod(azimuth), image(grown).clone()});
   }
   return views;
