@@ -7,7 +7,8 @@
 // resampled to kAppearanceSide x kAppearanceSide, so that they share CEDD's robustness to size,
 // blur, noise and light:
 //   colour    a hue x saturation x value histogram, 12 x 4 x 4 = 192 bins (bin =
-//             hue_bin * 16 + saturation_bin * 4 + value_bin, OpenCV's 8-bit HSV);
+//             hue_bin * 16 + saturation_bin * 4 + value_bin, OpenCV's 8-bit HSV; a dark pixel,
+//             value bin 0, counts as hue 0 and saturation 0);
 //   gradient  unsigned gradient orientations, 9 bins over 0..180 degrees, in 4 x 4 cells of
 //             16 x 16 pixels = 144 values (value = cell * 9 + orientation bin, cells row-major),
 //             each pixel's magnitude split between its two nearest bins; each cell's histogram
@@ -42,7 +43,7 @@ inline constexpr int kGradientChannelOffset = kColourChannelOffset + kColourChan
 static_assert(kGradientChannelOffset + kGradientChannelSize == kDescriptorSize);
 
 // Euclidean norm each channel is scaled to before rounding (values then clipped to 0..7).
-inline constexpr double kColourNorm = 48;
+inline constexpr double kColourNorm = 48.0;
 inline constexpr double kGradientNorm = 5.0;
 
 // Writes the colour and gradient channels of `canonical` (8-bit BGR, not empty: a

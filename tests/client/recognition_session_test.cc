@@ -3,15 +3,19 @@
 // restart without losing or repeating a frame.
 #include <cmath>
 #include <csignal>
+#include <cstdio>
 #include <future>
 #include <map>
 #include <mutex>
+#include <string>
 #include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include "client/connection.h"
+#include "client/enroller.h"
+#include "client/image_file.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
 #include "core/base/angles.h"
@@ -20,6 +24,7 @@
 #include "core/engines/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
+#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -88,6 +93,46 @@ TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
     }
     EXPECT_EQ(updates.back().candidates(0).name(), "obj" + std::to_string(object));
     EXPECT_EQ(updates.back().decision(), v1::DECISION_ACCEPT);
+  }
+}
+
+// eth-80-dev's image of `object` (e.g. "apple3") at ring azimuth `azimuth` (a multiple of 22.5,
+// as the file names write it, rounded: 0, 22, 45, 68, ...).
+cv::Mat Eth80Ring(const std::string& object, int azimuth) {
+  char name[64];
+  std::snprintf(name, sizeof name, "%s-090-%03d.jpg", object.c_str(), azimuth);
+  return ReadImageFile((testing::DataDir() / "eth-80-dev" / "images" / name).string());
+}
+
+// Real look-alike objects end to end on a server in the appearance variant: four apples enrolled
+// from every other ring view, each recognised from three views between them. The client
+// library describes each frame with its appearance channels, as the server asked.
+TEST(RecognitionSession, TellsLookAlikeApplesApartOnAnAppearanceServer) {
+  ServerProcess server({.extra_args = {"--variant", "cedd-hsv-hog"}});
+  const Connection connection(testing::At(server.address()));
+  const std::vector<int> ring = {0,   22,  45,  68,  90,  112, 135, 158,
+                                 180, 202, 225, 248, 270, 292, 315, 338};
+  const std::vector<std::string> apples = {"apple1", "apple2", "apple3", "apple4"};
+  Enroller enroller(connection, {.seed = 1, .threads = 2});
+  EXPECT_EQ(enroller.variant(), DescriptorVariant::kCeddHsvHog);
+  for (const std::string& apple : apples) {
+    std::vector<EnrollmentImage> images;
+    for (std::size_t i = 0; i < ring.size(); i += 2) {
+      images.push_back({Eth80Ring(apple, ring[i]), static_cast<double>(ring[i]), {}, {}});
+    }
+    enroller.Enroll(apple, images);
+  }
+  for (const std::string& apple : apples) {
+    auto session = RecognitionSession::Open(connection, testing::TopK(4));
+    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddHsvHog);
+    for (const std::size_t i : {1, 3, 5}) {
+      session->Push(Eth80Ring(apple, ring[i]), ring[i] + 22.5 / 2);  // a compass a little off
+    }
+    const std::vector<v1::SessionUpdate> updates = ReadUpdates(*session, 3);
+    EXPECT_TRUE(session->Close().ok());
+    ASSERT_EQ(updates.size(), 3u);
+    ASSERT_GT(updates.back().candidates_size(), 0);
+    EXPECT_EQ(updates.back().candidates(0).name(), apple);
   }
 }
 
