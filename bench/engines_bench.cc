@@ -57,8 +57,8 @@ constexpr int kViewsPerObject = 72;
 class SyntheticObjects {
  public:
   explicit SyntheticObjects(int objects) : random_(20240611) {
-    std::vector<double> popularity(kDescriptorSize);
-    for (int bin = 0; bin < kDescriptorSize; ++bin) popularity[bin] = std::exp(-bin / 30.0);
+    std::vector<double> popularity(kCeddSize);
+    for (int bin = 0; bin < kCeddSize; ++bin) popularity[bin] = std::exp(-bin / 30.0);
     std::shuffle(popularity.begin(), popularity.end(), random_);
     bins_ = std::discrete_distribution<int>(popularity.begin(), popularity.end());
     for (int o = 0; o < objects; ++o) {
@@ -75,7 +75,7 @@ class SyntheticObjects {
     const auto& b = keyframes_[o][(first + 1) % 3];
     std::bernoulli_distribution jitter(0.1), up(0.5);
     DescriptorValues view{};
-    for (int i = 0; i < kDescriptorSize; ++i) {
+    for (int i = 0; i < kCeddSize; ++i) {
       int value = static_cast<int>(std::lround((1 - t) * a[i] + t * b[i]));
       if (value > 0 && jitter(random_)) value += up(random_) ? 1 : -1;
       view[i] = static_cast<std::uint8_t>(std::clamp(value, 0, kDescriptorMaxValue));

@@ -21,7 +21,10 @@ struct ViewIndexSnapshot::Segment {
   std::vector<std::shared_ptr<const IndexedObject>> objects;
   std::vector<std::size_t> first_view;  // per object: its first view's local slot
   std::size_t view_count = 0;
-  std::vector<std::uint8_t> descriptors;     // local slot s: [s * 144, (s + 1) * 144)
+  // Values per view: the variant's DescriptorLength (the rest of every descriptor is 0), so a
+  // CEDD segment scans 144 values, not 480.
+  int length = kDescriptorSize;
+  std::vector<std::uint8_t> descriptors;     // local slot s: [s * length, (s + 1) * length)
   std::vector<std::int32_t> squared_norms;   // c.c per local slot
   std::vector<std::int32_t> object_of_view;  // local object index per local slot
   std::vector<float> points;                 // the descriptors as floats, for FLANN
@@ -53,12 +56,12 @@ struct WideQuery {
   }
 };
 
-// q.c for one view, exact (values are at most 7, so 16-bit products and 32-bit sums never
-// overflow).
-std::int32_t Dot(const WideQuery& query, const std::uint8_t* view) {
+// q.c for one view of `length` values (a multiple of 16), exact (values are at most 7, so 16-bit
+// products and 32-bit sums never overflow).
+std::int32_t Dot(const WideQuery& query, const std::uint8_t* view, int length) {
   const __m128i zero = _mm_setzero_si128();
   __m128i sum = _mm_setzero_si128();
-  for (int i = 0; i < kDescriptorSize; i += 16) {
+  for (int i = 0; i < length; i += 16) {
     const __m128i bytes = _mm_loadu_si128(reinterpret_cast<const __m128i*>(view + i));
     const __m128i low = _mm_unpacklo_epi8(bytes, zero);
     const __m128i high = _mm_unpackhi_epi8(bytes, zero);
@@ -87,15 +90,18 @@ bool Better(const Scored& a, const Scored& b) {
 std::shared_ptr<const Segment> BuildSegment(
     std::vector<std::shared_ptr<const IndexedObject>> objects, const ViewIndexOptions& options) {
   auto segment = std::make_shared<Segment>();
+  static_assert(kCeddSize % 16 == 0 && kDescriptorSize % 16 == 0);
+  if (!objects.empty()) segment->length = DescriptorLength(objects.front()->model().variant);
+  const int length = segment->length;
   for (const auto& object : objects) {
     segment->first_view.push_back(segment->view_count);
     segment->view_count += object->view_count();
   }
-  segment->descriptors.reserve(segment->view_count * kDescriptorSize);
+  segment->descriptors.reserve(segment->view_count * length);
   for (std::size_t o = 0; o < objects.size(); ++o) {
     for (const ModelView& view : objects[o]->model().views) {
       segment->descriptors.insert(segment->descriptors.end(), view.descriptor.begin(),
-                                  view.descriptor.end());
+                                  view.descriptor.begin() + length);
       std::int32_t norm = 0;
       for (const std::uint8_t value : view.descriptor) norm += value * value;
       segment->squared_norms.push_back(norm);
@@ -105,7 +111,7 @@ std::shared_ptr<const Segment> BuildSegment(
   segment->objects = std::move(objects);
   if (options.search == SearchMode::kKdTree && segment->view_count > 0) {
     segment->points.assign(segment->descriptors.begin(), segment->descriptors.end());
-    flann::Matrix<float> points(segment->points.data(), segment->view_count, kDescriptorSize);
+    flann::Matrix<float> points(segment->points.data(), segment->view_count, length);
     segment->kd_tree = std::make_unique<KdTree>(points, flann::KDTreeIndexParams(options.kd_trees));
     // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
     // std::random_device, so two builds over the same views give different trees (and kd-tree
@@ -211,8 +217,9 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchExact(const DescriptorValues& qu
       const std::size_t first = segment.first_view[o];
       const std::size_t end = first + segment.objects[o]->view_count();
       for (std::size_t v = first; v < end; ++v) {
-        const double tc = TanimotoFromDot(Dot(wide, &segment.descriptors[v * kDescriptorSize]),
-                                          wide.squared_norm, segment.squared_norms[v]);
+        const double tc =
+            TanimotoFromDot(Dot(wide, &segment.descriptors[v * segment.length], segment.length),
+                            wide.squared_norm, segment.squared_norms[v]);
         if (static_cast<int>(best.size()) < count) {
           best.emplace_back(tc, segment_first_slot_[s] + v);
           std::push_heap(best.begin(), best.end(), worse_on_top);
@@ -231,7 +238,6 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
                                                        int count) const {
   const WideQuery wide(query);
   std::vector<float> point(query.begin(), query.end());
-  const flann::Matrix<float> queries(point.data(), 1, kDescriptorSize);
   std::vector<Scored> scored;
   std::vector<std::size_t> indices;
   std::vector<float> distances;
@@ -247,13 +253,15 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
     distances.assign(wanted, 0);
     flann::Matrix<std::size_t> index_matrix(indices.data(), 1, wanted);
     flann::Matrix<float> distance_matrix(distances.data(), 1, wanted);
+    const flann::Matrix<float> queries(point.data(), 1, segment.length);  // the segment's dims
     const int found = segment.kd_tree->knnSearch(queries, index_matrix, distance_matrix, wanted,
                                                  flann::SearchParams(options_.kd_checks));
     for (int i = 0; i < found; ++i) {
       const std::size_t local = indices[i];
       if (local >= segment.view_count || !state.alive[segment.object_of_view[local]]) continue;
-      const double tc = TanimotoFromDot(Dot(wide, &segment.descriptors[local * kDescriptorSize]),
-                                        wide.squared_norm, segment.squared_norms[local]);
+      const double tc =
+          TanimotoFromDot(Dot(wide, &segment.descriptors[local * segment.length], segment.length),
+                          wide.squared_norm, segment.squared_norms[local]);
       scored.emplace_back(tc, segment_first_slot_[s] + local);
     }
   }
@@ -329,8 +337,9 @@ void ViewIndexSnapshot::SimilarityToEveryView(const DescriptorValues& query,
     float* out = similarities.data() + segment_first_slot_[s];
     const std::uint8_t* views = segment.descriptors.data();
     for (std::size_t v = 0; v < segment.view_count; ++v) {
-      out[v] = static_cast<float>(TanimotoFromDot(Dot(wide, views + v * kDescriptorSize),
-                                                  wide.squared_norm, segment.squared_norms[v]));
+      out[v] =
+          static_cast<float>(TanimotoFromDot(Dot(wide, views + v * segment.length, segment.length),
+                                             wide.squared_norm, segment.squared_norms[v]));
     }
   }
 }
