@@ -72,6 +72,41 @@ int RunServe(ServeOptions& o) {
   return 0;
 }
 
+void ConnectionLimitsFlags(CLI::App& cmd, server::ConnectionLimits& c) {
+  cmd.add_option("--handshake-timeout", c.handshake_timeout_seconds,
+                 "seconds a new connection has to finish TLS and send its HTTP/2 settings")
+      ->capture_default_str();
+  cmd.add_option("--connection-idle-timeout", c.idle_timeout_seconds,
+                 "seconds a connection may stay open with no call before it is closed (a\n"
+                 "client reconnects at its next call; sessions are calls, never idle)")
+      ->capture_default_str();
+  cmd.add_option("--connection-max-age", c.max_age_seconds,
+                 "seconds after which a connection is asked to reconnect, so that clients\n"
+                 "spread over a balancer's servers (0: never)")
+      ->capture_default_str();
+  cmd.add_option("--connection-age-grace", c.age_grace_seconds,
+                 "seconds the calls of a connection past --connection-max-age get to end")
+      ->capture_default_str();
+  cmd.add_option("--keepalive", c.keepalive_seconds,
+                 "seconds of quiet after which the server pings a connection")
+      ->capture_default_str();
+  cmd.add_option("--keepalive-timeout", c.keepalive_timeout_seconds,
+                 "seconds a ping's answer may take before the connection is closed")
+      ->capture_default_str();
+  cmd.add_option("--max-streams-per-connection", c.max_streams_per_connection,
+                 "calls open at once on one connection")
+      ->capture_default_str();
+  cmd.add_option("--connection-memory", c.memory_mib,
+                 "MiB gRPC's buffers of all connections may hold; above it new connections\n"
+                 "are dropped")
+      ->capture_default_str();
+  cmd.add_option("--descriptor-reserve", c.descriptor_reserve,
+                 "file descriptors kept free for the store and the logs: a connection that\n"
+                 "would use one is closed at once (the descriptor limit itself is ulimit -n,\n"
+                 "raised to its hard limit at start)")
+      ->capture_default_str();
+}
+
 }  // namespace
 
 void AddServeCommand(CLI::App& app, int& exit_code) {
@@ -169,10 +204,33 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "decoding (PNG or JPEG; a decoded image takes up to 8 bytes a pixel)")
       ->check(CLI::Range(1, 1 << 30))
       ->capture_default_str();
+  cmd->add_option("--max-queued-calls", c.limits.max_queued_calls,
+                  "unary calls (Recognize, list, get, delete, add views) that may wait for a\n"
+                  "worker, per pool; beyond it a call is refused with RESOURCE_EXHAUSTED")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd->add_option("--max-sessions-per-token", c.limits.max_sessions_per_token,
+                  "sessions one token may hold at once, with --tokens (0: no such limit); give\n"
+                  "each device or fleet a token of its own")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
+  cmd->add_option("--max-enrollments", c.limits.max_enrollments, "Enroll streams open at once")
+      ->check(CLI::Range(1, 10000))
+      ->capture_default_str();
+  cmd->add_option("--max-enrollment-bytes", c.limits.max_enrollment_bytes,
+                  "bytes of one Enroll stream's views together (held until the stream ends)")
+      ->check(CLI::Range(std::int64_t{1} << 10, std::int64_t{16} << 30))
+      ->capture_default_str();
+  cmd->add_option("--enrollment-idle-timeout", c.limits.enrollment_idle_timeout_seconds,
+                  "seconds an Enroll stream may go without a message before it is cancelled")
+      ->check(CLI::Range(1, 86400))
+      ->capture_default_str();
   cmd->add_option("--idle-timeout", c.limits.idle_timeout_seconds,
                   "seconds without a frame before a session is closed")
       ->check(CLI::Range(1, 86400))
       ->capture_default_str();
+  // Connection limits: their ranges are checked once, by ValidateConnectionLimits.
+  ConnectionLimitsFlags(*cmd, c.connections);
   cmd->add_option("--bulk-workers", c.bulk_worker_threads,
                   "worker threads for image frames and enrollments, apart from the descriptor\n"
                   "frames of every session (0: half the cores, at least one)")

@@ -45,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   fuzz::SilenceProtobufLogs();
   std::vector<v1::EnrollRequest> requests =
       fuzz::ReadDelimitedMessages<v1::EnrollRequest>(data, size);
-  server::EnrollmentStream stream(kVariant);
+  server::EnrollmentStream stream(kVariant, server::ServerLimits().max_enrollment_bytes);
   std::string name;
   std::size_t view_messages = 0;
   int images = 0;

@@ -39,7 +39,7 @@ AccessControl AccessControl::FromFile(const std::filesystem::path& file) {
     } else {
       throw std::runtime_error(where + "unknown role '" + role + "' (recognize or admin)");
     }
-    if (!access.roles_.emplace(token, parsed).second) {
+    if (!access.roles_.emplace(token, Grant{parsed, "line " + std::to_string(number)}).second) {
       throw std::runtime_error(where + "duplicate token");
     }
   }
@@ -47,7 +47,9 @@ AccessControl AccessControl::FromFile(const std::filesystem::path& file) {
   return access;
 }
 
-grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Role needed) const {
+grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Role needed,
+                                      std::string* token_name) const {
+  if (token_name != nullptr) token_name->clear();
   if (!enabled_) return grpc::Status::OK;
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
@@ -61,9 +63,10 @@ grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Ro
   }
   const auto role = roles_.find(value.substr(kBearer.size()));
   if (role == roles_.end()) return {grpc::StatusCode::UNAUTHENTICATED, "unknown token"};
-  if (needed == Role::kAdmin && role->second != Role::kAdmin) {
+  if (needed == Role::kAdmin && role->second.role != Role::kAdmin) {
     return {grpc::StatusCode::PERMISSION_DENIED, "this call needs a token with the admin role"};
   }
+  if (token_name != nullptr) *token_name = role->second.name;
   return grpc::Status::OK;
 }
 

@@ -37,12 +37,19 @@ class AccessControl {
   std::size_t token_count() const { return roles_.size(); }
 
   // OK when the call's token grants `needed`; UNAUTHENTICATED when the token is missing, not a
-  // Bearer token or unknown; PERMISSION_DENIED when its role is too weak.
-  grpc::Status Authorize(const grpc::ServerContextBase& context, Role needed) const;
+  // Bearer token or unknown; PERMISSION_DENIED when its role is too weak. When OK and
+  // `token_name` is given, sets it to the token's name ("" without access control), what
+  // per-token limits count by: the token itself is never kept beyond this call.
+  grpc::Status Authorize(const grpc::ServerContextBase& context, Role needed,
+                         std::string* token_name = nullptr) const;
 
  private:
+  struct Grant {
+    Role role;
+    std::string name;  // "line N" of the token file
+  };
   bool enabled_ = false;
-  std::unordered_map<std::string, Role> roles_;
+  std::unordered_map<std::string, Grant> roles_;
 };
 
 }  // namespace orbit::server

@@ -32,9 +32,11 @@ grpc::Status EnrollmentStream::Accept(v1::EnrollRequest* request) {
     return {grpc::StatusCode::RESOURCE_EXHAUSTED,
             "more than " + std::to_string(kMaxViewsPerObject) + " views for one object"};
   }
-  bytes_ += request->view().ByteSizeLong();
-  if (bytes_ > kMaxEnrollmentBytes) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "enrollment larger than 256 MiB"};
+  bytes_ += static_cast<std::int64_t>(request->view().ByteSizeLong());
+  if (bytes_ > max_bytes_) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "the enrollment's views are more than " +
+                                                      std::to_string(max_bytes_) +
+                                                      " bytes (--max-enrollment-bytes)"};
   }
   views_.push_back(std::move(*request->mutable_view()));
   return grpc::Status::OK;

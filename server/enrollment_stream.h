@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 #include <grpcpp/grpcpp.h>
@@ -19,20 +20,19 @@
 
 namespace orbit::server {
 
-// All the views of one enrollment together (encoded images can be large).
-inline constexpr std::size_t kMaxEnrollmentBytes = 256u << 20;
-
 class EnrollmentStream {
  public:
-  // `variant`: the server's; a header naming another is refused.
-  explicit EnrollmentStream(DescriptorVariant variant) : variant_(variant) {}
+  // `variant`: the server's; a header naming another is refused. `max_bytes`: the views together
+  // (ServerLimits::max_enrollment_bytes).
+  EnrollmentStream(DescriptorVariant variant, std::int64_t max_bytes)
+      : variant_(variant), max_bytes_(max_bytes) {}
 
   // One message, as it arrives. OK when it was taken: the header (the first message, once), or
   // a view (moved out of *request; nothing but its size is checked before ToEnrollment). Else the
   // status that ends the stream: INVALID_ARGUMENT for a second header, a header of another
   // variant, an invalid name or metadata (storage/model_validation.h), a message with neither
   // header nor view, a view before the header; RESOURCE_EXHAUSTED for a view beyond
-  // kMaxViewsPerObject or beyond kMaxEnrollmentBytes of views.
+  // kMaxViewsPerObject or beyond max_bytes of views (naming --max-enrollment-bytes).
   grpc::Status Accept(v1::EnrollRequest* request);
 
   // After the client closed its side: the enrollment to store, in the server's variant, its
@@ -43,10 +43,11 @@ class EnrollmentStream {
 
  private:
   const DescriptorVariant variant_;
+  const std::int64_t max_bytes_;
   v1::EnrollHeader header_;
   bool have_header_ = false;
   std::vector<v1::View> views_;
-  std::size_t bytes_ = 0;  // ByteSizeLong of the views taken
+  std::int64_t bytes_ = 0;  // ByteSizeLong of the views taken
 };
 
 }  // namespace orbit::server

@@ -10,6 +10,22 @@ grpc::Status InvalidArgument(std::string message) {
   return {grpc::StatusCode::INVALID_ARGUMENT, std::move(message)};
 }
 
+grpc::Status ShuttingDown() {
+  return {grpc::StatusCode::UNAVAILABLE, "the server is shutting down"};
+}
+
+grpc::Status CallerGone() {
+  return {grpc::StatusCode::CANCELLED,
+          "the call was cancelled or its deadline passed before its work was done; dropped"};
+}
+
+grpc::Status QueueFull(int max_queued_calls) {
+  return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+          "the server is busy: " + std::to_string(max_queued_calls) +
+              " calls already wait for a worker (--max-queued-calls " +
+              std::to_string(max_queued_calls) + "); retry later"};
+}
+
 grpc::Status StatusFromException(const std::exception& error) {
   if (dynamic_cast<const std::invalid_argument*>(&error) != nullptr) {
     return InvalidArgument(error.what());

@@ -14,6 +14,16 @@ namespace orbit::server {
 // INVALID_ARGUMENT with `message`, which names the field and what is wrong with it.
 grpc::Status InvalidArgument(std::string message);
 
+// UNAVAILABLE: the server is shutting down (clients retry, on another replica).
+grpc::Status ShuttingDown();
+
+// CANCELLED: the caller cancelled the call or its deadline passed before its work was done; the
+// work was dropped (the caller no longer waits for an answer).
+grpc::Status CallerGone();
+
+// RESOURCE_EXHAUSTED: `max_queued_calls` calls already wait for a worker (--max-queued-calls).
+grpc::Status QueueFull(int max_queued_calls);
+
 // The status for an exception thrown by core/, api/ or storage/: std::invalid_argument ->
 // INVALID_ARGUMENT; StoreError by code (not found -> NOT_FOUND, already exists ->
 // ALREADY_EXISTS, full -> RESOURCE_EXHAUSTED, busy and I/O -> UNAVAILABLE: worth retrying,

@@ -1,8 +1,11 @@
 #include "server/models_service.h"
 
+#include <atomic>
 #include <chrono>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include "api/conversion.h"
@@ -58,13 +61,19 @@ ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
   }
 }
 
-// One Enroll stream: a header, then views, committed when the client closes its side.
-class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
+// One Enroll stream: a header, then views, committed when the client closes its side. Registered
+// with the enrollments' registry (server/session_registry.h) from its first read to its commit:
+// held to --max-enrollments at once, and cancelled after --enrollment-idle-timeout without a
+// message or at shutdown (docs/design.md#stream-limits).
+class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
+                            public RegisteredSession {
  public:
   EnrollReactor(grpc::CallbackServerContext* context, v1::ObjectInfo* response,
                 const ModelsEnvironment& env)
       : context_(context), response_(response), env_(env) {
-    if (grpc::Status allowed = env_.access.Authorize(*context, Role::kAdmin); !allowed.ok()) {
+    std::string token;
+    if (grpc::Status allowed = env_.access.Authorize(*context, Role::kAdmin, &token);
+        !allowed.ok()) {
       Answer(allowed, RefusalReason::kAccess);
       return;
     }
@@ -72,28 +81,58 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
       Answer(admitted, RefusalReason::kStarting);
       return;
     }
+    // OnDone leaves the registry, whether or not this stream was admitted. The registry may
+    // close the stream as soon as it is admitted, before the first read starts: the cancellation
+    // then completes that read.
+    registered_ = true;
+    if (grpc::Status admitted = env_.enrollments.Add(this, token); !admitted.ok()) {
+      Answer(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
+                           ? RefusalReason::kShuttingDown
+                           : RefusalReason::kMaxEnrollments);
+      return;
+    }
     StartRead(&request_);
   }
 
   void OnReadDone(bool ok) override {
+    std::optional<grpc::Status> closing;
+    {
+      MutexLock lock(&mutex_);
+      closing = closing_;
+      if (ok && !closing) last_activity_ = Clock::now().time_since_epoch().count();
+    }
+    if (closing) {
+      // Closed by the registry (idle, shutdown) or refused by it: the client sees CANCELLED.
+      Answer(*closing, closing_reason_);
+      return;
+    }
     if (!ok) {
       if (context_->IsCancelled()) {
         env_.metrics.CountEnrollment(EnrollmentOutcome::kCancelled);
         Finish({grpc::StatusCode::CANCELLED, "the enrollment stream broke; nothing was stored"});
       } else {
         stream_ended_ = Clock::now();
-        env_.bulk_pool.Post([this] {
-          grpc::Status status;
-          RefusalReason reason;
-          try {
-            status = Commit();
-            reason = ReasonOfCheck(status, RefusalReason::kImageBudget);
-          } catch (const std::exception& e) {  // from the catalogue: a duplicate name, the store
-            status = StatusFromException(e);
-            reason = RefusalReasonOf(e);
-          }
-          Answer(status, reason);
-        });
+        {
+          MutexLock lock(&mutex_);
+          committing_ = true;  // the registry no longer closes it: the commit answers
+        }
+        env_.bulk_pool.Post(
+            {.run =
+                 [this] {
+                   grpc::Status status;
+                   RefusalReason reason;
+                   try {
+                     status = Commit();
+                     reason = ReasonOfCheck(status, RefusalReason::kImageBudget);
+                   } catch (const std::exception& e) {  // from the catalogue: a duplicate
+                                                        // name, the store
+                     status = StatusFromException(e);
+                     reason = RefusalReasonOf(e);
+                   }
+                   Answer(status, reason);
+                 },
+             // Nothing was stored: the client may enroll again on another replica.
+             .abandon = [this] { Answer(ShuttingDown(), RefusalReason::kShuttingDown); }});
       }
       return;
     }
@@ -104,7 +143,27 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
     StartRead(&request_);
   }
 
-  void OnDone() override { delete this; }
+  // From the registry, with its lock held: cancels the call unless the commit has begun.
+  void Close(const grpc::Status& status) override {
+    {
+      MutexLock lock(&mutex_);
+      if (committing_ || closing_) return;
+      closing_ = status;
+      closing_reason_ = status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
+                            ? RefusalReason::kIdleTimeout
+                            : RefusalReason::kShuttingDown;
+    }
+    context_->TryCancel();
+  }
+
+  std::chrono::steady_clock::time_point last_activity() const override {
+    return Clock::time_point(Clock::duration(last_activity_.load()));
+  }
+
+  void OnDone() override {
+    if (registered_) env_.enrollments.Remove(this);
+    delete this;
+  }
 
  private:
   using Clock = std::chrono::steady_clock;
@@ -142,7 +201,15 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest> {
   const ModelsEnvironment& env_;
   v1::EnrollRequest request_;
   Clock::time_point stream_ended_;  // when the client closed its side
-  EnrollmentStream stream_{env_.catalogue.variant()};
+  EnrollmentStream stream_{env_.catalogue.variant(), env_.limits.max_enrollment_bytes};
+  bool registered_ = false;  // set by the constructor before its first read, read by OnDone
+  std::atomic<Clock::rep> last_activity_{Clock::now().time_since_epoch().count()};
+  // Taken after the registry's lock (it calls Close with that lock held), never before it.
+  Mutex mutex_ ABSL_ACQUIRED_AFTER(env_.enrollments.mutex());
+  bool committing_ ABSL_GUARDED_BY(mutex_) = false;
+  std::optional<grpc::Status> closing_ ABSL_GUARDED_BY(mutex_);
+  // Written with closing_, before the cancellation that makes OnReadDone read it.
+  RefusalReason closing_reason_ = RefusalReason::kInternal;
 };
 
 }  // namespace
@@ -268,6 +335,11 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
         limits->set_max_frames_per_second(env_.limits.max_frames_per_second);
         limits->set_max_window(env_.limits.max_window);
         limits->set_max_message_bytes(env_.limits.max_message_bytes);
+        limits->set_max_queued_calls(env_.limits.max_queued_calls);
+        limits->set_max_enrollments(env_.limits.max_enrollments);
+        limits->set_max_enrollment_bytes(env_.limits.max_enrollment_bytes);
+        limits->set_enrollment_idle_timeout_seconds(env_.limits.enrollment_idle_timeout_seconds);
+        limits->set_max_sessions_per_token(env_.limits.max_sessions_per_token);
         limits->set_max_views_per_object(static_cast<int>(kMaxViewsPerObject));
         limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
         limits->set_max_image_pixels(env_.limits.max_image_pixels);

@@ -13,6 +13,7 @@
 #include "server/model_catalogue.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
+#include "server/session_registry.h"
 #include "server/session_settings.h"
 #include "server/worker_pool.h"
 
@@ -26,8 +27,9 @@ struct ModelsEnvironment {
   const ServerLimits& limits;
   const SessionSettings& defaults;
   std::string version;
-  ServerMetrics& metrics;   // enrollments and refusals are counted here
-  const ServingGate& gate;  // closed until the index is loaded: every call refused UNAVAILABLE
+  ServerMetrics& metrics;        // enrollments and refusals are counted here
+  const ServingGate& gate;       // closed until the index is loaded: every call refused UNAVAILABLE
+  SessionRegistry& enrollments;  // the open Enroll streams (--max-enrollments)
 };
 
 class ModelsService final : public v1::Models::CallbackService {

@@ -12,6 +12,7 @@
 #include "core/base/parallel_for.h"
 #include "core/engines/product_pipeline.h"
 #include "orbit/version.h"
+#include "server/error_status.h"
 #include "server/metrics_endpoint.h"
 #include "server/model_catalogue.h"
 #include "server/model_change_follower.h"
@@ -89,21 +90,30 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   catalogue_->PrepareSnapshotsWith(PrepareForSessions(config_.session_defaults));
   calibrator_ = std::make_unique<RejectionCalibrator>(catalogue_->Snapshot());
   const int cpus = AvailableCpus();
-  pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus);
+  pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus,
+                                       0, config_.limits.max_queued_calls);
   bulk_pool_ = std::make_unique<WorkerPool>(
       config_.bulk_worker_threads > 0 ? config_.bulk_worker_threads : std::max(1, cpus / 2),
-      kBulkWorkerNice);
-  registry_ = std::make_unique<SessionRegistry>(config_.limits.max_sessions);
+      kBulkWorkerNice, config_.limits.max_queued_calls);
+  registry_ = std::make_unique<SessionRegistry>(
+      StreamLimits{.max_open = config_.limits.max_sessions,
+                   .max_open_per_token = config_.limits.max_sessions_per_token});
+  enrollments_ =
+      std::make_unique<SessionRegistry>(StreamLimits{.max_open = config_.limits.max_enrollments,
+                                                     .noun = "enrollment",
+                                                     .flag = "--max-enrollments",
+                                                     .activity = "a message"});
   recognition_ = std::make_unique<RecognitionService>(
       SessionEnvironment{*catalogue_, *calibrator_, *pool_, *bulk_pool_, *registry_, config_.limits,
                          config_.session_defaults, *metrics_, gate_},
       access_);
   models_ = std::make_unique<ModelsService>(
       ModelsEnvironment{*catalogue_, *pool_, *bulk_pool_, access_, config_.limits,
-                        config_.session_defaults, kOrbitVersion, *metrics_, gate_});
+                        config_.session_defaults, kOrbitVersion, *metrics_, gate_, *enrollments_});
   metrics_->WatchSessions(*registry_);
   metrics_->WatchIndex(*catalogue_);
   metrics_->WatchWorkers(*pool_, *bulk_pool_);
+  metrics_->WatchConnections();
   if (!config_.metrics_listen.empty()) {  // before gRPC: a bad address serves nothing at all
     try {
       metrics_endpoint_ = std::make_unique<MetricsEndpoint>(config_.metrics_listen, *metrics_);
@@ -117,6 +127,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   grpc::ServerBuilder builder;
   builder.AddListeningPort(config_.listen, Credentials(config_), &port_);
   builder.SetMaxReceiveMessageSize(config_.limits.max_message_bytes);
+  ApplyConnectionLimits(config_.connections, builder);
   builder.RegisterService(recognition_.get());
   builder.RegisterService(models_.get());
   server_ = builder.BuildAndStart();
@@ -182,8 +193,11 @@ void OrbitServer::SweepIdleSessions() {
     while (!stopping_ && sweeper_wake_.WaitUntil(&sweeper_mutex_, next_sweep)) {
     }
     if (stopping_) return;
-    registry_->CloseIdle(std::chrono::steady_clock::now() - timeout,
-                         config_.limits.idle_timeout_seconds);
+    const auto now = std::chrono::steady_clock::now();
+    registry_->CloseIdle(now - timeout, config_.limits.idle_timeout_seconds);
+    enrollments_->CloseIdle(
+        now - std::chrono::seconds(config_.limits.enrollment_idle_timeout_seconds),
+        config_.limits.enrollment_idle_timeout_seconds);
   }
 }
 
@@ -191,17 +205,22 @@ void OrbitServer::Shutdown() {
   std::call_once(shutdown_once_, [this] {
     follower_.reset();  // before health is shut down: it could set SERVING again
     server_->GetHealthCheckService()->Shutdown();  // every service NOT_SERVING, for good
-    registry_->CloseAll({grpc::StatusCode::UNAVAILABLE, "the server is shutting down"});
+    registry_->CloseAll(ShuttingDown());
+    enrollments_->CloseAll(ShuttingDown());
     {
       MutexLock lock(&sweeper_mutex_);
       stopping_ = true;
     }
     sweeper_wake_.SignalAll();
     sweeper_.join();
+    // Work still queued is answered UNAVAILABLE now (docs/design.md#work-queues); work running
+    // gets the grace, then gRPC cancels its call, and a Recognize batch stops at its next frame.
+    pool_->Stop();
+    bulk_pool_->Stop();
     server_->Shutdown(std::chrono::system_clock::now() +
                       std::chrono::seconds(config_.shutdown_grace_seconds));
     metrics_endpoint_.reset();  // its scrapes read the pools
-    pool_.reset();              // runs what is queued (calls already cancelled finish harmlessly)
+    pool_.reset();              // joins the threads once their running tasks end
     bulk_pool_.reset();
   });
 }

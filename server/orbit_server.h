@@ -85,6 +85,7 @@ class OrbitServer {
   std::unique_ptr<WorkerPool> pool_;
   std::unique_ptr<WorkerPool> bulk_pool_;
   std::unique_ptr<SessionRegistry> registry_;
+  std::unique_ptr<SessionRegistry> enrollments_;  // the open Enroll streams
   std::unique_ptr<RecognitionService> recognition_;
   std::unique_ptr<ModelsService> models_;
   // Reads the registry, sessions, catalogue and pools when scraped: destroyed (stopped) first.

@@ -24,13 +24,14 @@ class RefusedSession final : public grpc::ServerBidiReactor<v1::SessionRequest, 
 
 grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionService::Session(
     grpc::CallbackServerContext* context) {
-  if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize); !allowed.ok()) {
+  std::string token;
+  if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize, &token); !allowed.ok()) {
     return new RefusedSession(env_.metrics.Refuse(allowed, RefusalReason::kAccess));
   }
   if (grpc::Status admitted = env_.gate.Admit(); !admitted.ok()) {
     return new RefusedSession(env_.metrics.Refuse(admitted, RefusalReason::kStarting));
   }
-  return new SessionReactor(env_, context);
+  return new SessionReactor(env_, context, token);
 }
 
 grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerContext* context,
@@ -42,7 +43,7 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
   return RunUnaryCall(
       context, access_, Role::kRecognize, env_.gate, workers, env_.metrics,
-      [this, request, response] {
+      [this, context, request, response] {
         using Clock = std::chrono::steady_clock;
         ServerMetrics& metrics = env_.metrics;
         if (request->frames().empty()) {
@@ -63,6 +64,10 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
         // The batch is answered on the catalogue as it was when the call began.
         const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
         for (const v1::Frame& frame : request->frames()) {
+          // A caller that has gone waits for nothing: the frames left are not worth a core.
+          if (context->IsCancelled()) {
+            return metrics.Refuse(CallerGone(), RefusalReason::kCallerGone);
+          }
           if (grpc::Status answered = AnswerFrame(frame, Clock::now(), index, env_, session,
                                                   response->add_updates(), &reason);
               !answered.ok()) {

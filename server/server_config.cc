@@ -29,6 +29,7 @@ void ValidateServerConfig(const ServerConfig& config) {
                                 std::to_string(config.limits.max_hmm_cells));
   }
   ValidateEngineOptions(config.session_defaults.options);
+  ValidateConnectionLimits(config.connections);
   if (config.store_grace_seconds < 0) {
     throw std::invalid_argument("--store-grace " + std::to_string(config.store_grace_seconds) +
                                 " is negative: give seconds, 0 or more");
@@ -53,6 +54,20 @@ std::string DescribeStore(const ServerConfig& config) {
   } catch (const std::invalid_argument&) {
     return "PostgreSQL (an invalid connection string)";
   }
+}
+
+std::string DescribeConnections(const ConnectionLimits& c) {
+  std::ostringstream out;
+  out << "handshake <= " << c.handshake_timeout_seconds << " s, closed after "
+      << c.idle_timeout_seconds << " s without a call, ";
+  if (c.max_age_seconds > 0) {
+    out << "age <= " << c.max_age_seconds << " s (+" << c.age_grace_seconds << " s grace), ";
+  }
+  out << "pinged after " << c.keepalive_seconds << " s quiet (answer within "
+      << c.keepalive_timeout_seconds << " s), " << c.max_streams_per_connection
+      << " calls each, buffers <= " << c.memory_mib << " MiB, " << c.descriptor_reserve
+      << " descriptors kept free";
+  return out.str();
 }
 
 }  // namespace
@@ -99,7 +114,11 @@ std::string ServerConfig::Describe() const {
       << ", HMM window x states <= " << limits.max_hmm_cells
       << ", messages <= " << limits.max_message_bytes
       << " bytes, images <= " << limits.max_image_pixels << " pixels, idle "
-      << limits.idle_timeout_seconds << " s\n"
+      << limits.idle_timeout_seconds << " s, " << limits.max_queued_calls
+      << " calls queued per pool, " << limits.max_sessions_per_token << " sessions per token, "
+      << limits.max_enrollments << " enrollments of <= " << limits.max_enrollment_bytes
+      << " bytes (idle " << limits.enrollment_idle_timeout_seconds << " s)\n"
+      << "  connections         " << DescribeConnections(connections) << "\n"
       << "  workers             "
       << (worker_threads > 0 ? std::to_string(worker_threads) : "one per core")
       << ", for images and enrollments "

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "core/index/view_index.h"
+#include "server/connection_limits.h"
 #include "server/session_settings.h"
 
 namespace orbit::server {
@@ -34,6 +35,7 @@ struct ServerConfig {
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;
+  ConnectionLimits connections;
   int worker_threads = 0;  // descriptor frames and short calls; 0: one per core
   // Work that may take long: frames and views sent as images (decoding), enrollments and added
   // views (describing, the store's fsync). On workers of its own, so that it never delays

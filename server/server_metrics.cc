@@ -11,6 +11,7 @@
 #include "api/engine_names.h"
 #include "api/status_code_name.h"
 #include "core/base/mutex.h"
+#include "server/connection_admission.h"
 #include "server/model_catalogue.h"
 #include "server/session_registry.h"
 #include "server/worker_pool.h"
@@ -54,10 +55,13 @@ prometheus::Family<prometheus::Histogram>& AddHistogram(prometheus::Registry& re
 // nothing on a hot path updates them. Families in the order of their first gauge.
 class ServerMetrics::WatchedGauges final : public prometheus::Collectable {
  public:
+  // A counter when `type` says so: a total the watched state keeps itself.
   void Add(const std::string& name, const std::string& help, prometheus::Labels labels,
-           std::function<double()> read) ABSL_LOCKS_EXCLUDED(mutex_) {
+           std::function<double()> read,
+           prometheus::MetricType type = prometheus::MetricType::Gauge)
+      ABSL_LOCKS_EXCLUDED(mutex_) {
     MutexLock lock(&mutex_);
-    gauges_.push_back({name, help, std::move(labels), std::move(read)});
+    gauges_.push_back({name, help, std::move(labels), std::move(read), type});
   }
 
   std::vector<prometheus::MetricFamily> Collect() const ABSL_LOCKS_EXCLUDED(mutex_) override {
@@ -65,11 +69,12 @@ class ServerMetrics::WatchedGauges final : public prometheus::Collectable {
     std::vector<prometheus::MetricFamily> families;
     for (const Watched& gauge : gauges_) {
       if (families.empty() || families.back().name != gauge.name) {
-        families.push_back({gauge.name, gauge.help, prometheus::MetricType::Gauge, {}});
+        families.push_back({gauge.name, gauge.help, gauge.type, {}});
       }
       prometheus::ClientMetric metric;
       for (const auto& [name, value] : gauge.labels) metric.label.push_back({name, value});
-      metric.gauge.value = gauge.read();
+      (gauge.type == prometheus::MetricType::Counter ? metric.counter.value : metric.gauge.value) =
+          gauge.read();
       families.back().metric.push_back(std::move(metric));
     }
     return families;
@@ -80,6 +85,7 @@ class ServerMetrics::WatchedGauges final : public prometheus::Collectable {
     std::string name, help;
     prometheus::Labels labels;
     std::function<double()> read;  // thread-safe and cheap: a scrape waits for it
+    prometheus::MetricType type;
   };
   mutable Mutex mutex_;
   std::vector<Watched> gauges_ ABSL_GUARDED_BY(mutex_);  // a family's gauges are added together
@@ -188,6 +194,15 @@ void ServerMetrics::CountEnrollment(EnrollmentOutcome outcome) {
 void ServerMetrics::WatchSessions(const SessionRegistry& sessions) {
   gauges_->Add("orbit_open_sessions", "Session streams open now.", {},
                [&sessions] { return static_cast<double>(sessions.size()); });
+}
+
+void ServerMetrics::WatchConnections() {
+  gauges_->Add(
+      "orbit_connections_refused_total",
+      "TCP connections closed as soon as accepted, because they would have used the "
+      "descriptors kept free (--descriptor-reserve) or the descriptor table was full.",
+      {}, [] { return static_cast<double>(RefusedConnections()); },
+      prometheus::MetricType::Counter);
 }
 
 void ServerMetrics::WatchIndex(const ModelCatalogue& catalogue) {

@@ -111,6 +111,8 @@ class ServerMetrics {
   void WatchSessions(const SessionRegistry& sessions);
   void WatchIndex(const ModelCatalogue& catalogue);
   void WatchWorkers(const WorkerPool& workers, const WorkerPool& bulk_workers);
+  // The connections refused at accept (server/connection_admission.h), a counter.
+  void WatchConnections();
 
  private:
   static constexpr int kStatusCodes = 17;  // OK .. UNAUTHENTICATED

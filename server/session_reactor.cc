@@ -20,7 +20,7 @@ RefusalReason ReasonOfClose(const grpc::Status& status) {
 }  // namespace
 
 SessionReactor::SessionReactor(const SessionEnvironment& environment,
-                               grpc::CallbackServerContext* context)
+                               grpc::CallbackServerContext* context, const std::string& token)
     : env_(environment),
       context_(context),
       rate_limit_(environment.limits.max_frames_per_second, Clock::now()),
@@ -30,7 +30,7 @@ SessionReactor::SessionReactor(const SessionEnvironment& environment,
   // Registered before mutex_ is taken: the registry calls Close, which takes mutex_, with its own
   // lock held, so taking the registry's lock under mutex_ would invert that order. Close may
   // therefore run before the lock below is taken; it finishes the stream, and no read starts.
-  const grpc::Status admitted = env_.registry.Add(this);
+  const grpc::Status admitted = env_.registry.Add(this, token);
   StreamOp op;
   {
     MutexLock lock(&mutex_);
@@ -84,7 +84,9 @@ void SessionReactor::OnReadDone(bool ok) {
   } else if (task->frame.image().empty()) {
     Process(std::move(*task));
   } else {
-    env_.bulk_pool.Post([this, task = std::move(*task)]() mutable { Process(std::move(task)); });
+    env_.bulk_pool.Post(
+        {.run = [this, task = std::move(*task)]() mutable { Process(std::move(task)); },
+         .abandon = [this] { Abandon(); }});
   }
 }
 
@@ -134,6 +136,17 @@ void SessionReactor::Process(FrameTask task) {
       write_started_ = Clock::now();
       op.kind = StreamOp::Kind::kWrite;
     }
+  }
+  Perform(op);
+}
+
+void SessionReactor::Abandon() {
+  StreamOp op;
+  {
+    MutexLock lock(&mutex_);
+    busy_ = false;
+    op = pending_close_ ? Refuse(*pending_close_, pending_reason_)
+                        : Refuse(ShuttingDown(), RefusalReason::kShuttingDown);
   }
   Perform(op);
 }

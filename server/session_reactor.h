@@ -39,9 +39,10 @@ class SessionReactor final : public grpc::ServerBidiReactor<v1::SessionRequest, 
                              public RegisteredSession {
  public:
   // Registers with the registry (ending the stream at once with its refusal, if any) and
-  // reads the first request. `context` is the call's; it outlives the reactor.
-  SessionReactor(const SessionEnvironment& environment, grpc::CallbackServerContext* context)
-      ABSL_LOCKS_EXCLUDED(mutex_);
+  // reads the first request. `context` is the call's; it outlives the reactor. `token`: the name
+  // of the caller's token, for the per-token limit ("" without access control).
+  SessionReactor(const SessionEnvironment& environment, grpc::CallbackServerContext* context,
+                 const std::string& token) ABSL_LOCKS_EXCLUDED(mutex_);
 
   void OnReadDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;
   void OnWriteDone(bool ok) ABSL_LOCKS_EXCLUDED(mutex_) override;
@@ -96,6 +97,9 @@ class SessionReactor final : public grpc::ServerBidiReactor<v1::SessionRequest, 
 
   // Runs in the read's reaction (descriptor frames) or on the bulk workers (image frames).
   void Process(FrameTask task) ABSL_LOCKS_EXCLUDED(mutex_);
+  // Instead of Process, when the server's shutdown finds the image frame still queued: ends the
+  // stream with the close pending (the shutdown's), unanswered.
+  void Abandon() ABSL_LOCKS_EXCLUDED(mutex_);
 
   // A write not taken by the device for this long, when the session is closed, is abandoned.
   static constexpr std::chrono::seconds kStalledWrite{1};

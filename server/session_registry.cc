@@ -2,33 +2,48 @@
 
 #include <string>
 
+#include "server/error_status.h"
+
 namespace orbit::server {
 
-grpc::Status SessionRegistry::Add(RegisteredSession* session) {
+grpc::Status SessionRegistry::Add(RegisteredSession* session, const std::string& token) {
   MutexLock lock(&mutex_);
-  if (closed_) return {grpc::StatusCode::UNAVAILABLE, "the server is shutting down"};
-  if (static_cast<int>(sessions_.size()) >= max_sessions_) {
-    return {grpc::StatusCode::RESOURCE_EXHAUSTED, "this server already runs its maximum of " +
-                                                      std::to_string(max_sessions_) +
-                                                      " sessions; try again later"};
+  if (closed_) return ShuttingDown();
+  if (static_cast<int>(sessions_.size()) >= limits_.max_open) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "this server already runs its maximum of " + std::to_string(limits_.max_open) + " " +
+                limits_.noun + "s (" + limits_.flag + "); try again later"};
   }
-  sessions_.insert(session);
+  const bool capped = !token.empty() && limits_.max_open_per_token > 0;
+  if (capped && per_token_[token] >= limits_.max_open_per_token) {
+    return {grpc::StatusCode::RESOURCE_EXHAUSTED,
+            "this token already holds its maximum of " +
+                std::to_string(limits_.max_open_per_token) + " " + limits_.noun + "s (" +
+                limits_.per_token_flag + "); close one or use a token of its own per device"};
+  }
+  sessions_.emplace(session, token);
+  if (capped) ++per_token_[token];
   return grpc::Status::OK;
 }
 
 void SessionRegistry::Remove(RegisteredSession* session) {
   MutexLock lock(&mutex_);
-  sessions_.erase(session);
+  const auto found = sessions_.find(session);
+  if (found == sessions_.end()) return;
+  if (const auto count = per_token_.find(found->second); count != per_token_.end()) {
+    if (--count->second == 0) per_token_.erase(count);
+  }
+  sessions_.erase(found);
 }
 
 void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
                                 int idle_timeout_seconds) {
   MutexLock lock(&mutex_);
-  for (RegisteredSession* session : sessions_) {
+  for (const auto& [session, token] : sessions_) {
     if (session->last_activity() < cutoff) {
-      session->Close(
-          {grpc::StatusCode::DEADLINE_EXCEEDED,
-           "session closed after " + std::to_string(idle_timeout_seconds) + " s without a frame"});
+      session->Close({grpc::StatusCode::DEADLINE_EXCEEDED,
+                      limits_.noun + " closed after " + std::to_string(idle_timeout_seconds) +
+                          " s without " + limits_.activity});
     }
   }
 }
@@ -36,7 +51,7 @@ void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
 void SessionRegistry::CloseAll(const grpc::Status& status) {
   MutexLock lock(&mutex_);
   closed_ = true;
-  for (RegisteredSession* session : sessions_) session->Close(status);
+  for (const auto& [session, token] : sessions_) session->Close(status);
 }
 
 int SessionRegistry::size() const {

@@ -1,5 +1,6 @@
-// SessionRegistry: the open recognition sessions, for the limit on their number, the idle
-// timeout and a clean end at shutdown.
+// SessionRegistry: the open streams of one kind (recognition sessions, enrollments), for the
+// limits on their number, in all and per token, the idle timeout and a clean end at shutdown
+// (docs/design.md#stream-limits).
 //
 // Thread-safe. A session registers when it opens and leaves in its OnDone; Close() is called
 // with the registry's lock held, which is safe because gRPC never runs OnDone inside Finish. A
@@ -8,7 +9,8 @@
 #pragma once
 
 #include <chrono>
-#include <unordered_set>
+#include <string>
+#include <unordered_map>
 
 #include <grpcpp/grpcpp.h>
 
@@ -26,16 +28,28 @@ class RegisteredSession {
   virtual std::chrono::steady_clock::time_point last_activity() const = 0;
 };
 
+// The streams a registry holds, as its refusals name them.
+struct StreamLimits {
+  int max_open = 256;
+  int max_open_per_token = 0;    // streams one token may hold at once; 0: no such limit
+  std::string noun = "session";  // "session closed after ..."
+  std::string flag = "--max-sessions";
+  std::string per_token_flag = "--max-sessions-per-token";
+  std::string activity = "a frame";  // "... s without a frame"
+};
+
 class SessionRegistry {
  public:
-  explicit SessionRegistry(int max_sessions) : max_sessions_(max_sessions) {}
+  explicit SessionRegistry(StreamLimits limits) : limits_(std::move(limits)) {}
 
-  // Admits `session` unless max_sessions are open (RESOURCE_EXHAUSTED) or the server is
-  // shutting down (UNAVAILABLE).
-  grpc::Status Add(RegisteredSession* session) ABSL_LOCKS_EXCLUDED(mutex_);
+  // Admits `session`, opened with the token named `token` ("" without access control), unless
+  // max_open are open, or max_open_per_token of that token's (RESOURCE_EXHAUSTED naming the
+  // limit and its flag), or the server is shutting down (UNAVAILABLE).
+  grpc::Status Add(RegisteredSession* session, const std::string& token = "")
+      ABSL_LOCKS_EXCLUDED(mutex_);
   void Remove(RegisteredSession* session) ABSL_LOCKS_EXCLUDED(mutex_);
 
-  // Closes, with DEADLINE_EXCEEDED, every session idle since before `cutoff`.
+  // Closes, with DEADLINE_EXCEEDED, every stream idle since before `cutoff`.
   void CloseIdle(std::chrono::steady_clock::time_point cutoff, int idle_timeout_seconds)
       ABSL_LOCKS_EXCLUDED(mutex_);
 
@@ -43,15 +57,18 @@ class SessionRegistry {
   void CloseAll(const grpc::Status& status) ABSL_LOCKS_EXCLUDED(mutex_);
 
   int size() const ABSL_LOCKS_EXCLUDED(mutex_);
+  const StreamLimits& limits() const { return limits_; }
 
   // The lock held while a session's Close() runs: named by the sessions' lock-order
   // annotations. Not to be taken outside the registry.
   Mutex& mutex() const ABSL_LOCK_RETURNED(mutex_) { return mutex_; }
 
  private:
-  const int max_sessions_;
+  const StreamLimits limits_;
   mutable Mutex mutex_;
-  std::unordered_set<RegisteredSession*> sessions_ ABSL_GUARDED_BY(mutex_);
+  // Each open stream, with the token it was opened with.
+  std::unordered_map<RegisteredSession*, std::string> sessions_ ABSL_GUARDED_BY(mutex_);
+  std::unordered_map<std::string, int> per_token_ ABSL_GUARDED_BY(mutex_);
   bool closed_ ABSL_GUARDED_BY(mutex_) = false;
 };
 

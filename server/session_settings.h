@@ -2,6 +2,8 @@
 // device asked for (v1::SessionOptions), the server's defaults and its limits.
 #pragma once
 
+#include <cstdint>
+
 #include <grpcpp/grpcpp.h>
 
 #include "api/engine_names.h"
@@ -29,6 +31,18 @@ struct ServerLimits {
   // 8 bytes a pixel: 4 channels of 16 bits); CEDD needs far fewer pixels than that. Unchecked, a
   // small compressed file could claim 20000 x 20000 pixels, gigabytes once decoded.
   int max_image_pixels = 4096 * 4096;
+  // Unary calls waiting for a worker, per pool (server/worker_pool.h): beyond it a call is
+  // refused RESOURCE_EXHAUSTED at once rather than holding its request (up to
+  // max_message_bytes) in a queue the workers may never reach in time.
+  int max_queued_calls = 32;
+  // Enroll streams: open at once, the bytes of one stream's views together (encoded images can
+  // be large; held until the stream ends), and the time one may go without a message.
+  int max_enrollments = 4;
+  std::int64_t max_enrollment_bytes = std::int64_t{256} << 20;
+  int enrollment_idle_timeout_seconds = 30;
+  // Session streams one token may hold at once (with --tokens): one device's token cannot take
+  // every slot of max_sessions. 0: no per-token limit.
+  int max_sessions_per_token = 64;
 };
 
 struct SessionSettings {

@@ -1,6 +1,10 @@
 // Runs a unary call's work on the worker pool after checking the caller's role and that the
 // server has loaded its models (server/serving_gate.h), and finishes
-// the call with the work's status (exceptions become statuses via StatusFromException). Keeps
+// the call with the work's status (exceptions become statuses via StatusFromException). A call
+// finds the pool's queue of calls full: RESOURCE_EXHAUSTED at once, naming the limit. A call
+// whose caller has gone (cancelled, or past its deadline) before a worker takes it is dropped
+// unrun; one the server's shutdown finds still queued is answered UNAVAILABLE
+// (docs/design.md#work-queues). Keeps
 // store reads and writes (fsync) off gRPC's threads. Refusals are counted in `metrics`: the
 // caller's role and exceptions here, the statuses the work returns by the work itself
 // (ServerMetrics::Refuse), since only it knows which rule refused.
@@ -35,7 +39,11 @@ grpc::ServerUnaryReactor* RunUnaryCall(grpc::CallbackServerContext* context,
     reactor->Finish(metrics.Refuse(admitted, RefusalReason::kStarting));
     return reactor;
   }
-  pool.Post([reactor, metrics = &metrics, work = std::move(work)]() mutable {
+  auto run = [context, reactor, metrics = &metrics, work = std::move(work)]() mutable {
+    if (context->IsCancelled()) {
+      reactor->Finish(metrics->Refuse(CallerGone(), RefusalReason::kCallerGone));
+      return;
+    }
     grpc::Status status;
     try {
       status = work();
@@ -43,7 +51,13 @@ grpc::ServerUnaryReactor* RunUnaryCall(grpc::CallbackServerContext* context,
       status = metrics->Refuse(StatusFromException(e), RefusalReasonOf(e));
     }
     reactor->Finish(status);
-  });
+  };
+  auto abandon = [reactor, metrics = &metrics] {
+    reactor->Finish(metrics->Refuse(ShuttingDown(), RefusalReason::kShuttingDown));
+  };
+  if (!pool.TryPost({std::move(run), std::move(abandon)})) {
+    reactor->Finish(metrics.Refuse(QueueFull(pool.max_queued_calls()), RefusalReason::kQueueFull));
+  }
   return reactor;
 }
 

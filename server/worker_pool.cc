@@ -4,7 +4,8 @@
 
 namespace orbit::server {
 
-WorkerPool::WorkerPool(int threads, int nice) {
+WorkerPool::WorkerPool(int threads, int nice, int max_queued_calls)
+    : max_queued_calls_(max_queued_calls) {
   threads_.reserve(threads);
   for (int i = 0; i < threads; ++i) {
     threads_.emplace_back([this, nice] {
@@ -15,38 +16,73 @@ WorkerPool::WorkerPool(int threads, int nice) {
 }
 
 WorkerPool::~WorkerPool() {
-  {
-    MutexLock lock(&mutex_);
-    stopping_ = true;
-  }
-  wake_.SignalAll();
+  Stop();
   for (std::thread& t : threads_) t.join();
 }
 
-void WorkerPool::Post(std::function<void()> task) {
+void WorkerPool::Post(Task task) {
   {
     MutexLock lock(&mutex_);
-    tasks_.push_back(std::move(task));
+    if (!stopping_) {
+      stream_work_.push_back(std::move(task));
+      task.abandon = nullptr;
+    }
+  }
+  if (task.abandon) {
+    task.abandon();
+    return;
   }
   wake_.Signal();
 }
 
+bool WorkerPool::TryPost(Task task) {
+  {
+    MutexLock lock(&mutex_);
+    if (!stopping_) {
+      if (static_cast<int>(calls_.size()) >= max_queued_calls_) return false;
+      calls_.push_back(std::move(task));
+      task.abandon = nullptr;
+    }
+  }
+  if (task.abandon) {
+    task.abandon();
+    return true;
+  }
+  wake_.Signal();
+  return true;
+}
+
+void WorkerPool::Stop() {
+  std::deque<Task> abandoned;
+  {
+    MutexLock lock(&mutex_);
+    stopping_ = true;
+    abandoned = std::move(stream_work_);
+    for (Task& call : calls_) abandoned.push_back(std::move(call));
+    stream_work_.clear();
+    calls_.clear();
+  }
+  wake_.SignalAll();
+  for (Task& task : abandoned) task.abandon();
+}
+
 int WorkerPool::queued() const {
   MutexLock lock(&mutex_);
-  return static_cast<int>(tasks_.size());
+  return static_cast<int>(stream_work_.size() + calls_.size());
 }
 
 void WorkerPool::Run() {
   for (;;) {
-    std::function<void()> task;
+    Task task;
     {
       MutexLock lock(&mutex_);
-      while (!stopping_ && tasks_.empty()) wake_.Wait(&mutex_);
-      if (tasks_.empty()) return;  // stopping, and everything posted has run
-      task = std::move(tasks_.front());
-      tasks_.pop_front();
+      while (!stopping_ && stream_work_.empty() && calls_.empty()) wake_.Wait(&mutex_);
+      if (stopping_) return;  // Stop() abandoned what was queued
+      std::deque<Task>& queue = stream_work_.empty() ? calls_ : stream_work_;
+      task = std::move(queue.front());
+      queue.pop_front();
     }
-    task();
+    task.run();
   }
 }
 

@@ -16,6 +16,7 @@ namespace {
 
 constexpr auto kLire = DescriptorVariant::kCeddLire;
 const ServerLimits kLimits;
+const std::int64_t kMaxBytes = kLimits.max_enrollment_bytes;
 
 v1::EnrollRequest Header(const std::string& name, const std::string& metadata = "") {
   v1::EnrollRequest request;
@@ -37,7 +38,7 @@ void ExpectStatus(const grpc::Status& status, grpc::StatusCode code, const std::
 }
 
 TEST(EnrollmentStreamTest, AHeaderThenViewsMakeTheEnrollment) {
-  EnrollmentStream stream(kLire);
+  EnrollmentStream stream(kLire, kMaxBytes);
   v1::EnrollRequest header = Header("mug");
   v1::EnrollRequest first = View(1, 10), second = View(2, 370);
   second.mutable_view()->set_typical_distance(0.25);
@@ -63,7 +64,7 @@ TEST(EnrollmentStreamTest, AViewSentAsAnImageIsDescribedAndThumbnailsAreKeptPerV
   cv::randu(image, 0, 256);
   std::vector<std::uint8_t> png;
   cv::imencode(".png", image, png);
-  EnrollmentStream stream(kLire);
+  EnrollmentStream stream(kLire, kMaxBytes);
   v1::EnrollRequest header = Header("box", R"({"shelf": 4})");
   v1::EnrollRequest described = View(3, 0);
   v1::EnrollRequest uploaded;
@@ -82,7 +83,7 @@ TEST(EnrollmentStreamTest, AViewSentAsAnImageIsDescribedAndThumbnailsAreKeptPerV
 TEST(EnrollmentStreamTest, MessagesOutOfOrderOrInvalidEndTheStream) {
   constexpr auto kInvalid = grpc::StatusCode::INVALID_ARGUMENT;
   {
-    EnrollmentStream stream(kLire);
+    EnrollmentStream stream(kLire, kMaxBytes);
     v1::EnrollRequest view = View(1, 0), empty;
     ExpectStatus(stream.Accept(&view), kInvalid, "the first message must be the header");
     ExpectStatus(stream.Accept(&empty), kInvalid, "empty request: set header or view");
@@ -91,7 +92,7 @@ TEST(EnrollmentStreamTest, MessagesOutOfOrderOrInvalidEndTheStream) {
                  "no header: nothing to enroll");
   }
   {
-    EnrollmentStream stream(kLire);
+    EnrollmentStream stream(kLire, kMaxBytes);
     v1::EnrollRequest header = Header("mug");
     ASSERT_TRUE(stream.Accept(&header).ok());
     ExpectStatus(stream.Accept(&header), kInvalid, "the header may be sent only once");
@@ -99,7 +100,7 @@ TEST(EnrollmentStreamTest, MessagesOutOfOrderOrInvalidEndTheStream) {
     ExpectStatus(stream.ToEnrollment(kLimits, &enrollment), kInvalid,
                  "no views: an object needs at least one");
   }
-  EnrollmentStream stream(kLire);
+  EnrollmentStream stream(kLire, kMaxBytes);
   v1::EnrollRequest header = Header("bad name");
   ExpectStatus(stream.Accept(&header), kInvalid,
                "object name \"bad name\" has a character not allowed at position 3 (allowed: "
@@ -123,7 +124,7 @@ TEST(EnrollmentStreamTest, MessagesOutOfOrderOrInvalidEndTheStream) {
 }
 
 TEST(EnrollmentStreamTest, AtMostTheStoresViewsPerObject) {
-  EnrollmentStream stream(kLire);
+  EnrollmentStream stream(kLire, kMaxBytes);
   v1::EnrollRequest header = Header("many");
   ASSERT_TRUE(stream.Accept(&header).ok());
   for (std::size_t i = 0; i < kMaxViewsPerObject; ++i) {
@@ -133,6 +134,20 @@ TEST(EnrollmentStreamTest, AtMostTheStoresViewsPerObject) {
   v1::EnrollRequest one_more = View(1, 0);
   ExpectStatus(stream.Accept(&one_more), grpc::StatusCode::RESOURCE_EXHAUSTED,
                "more than 1024 views for one object");
+}
+
+TEST(EnrollmentStreamTest, RefusesViewsBeyondItsByteLimitNamingTheFlag) {
+  // Each view is a little over kCeddSize bytes on the wire; three fit in 600 bytes, four do not.
+  EnrollmentStream stream(kLire, 600);
+  v1::EnrollRequest header = Header("mug");
+  ASSERT_TRUE(stream.Accept(&header).ok());
+  for (int i = 0; i < 3; ++i) {
+    v1::EnrollRequest view = View(1, i * 10.0);
+    ASSERT_TRUE(stream.Accept(&view).ok()) << i;
+  }
+  v1::EnrollRequest fourth = View(1, 30.0);
+  ExpectStatus(stream.Accept(&fourth), grpc::StatusCode::RESOURCE_EXHAUSTED,
+               "the enrollment's views are more than 600 bytes (--max-enrollment-bytes)");
 }
 
 }  // namespace

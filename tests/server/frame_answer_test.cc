@@ -59,8 +59,8 @@ class FrameAnswerTest : public ::testing::Test {
   ModelCatalogue catalogue_;
   std::vector<ObjectId> ids_;
   std::unique_ptr<RejectionCalibrator> calibrator_;
-  WorkerPool pool_{1};
-  SessionRegistry registry_{4};
+  WorkerPool pool_{1, 0, 32};
+  SessionRegistry registry_{{.max_open = 4}};
   ServerLimits limits_;
   SessionSettings defaults_;
   ServerMetrics metrics_;

@@ -17,6 +17,7 @@
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "server/metrics_endpoint.h"
 #include "tests/support/http_client.h"
+#include "tests/support/metric_sample.h"
 #include "tests/support/server_process.h"
 #include "tests/support/test_data.h"
 
@@ -25,21 +26,7 @@ namespace {
 
 using ::testing::HasSubstr;
 using testing::HttpRequest;
-
-// The value of the sample `series` (name and labels exactly as exposed) in `text`; -1 and a
-// test failure when there is no such line.
-double Sample(const std::string& text, const std::string& series) {
-  const std::string line_start = series + " ";
-  for (std::size_t at = 0; at < text.size();) {
-    const std::size_t end = text.find('\n', at);
-    if (text.compare(at, line_start.size(), line_start) == 0) {
-      return std::stod(text.substr(at + line_start.size(), end - at - line_start.size()));
-    }
-    at = end == std::string::npos ? text.size() : end + 1;
-  }
-  ADD_FAILURE() << "no sample " << series << " in\n" << text;
-  return -1;
-}
+using testing::Sample;
 
 const std::string kInvalidField =
     R"(orbit_refusals_total{code="INVALID_ARGUMENT",reason="invalid_field"})";

@@ -35,7 +35,7 @@ class RecordingSession : public RegisteredSession {
 };
 
 TEST(SessionRegistryTest, CountsTheSessionsAddedAndNotYetRemoved) {
-  SessionRegistry registry(8);
+  SessionRegistry registry({.max_open = 8});
   RecordingSession a, b, c;
   EXPECT_EQ(registry.size(), 0);
   ASSERT_TRUE(registry.Add(&a).ok());
@@ -50,14 +50,14 @@ TEST(SessionRegistryTest, CountsTheSessionsAddedAndNotYetRemoved) {
 }
 
 TEST(SessionRegistryTest, RefusesSessionsBeyondTheMaximumUntilOneLeaves) {
-  SessionRegistry registry(2);
+  SessionRegistry registry({.max_open = 2});
   RecordingSession a, b, c;
   ASSERT_TRUE(registry.Add(&a).ok());
   ASSERT_TRUE(registry.Add(&b).ok());
 
   const grpc::Status refused = registry.Add(&c);
   EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
-  EXPECT_THAT(refused.error_message(), HasSubstr("maximum of 2 sessions"));
+  EXPECT_THAT(refused.error_message(), HasSubstr("maximum of 2 sessions (--max-sessions)"));
   EXPECT_EQ(registry.size(), 2);
 
   registry.Remove(&a);
@@ -72,7 +72,7 @@ TEST(SessionRegistryTest, CloseIdleClosesExactlyTheSessionsIdleSinceBeforeTheCut
   RecordingSession just_idle(cutoff - seconds(1));
   RecordingSession at_cutoff(cutoff);
   RecordingSession active(cutoff + seconds(5));
-  SessionRegistry registry(8);
+  SessionRegistry registry({.max_open = 8});
   for (RecordingSession* session : {&long_idle, &just_idle, &at_cutoff, &active}) {
     ASSERT_TRUE(registry.Add(session).ok());
   }
@@ -91,7 +91,7 @@ TEST(SessionRegistryTest, CloseIdleClosesExactlyTheSessionsIdleSinceBeforeTheCut
 }
 
 TEST(SessionRegistryTest, CloseAllClosesEverySessionWithTheGivenStatus) {
-  SessionRegistry registry(8);
+  SessionRegistry registry({.max_open = 8});
   RecordingSession a, b, c;
   for (RecordingSession* session : {&a, &b, &c}) ASSERT_TRUE(registry.Add(session).ok());
   registry.Remove(&b);
@@ -107,7 +107,7 @@ TEST(SessionRegistryTest, CloseAllClosesEverySessionWithTheGivenStatus) {
 }
 
 TEST(SessionRegistryTest, RefusesNewSessionsAfterCloseAllEvenWhenEmpty) {
-  SessionRegistry registry(8);
+  SessionRegistry registry({.max_open = 8});
   RecordingSession open, late;
   ASSERT_TRUE(registry.Add(&open).ok());
 
@@ -119,6 +119,35 @@ TEST(SessionRegistryTest, RefusesNewSessionsAfterCloseAllEvenWhenEmpty) {
   EXPECT_EQ(registry.Add(&late).error_code(), grpc::StatusCode::UNAVAILABLE);
   EXPECT_EQ(registry.size(), 0);
   EXPECT_TRUE(late.closed_with().empty());
+}
+
+TEST(SessionRegistryTest, RefusesATokenBeyondItsShareAndKeepsAdmittingOthers) {
+  SessionRegistry registry({.max_open = 8, .max_open_per_token = 2});
+  RecordingSession a, b, c, d, anonymous;
+  ASSERT_TRUE(registry.Add(&a, "phone").ok());
+  ASSERT_TRUE(registry.Add(&b, "phone").ok());
+  const grpc::Status refused = registry.Add(&c, "phone");
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_THAT(refused.error_message(),
+              HasSubstr("maximum of 2 sessions (--max-sessions-per-token)"));
+  EXPECT_TRUE(registry.Add(&d, "drone").ok()) << "another token's share is its own";
+  registry.Remove(&a);
+  EXPECT_TRUE(registry.Add(&c, "phone").ok()) << "a slot freed by the token is its again";
+  // Without access control there is no token to share by: only max_open applies.
+  EXPECT_TRUE(registry.Add(&anonymous).ok());
+  EXPECT_EQ(registry.size(), 4);
+}
+
+TEST(SessionRegistryTest, NamesItsKindInItsRefusals) {
+  SessionRegistry registry(
+      {.max_open = 1, .noun = "enrollment", .flag = "--max-enrollments", .activity = "a message"});
+  RecordingSession a(steady_clock::now() - seconds(60)), b;
+  ASSERT_TRUE(registry.Add(&a).ok());
+  EXPECT_THAT(registry.Add(&b).error_message(),
+              HasSubstr("maximum of 1 enrollments (--max-enrollments)"));
+  registry.CloseIdle(steady_clock::now(), 30);
+  ASSERT_EQ(a.closed_with().size(), 1u);
+  EXPECT_EQ(a.closed_with()[0].error_message(), "enrollment closed after 30 s without a message");
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <fcntl.h>
 #include <signal.h>
+#include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,8 +23,9 @@ std::filesystem::path MakeTempDir() {
   return pattern;
 }
 
-// fork + exec `orbit` with `args`, stdout and stderr into `log`.
-pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log) {
+// fork + exec `orbit` with `args`, stdout and stderr into `log`, under `descriptor_limit`.
+pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log,
+            std::optional<int> descriptor_limit) {
   std::vector<std::string> argv_storage = {OrbitBinary()};
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
   std::vector<char*> argv;
@@ -35,6 +37,11 @@ pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& l
     const int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
     dup2(fd, STDOUT_FILENO);
     dup2(fd, STDERR_FILENO);
+    if (descriptor_limit) {
+      const rlimit limit{static_cast<rlim_t>(*descriptor_limit),
+                         static_cast<rlim_t>(*descriptor_limit)};
+      if (setrlimit(RLIMIT_NOFILE, &limit) != 0) _exit(126);
+    }
     execv(argv[0], argv.data());
     _exit(127);
   }
@@ -81,7 +88,7 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   if (options.tls_key) args.insert(args.end(), {"--tls-key", options.tls_key->string()});
   if (options.metrics) args.insert(args.end(), {"--metrics-listen", "127.0.0.1:0"});
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
-  pid_ = Spawn(args, log_file_);
+  pid_ = Spawn(args, log_file_, options.descriptor_limit);
 
   const std::string marker = "listening on ";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -143,7 +150,7 @@ std::string ServerProcess::Log() const { return Slurp(log_file_); }
 
 RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args) {
   const std::filesystem::path dir = MakeTempDir();
-  const pid_t pid = Spawn(args, dir / "server.log");
+  const pid_t pid = Spawn(args, dir / "server.log", std::nullopt);
   RefusedStart result;
   result.exit_code = WaitExit(pid, std::chrono::seconds(30));
   if (result.exit_code < 0) {

@@ -30,6 +30,9 @@ struct ServerProcessOptions {
   std::optional<std::filesystem::path> tls_key = std::nullopt;
   // --metrics-listen 127.0.0.1:0: the Prometheus endpoint on a free loopback port.
   bool metrics = false;
+  // The server's descriptor limit (RLIMIT_NOFILE, soft and hard, as `ulimit -n` sets it);
+  // unset: inherited.
+  std::optional<int> descriptor_limit = std::nullopt;
   std::vector<std::string> extra_args =
       {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };

@@ -1,0 +1,361 @@
+// Hostile clients against a real `orbit serve` (docs/design.md#work-queues,
+// docs/design.md#stream-limits): calls abandoned by their callers, a queue flooded with calls,
+// a shutdown with work queued, enrollments held open, one token holding every session slot.
+// Each attack is made as a client would make it, and each test checks what a well-behaved
+// client on the side sees. The idle-connection flood is in connection_admission_test.cc.
+#include <gtest/gtest.h>
+
+#include <signal.h>
+
+#include <algorithm>
+#include <chrono>
+#include <condition_variable>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <grpcpp/grpcpp.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "core/descriptor/descriptor.h"
+#include "orbit/v1/models.grpc.pb.h"
+#include "orbit/v1/recognition.grpc.pb.h"
+#include "tests/support/http_client.h"
+#include "tests/support/metric_sample.h"
+#include "tests/support/server_process.h"
+
+namespace orbit {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using testing::ServerProcess;
+using testing::ServerProcessOptions;
+
+// A 4096 x 4096 PNG of one grey: about 50 KB on the wire, 48 MiB and a tenth of a second or more
+// of a core once decoded. 64 of them fit in one 4 MiB Recognize call.
+const std::string& LargePng() {
+  static const std::string png = [] {
+    std::vector<unsigned char> bytes;
+    cv::imencode(".png", cv::Mat(4096, 4096, CV_8UC3, cv::Scalar(90, 120, 150)), bytes);
+    return std::string(bytes.begin(), bytes.end());
+  }();
+  return png;
+}
+
+v1::RecognizeRequest ImageBatch(int frames) {
+  v1::RecognizeRequest request;
+  for (int i = 0; i < frames; ++i) {
+    v1::Frame* frame = request.add_frames();
+    frame->set_image(LargePng());
+    frame->set_azimuth_deg(i);
+  }
+  return request;
+}
+
+std::string Descriptor(int seed) {
+  std::string cedd(kCeddSize, '\0');
+  for (int i = 0; i < kCeddSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
+  return cedd;
+}
+
+// Recognize calls in flight, as a client that sends and forgets (gRPC's callback API: they make
+// progress on gRPC's threads while the test does something else).
+class PendingCalls {
+ public:
+  explicit PendingCalls(std::shared_ptr<grpc::Channel> channel)
+      : stub_(v1::Recognition::NewStub(std::move(channel))) {}
+
+  void Send(const v1::RecognizeRequest& request, std::chrono::milliseconds deadline) {
+    calls_.push_back(std::make_unique<Call>());
+    Call* call = calls_.back().get();
+    call->request = request;
+    call->context.set_deadline(std::chrono::system_clock::now() + deadline);
+    stub_->async()->Recognize(&call->context, &call->request, &call->response,
+                              [this, call](grpc::Status status) {
+                                std::lock_guard lock(mutex_);
+                                call->status = std::move(status);
+                                ++ended_;
+                                ended_changed_.notify_all();
+                              });
+  }
+
+  void CancelAll() {
+    for (auto& call : calls_) call->context.TryCancel();
+  }
+
+  // The status of every call sent, once all have ended.
+  std::vector<grpc::Status> Wait() {
+    std::unique_lock lock(mutex_);
+    ended_changed_.wait(lock, [this] { return ended_ == calls_.size(); });
+    std::vector<grpc::Status> statuses;
+    for (const auto& call : calls_) statuses.push_back(call->status);
+    return statuses;
+  }
+
+ private:
+  struct Call {
+    grpc::ClientContext context;
+    v1::RecognizeRequest request;  // outlives the call, as the callback API requires
+    v1::RecognizeResponse response;
+    grpc::Status status;
+  };
+  std::unique_ptr<v1::Recognition::Stub> stub_;
+  std::vector<std::unique_ptr<Call>> calls_;
+  std::mutex mutex_;
+  std::condition_variable ended_changed_;
+  std::size_t ended_ = 0;
+};
+
+int CountCode(const std::vector<grpc::Status>& statuses, grpc::StatusCode code) {
+  return static_cast<int>(
+      std::count_if(statuses.begin(), statuses.end(),
+                    [code](const grpc::Status& s) { return s.error_code() == code; }));
+}
+
+double Metric(const ServerProcess& server, const std::string& series) {
+  return testing::Sample(testing::HttpRequest(server.metrics_address(), "GET", "/metrics").body,
+                         series);
+}
+
+// A well-behaved device: one session, descriptor frames one after another, each answer timed.
+class WellBehavedSession {
+ public:
+  explicit WellBehavedSession(const std::shared_ptr<grpc::Channel>& channel,
+                              const std::string& token = "")
+      : stub_(v1::Recognition::NewStub(channel)) {
+    if (!token.empty()) context_.AddMetadata("authorization", "Bearer " + token);
+    stream_ = stub_->Session(&context_);
+    v1::SessionRequest open;
+    open.mutable_open();
+    stream_->Write(open);
+  }
+
+  // The 99th percentile of `frames` frames' round trips (the server's answer included).
+  Clock::duration P99(int frames) {
+    std::vector<Clock::duration> times;
+    for (int i = 0; i < frames; ++i) {
+      v1::SessionRequest request;
+      request.mutable_frame()->set_cedd(Descriptor(i));
+      request.mutable_frame()->set_azimuth_deg((i * 5) % 360);
+      const auto start = Clock::now();
+      v1::SessionUpdate update;
+      if (!stream_->Write(request) || !stream_->Read(&update)) {
+        ADD_FAILURE() << "the well-behaved session ended: " << stream_->Finish().error_message();
+        return Clock::duration::max();
+      }
+      times.push_back(Clock::now() - start);
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // under --max-fps 60
+    }
+    std::sort(times.begin(), times.end());
+    return times[(times.size() * 99) / 100];
+  }
+
+  grpc::Status Close() {
+    stream_->WritesDone();
+    return stream_->Finish();
+  }
+
+ private:
+  std::unique_ptr<v1::Recognition::Stub> stub_;
+  grpc::ClientContext context_;
+  std::unique_ptr<grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>> stream_;
+};
+
+// The bound a well-behaved session's p99 keeps under attack: a few times its own p99 measured
+// just before on the same server, plus a margin for a machine shared with the attacker.
+Clock::duration KeptP99(Clock::duration baseline) {
+  return 3 * baseline + std::chrono::milliseconds(50);
+}
+
+grpc::Status EnrollOne(v1::Models::Stub& models, const std::string& name,
+                       std::chrono::seconds deadline) {
+  grpc::ClientContext context;
+  context.set_deadline(std::chrono::system_clock::now() + deadline);
+  v1::ObjectInfo info;
+  auto writer = models.Enroll(&context, &info);
+  v1::EnrollRequest header;
+  header.mutable_header()->set_name(name);
+  writer->Write(header);
+  for (int v = 0; v < 4; ++v) {
+    v1::EnrollRequest view;
+    view.mutable_view()->set_cedd(Descriptor(v));
+    view.mutable_view()->set_azimuth_deg(v * 90.0);
+    writer->Write(view);
+  }
+  writer->WritesDone();
+  return writer->Finish();
+}
+
+// The review's attack: ten calls of 64 large images each, given up by their caller after half a
+// second. Their frames are dropped as soon as the caller has gone (before, the server decoded all
+// 640 images, tens of seconds of CPU), and an operator's enrollment is not held behind them.
+TEST(HostileClients, AbandonedCallsAreDroppedAndHoldNoOneElseUp) {
+  ServerProcessOptions options;
+  options.metrics = true;
+  options.extra_args = {"--bulk-workers", "1"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  auto models = v1::Models::NewStub(channel);
+  WellBehavedSession device(channel);
+  const Clock::duration baseline = device.P99(100);
+
+  PendingCalls abandoned(channel);
+  for (int i = 0; i < 10; ++i) abandoned.Send(ImageBatch(64), std::chrono::milliseconds(500));
+  const Clock::duration under_attack = device.P99(100);
+  const grpc::Status enrolled = EnrollOne(*models, "mug", std::chrono::seconds(10));
+  EXPECT_TRUE(enrolled.ok()) << enrolled.error_message();
+  const std::vector<grpc::Status> statuses = abandoned.Wait();
+  EXPECT_EQ(CountCode(statuses, grpc::StatusCode::DEADLINE_EXCEEDED), 10);
+
+  // Every abandoned call is dropped within about a frame of its caller going.
+  const auto deadline = Clock::now() + std::chrono::seconds(20);
+  while (Metric(server, R"(orbit_worker_queue_depth{pool="bulk_workers"})") > 0 &&
+         Clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  const double image_frames =
+      Metric(server, R"(orbit_frame_processing_seconds_count{input="image"})");
+  EXPECT_LE(image_frames, 10 * 8) << "of 640 image frames sent";
+  EXPECT_GE(Metric(server, R"(orbit_refusals_total{code="CANCELLED",reason="caller_gone"})"), 1);
+  EXPECT_LE(under_attack, KeptP99(baseline))
+      << "p99 " << std::chrono::duration<double, std::milli>(under_attack).count()
+      << " ms under attack, " << std::chrono::duration<double, std::milli>(baseline).count()
+      << " ms before";
+  EXPECT_TRUE(device.Close().ok());
+}
+
+// More calls than the queue holds: the excess is refused at once, naming the limit, instead of
+// holding its request's memory in an unbounded queue; the server serves on.
+TEST(HostileClients, CallsBeyondTheQueueAreRefusedAtOnceNamingTheLimit) {
+  ServerProcessOptions options;
+  options.extra_args = {"--bulk-workers", "1", "--max-queued-calls", "2"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  PendingCalls calls(channel);
+  for (int i = 0; i < 8; ++i) calls.Send(ImageBatch(64), std::chrono::seconds(60));
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  calls.CancelAll();
+  const std::vector<grpc::Status> statuses = calls.Wait();
+  const int refused = CountCode(statuses, grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_GE(refused, 8 - 1 - 2) << "one running and two queued at most";
+  for (const grpc::Status& status : statuses) {
+    if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      EXPECT_NE(status.error_message().find("--max-queued-calls 2"), std::string::npos)
+          << status.error_message();
+    }
+  }
+  auto models = v1::Models::NewStub(channel);
+  EXPECT_TRUE(EnrollOne(*models, "after", std::chrono::seconds(10)).ok());
+}
+
+// SIGTERM with image calls queued: the queued ones are answered UNAVAILABLE at once, the running
+// one gets --shutdown-grace, and the server exits soon after (before, it ran every queued call
+// first, a minute after printing "up to 1 s").
+TEST(HostileClients, SigtermAnswersQueuedWorkAndKeepsItsGrace) {
+  ServerProcessOptions options;
+  options.metrics = true;
+  options.extra_args = {"--bulk-workers", "1", "--shutdown-grace", "1"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  PendingCalls calls(channel);
+  for (int i = 0; i < 6; ++i) calls.Send(ImageBatch(64), std::chrono::seconds(120));
+  const auto queued_by = Clock::now() + std::chrono::seconds(20);
+  while (Metric(server, R"(orbit_worker_queue_depth{pool="bulk_workers"})") < 5 &&
+         Clock::now() < queued_by) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  const auto signalled = Clock::now();
+  EXPECT_EQ(server.Stop(SIGTERM, std::chrono::seconds(60)), 0) << server.Log();
+  const auto exit_took = Clock::now() - signalled;
+  EXPECT_LT(exit_took, std::chrono::seconds(10))
+      << std::chrono::duration<double>(exit_took).count() << " s to exit";
+  const std::vector<grpc::Status> statuses = calls.Wait();
+  EXPECT_GE(CountCode(statuses, grpc::StatusCode::UNAVAILABLE), 5) << "the five queued calls";
+}
+
+// Enrollments held open without a message: no more than --max-enrollments at once, each ended
+// after --enrollment-idle-timeout, and then an operator enrolls again.
+TEST(HostileClients, HeldEnrollmentsAreCappedAndEndedWhenIdle) {
+  ServerProcessOptions options;
+  options.extra_args = {"--max-enrollments", "2", "--enrollment-idle-timeout", "2"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  auto models = v1::Models::NewStub(channel);
+  struct Held {
+    grpc::ClientContext context;
+    v1::ObjectInfo info;
+    std::unique_ptr<grpc::ClientWriter<v1::EnrollRequest>> writer;
+  };
+  std::vector<std::unique_ptr<Held>> held;
+  for (int i = 0; i < 2; ++i) {
+    auto stream = std::make_unique<Held>();
+    stream->writer = models->Enroll(&stream->context, &stream->info);
+    v1::EnrollRequest header;
+    header.mutable_header()->set_name("held" + std::to_string(i));
+    stream->writer->Write(header);
+    held.push_back(std::move(stream));
+  }
+  std::this_thread::sleep_for(std::chrono::milliseconds(300));
+  const grpc::Status third = EnrollOne(*models, "third", std::chrono::seconds(10));
+  EXPECT_EQ(third.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED) << third.error_message();
+  EXPECT_NE(third.error_message().find("maximum of 2 enrollments (--max-enrollments)"),
+            std::string::npos)
+      << third.error_message();
+  for (auto& stream : held) {
+    const grpc::Status ended = stream->writer->Finish();  // waits for the server to end it
+    EXPECT_FALSE(ended.ok());
+  }
+  const grpc::Status after = EnrollOne(*models, "after", std::chrono::seconds(10));
+  EXPECT_TRUE(after.ok()) << after.error_message();
+}
+
+// One token opening sessions until it holds its share is refused beyond it; a device with
+// another token still gets a session, and keeps its p99.
+TEST(HostileClients, OneTokenCannotHoldEverySessionSlot) {
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / ("orbit_tokens_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(dir);
+  const std::string hog = "hog-token-0123456789";
+  const std::string device_token = "device-token-0123456789";
+  std::ofstream(dir / "tokens") << hog << " recognize\n" << device_token << " recognize\n";
+  ServerProcessOptions options;
+  options.tokens_file = dir / "tokens";
+  options.extra_args = {"--max-sessions", "6", "--max-sessions-per-token", "4"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  WellBehavedSession device(channel, device_token);
+  const Clock::duration baseline = device.P99(50);
+
+  std::vector<std::unique_ptr<WellBehavedSession>> hogged;
+  for (int i = 0; i < 4; ++i) {
+    hogged.push_back(std::make_unique<WellBehavedSession>(channel, hog));
+    hogged.back()->P99(1);  // open, and holding its slot
+  }
+  auto stub = v1::Recognition::NewStub(channel);
+  grpc::ClientContext context;
+  context.AddMetadata("authorization", "Bearer " + hog);
+  auto fifth = stub->Session(&context);
+  v1::SessionRequest open;
+  open.mutable_open();
+  fifth->Write(open);
+  fifth->WritesDone();
+  const grpc::Status refused = fifth->Finish();
+  EXPECT_EQ(refused.error_code(), grpc::StatusCode::RESOURCE_EXHAUSTED);
+  EXPECT_NE(refused.error_message().find("(--max-sessions-per-token)"), std::string::npos)
+      << refused.error_message();
+
+  WellBehavedSession second_device(channel, device_token);
+  EXPECT_LE(second_device.P99(50), KeptP99(baseline));
+  EXPECT_TRUE(second_device.Close().ok());
+  EXPECT_TRUE(device.Close().ok());
+  for (auto& session : hogged) EXPECT_TRUE(session->Close().ok());
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace orbit
