@@ -50,14 +50,20 @@ std::vector<v1::ObjectInfo> ModelsClient::ListAllObjects() {
 }
 
 v1::GetObjectResponse ModelsClient::GetObject(const v1::ObjectRef& object, bool include_views) {
-  grpc::ClientContext context;
-  connection_.PrepareUnaryCall(context);
   v1::GetObjectRequest request;
   *request.mutable_object() = object;
   request.set_include_views(include_views);
-  v1::GetObjectResponse response;
-  ThrowIfError("GetObject", stub_->GetObject(&context, request, &response));
-  return response;
+  v1::GetObjectResponse whole;
+  do {
+    grpc::ClientContext context;
+    connection_.PrepareUnaryCall(context);
+    v1::GetObjectResponse page;
+    ThrowIfError("GetObject", stub_->GetObject(&context, request, &page));
+    *whole.mutable_object() = page.object();
+    for (v1::View& view : *page.mutable_views()) *whole.add_views() = std::move(view);
+    request.set_view_offset(page.next_view_offset());
+  } while (request.view_offset() > 0);
+  return whole;
 }
 
 v1::ObjectInfo ModelsClient::DeleteObject(const v1::ObjectRef& object) {

@@ -36,6 +36,7 @@ class ModelsClient {
   // Every object, following the pages.
   std::vector<v1::ObjectInfo> ListAllObjects();
 
+  // With include_views, every view, following the server's pages (GetObjectResponse).
   v1::GetObjectResponse GetObject(const v1::ObjectRef& object, bool include_views = false);
 
   // Returns the deleted object's summary.

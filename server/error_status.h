@@ -1,5 +1,5 @@
 // The gRPC status of a refusal or a failure, the one mapping of the server's errors to the
-// codes docs/design.md#service-behaviour names. Pure functions, thread-safe.
+// codes docs/design.md#service-behaviour names. Thread-safe.
 #pragma once
 
 #include <exception>
@@ -25,16 +25,18 @@ grpc::Status CallerGone();
 grpc::Status QueueFull(int max_queued_calls);
 
 // The status for an exception thrown by core/, api/ or storage/: std::invalid_argument ->
-// INVALID_ARGUMENT; StoreError by code (not found -> NOT_FOUND, already exists ->
-// ALREADY_EXISTS, full -> RESOURCE_EXHAUSTED, busy and I/O -> UNAVAILABLE: worth retrying,
-// later or on another replica, as a store that cannot be reached; else INTERNAL); anything else
-// INTERNAL. The message is the exception's.
+// INVALID_ARGUMENT with its message; StoreError kNotFound -> NOT_FOUND and kAlreadyExists ->
+// ALREADY_EXISTS with theirs. Any other StoreError is written to stderr whole (it names files,
+// tables, statements) and the client gets a message of ours by code: kConstraint (a value the
+// database refused) -> INVALID_ARGUMENT, kFull -> RESOURCE_EXHAUSTED, kBusy and kIo ->
+// UNAVAILABLE (worth retrying, later or on another replica), else INTERNAL. Anything else:
+// INTERNAL with the exception's message.
 grpc::Status StatusFromException(const std::exception& error);
 
 // The reason a refusal for `error` is counted under (server/refusal_reason.h), beside
-// StatusFromException's code: std::invalid_argument -> invalid_field; StoreError kNotFound ->
-// unknown_object, kAlreadyExists -> duplicate_name, any other code -> store; anything else ->
-// internal.
+// StatusFromException's code: std::invalid_argument and StoreError kConstraint -> invalid_field;
+// StoreError kNotFound -> unknown_object, kAlreadyExists -> duplicate_name, any other code ->
+// store; anything else -> internal.
 RefusalReason RefusalReasonOf(const std::exception& error);
 
 }  // namespace orbit::server

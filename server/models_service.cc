@@ -23,6 +23,10 @@ namespace {
 
 constexpr int kDefaultPageSize = 100;
 constexpr int kMaxPageSize = 1000;
+// A GetObject response with views stays under a default client's 4 MiB receive limit
+// (models.proto, GetObjectResponse); the rest is in the next page.
+constexpr std::size_t kMaxObjectResponseBytes = 3u << 20;
+constexpr std::size_t kViewFieldOverhead = 8;  // a repeated field's tag and length
 
 // The enrollment report of object `summary.id` as the index holds it now
 // (core/decision/enrollment_feedback.h); left unset when another call deleted it meanwhile.
@@ -282,29 +286,41 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
 grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* context,
                                                    const v1::GetObjectRequest* request,
                                                    v1::GetObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
-                      [this, request, response] {
-                        const ObjectId id = Resolve(env_.catalogue.store(), request->object());
-                        const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
-                        if (!object) {
-                          return env_.metrics.Refuse(
-                              {grpc::StatusCode::NOT_FOUND, "object deleted meanwhile"},
-                              RefusalReason::kUnknownObject);
-                        }
-                        *response->mutable_object() = ToObjectInfo(object->summary);
-                        if (request->include_views()) {
-                          for (std::size_t i = 0; i < object->views.size(); ++i) {
-                            const std::string none;
-                            const std::string& thumbnail =
-                                request->include_thumbnails() && i < object->thumbnails.size()
-                                    ? object->thumbnails[i]
-                                    : none;
-                            *response->add_views() =
-                                ToProtoView(object->views[i], object->summary.variant, thumbnail);
-                          }
-                        }
-                        return grpc::Status::OK;
-                      });
+  return RunUnaryCall(
+      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
+      [this, request, response] {
+        const ObjectId id = Resolve(env_.catalogue.store(), request->object());
+        const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
+        if (!object) {
+          return env_.metrics.Refuse({grpc::StatusCode::NOT_FOUND, "object deleted meanwhile"},
+                                     RefusalReason::kUnknownObject);
+        }
+        *response->mutable_object() = ToObjectInfo(object->summary);
+        if (!request->include_views()) return grpc::Status::OK;
+        const int views = static_cast<int>(object->views.size());
+        if (request->view_offset() < 0 || request->view_offset() > views) {
+          return env_.metrics.Refuse(
+              InvalidArgument("view_offset is " + std::to_string(request->view_offset()) +
+                              ", expected 0.." + std::to_string(views)),
+              RefusalReason::kInvalidField);
+        }
+        std::size_t bytes = response->ByteSizeLong();
+        for (int i = request->view_offset(); i < views; ++i) {
+          const std::string none;
+          const std::string& thumbnail =
+              request->include_thumbnails() && i < static_cast<int>(object->thumbnails.size())
+                  ? object->thumbnails[i]
+                  : none;
+          v1::View view = ToProtoView(object->views[i], object->summary.variant, thumbnail);
+          bytes += view.ByteSizeLong() + kViewFieldOverhead;
+          if (bytes > kMaxObjectResponseBytes && response->views_size() > 0) {
+            response->set_next_view_offset(i);
+            break;
+          }
+          *response->add_views() = std::move(view);
+        }
+        return grpc::Status::OK;
+      });
 }
 
 grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContext* context,

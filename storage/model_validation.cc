@@ -80,11 +80,45 @@ void ValidateViews(const std::vector<ModelView>& views,
   }
 }
 
+namespace {
+
+// The deepest nesting of objects and arrays in `json`, brackets inside strings not counted. Read
+// before parsing, so that no parser or store is handed deeper text.
+int NestingDepth(std::string_view json) {
+  int depth = 0, deepest = 0;
+  bool in_string = false, escaped = false;
+  for (const char c : json) {
+    if (in_string) {
+      if (escaped) {
+        escaped = false;
+      } else if (c == '\\') {
+        escaped = true;
+      } else if (c == '"') {
+        in_string = false;
+      }
+    } else if (c == '"') {
+      in_string = true;
+    } else if (c == '{' || c == '[') {
+      deepest = std::max(deepest, ++depth);
+    } else if (c == '}' || c == ']') {
+      --depth;
+    }
+  }
+  return deepest;
+}
+
+}  // namespace
+
 void ValidateMetadata(std::string_view metadata) {
   if (metadata.size() > kMaxMetadataBytes) {
     throw std::invalid_argument("metadata of " + std::to_string(metadata.size()) +
                                 " bytes is larger than the limit of " +
                                 std::to_string(kMaxMetadataBytes));
+  }
+  if (const int depth = NestingDepth(metadata); depth > kMaxMetadataDepth) {
+    throw std::invalid_argument("metadata nests objects and arrays " + std::to_string(depth) +
+                                " deep, more than the limit of " +
+                                std::to_string(kMaxMetadataDepth));
   }
   const nlohmann::json parsed =
       nlohmann::json::parse(metadata, nullptr, /*allow_exceptions=*/false);

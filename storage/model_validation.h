@@ -24,6 +24,10 @@ inline constexpr std::size_t kMaxObjectNameLength = 64;
 inline constexpr std::size_t kMaxViewsPerObject = 1024;
 inline constexpr std::size_t kMaxThumbnailBytes = 64 * 1024;
 inline constexpr std::size_t kMaxMetadataBytes = 16 * 1024;
+// Objects and arrays inside one another: far below what the stores' JSON functions accept
+// (SQLite's json() and PostgreSQL's jsonb both refuse deep nesting, and a refusal there would
+// come back as a store failure), and deeper than any metadata a person writes.
+inline constexpr int kMaxMetadataDepth = 32;
 
 // A name is 1..kMaxObjectNameLength ASCII letters, digits, '_', '-' and '.', starting with a
 // letter or a digit: safe in file names, URLs, shell commands and `orbit list` columns.
@@ -39,7 +43,8 @@ void ValidateView(const ModelView& view, std::size_t position);
 // view, each at most kMaxThumbnailBytes.
 void ValidateViews(const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails);
 
-// Metadata is the text of one JSON object, at most kMaxMetadataBytes.
+// Metadata is the text of one JSON object, at most kMaxMetadataBytes, nesting objects and arrays
+// at most kMaxMetadataDepth deep.
 void ValidateMetadata(std::string_view metadata);
 
 }  // namespace orbit

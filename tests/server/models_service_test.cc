@@ -141,5 +141,62 @@ TEST(ModelsServiceTest, EveryEnrollmentPathStoresTheSameNumbersForTheSameImage) 
   EXPECT_EQ(evaluated, device);
 }
 
+// An object whose views and thumbnails outgrow a default client's 4 MiB receive limit comes in
+// pages of at most about 3 MiB, which together hold every view in order; before, one 6 MB
+// answer failed at the client.
+TEST(ModelsServiceTest, AnObjectLargerThanOneResponseComesInPages) {
+  ServerProcess server;
+  auto models = v1::Models::NewStub(
+      grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials()));
+  constexpr int kViews = 100;
+  {
+    grpc::ClientContext context;
+    v1::ObjectInfo info;
+    auto writer = models->Enroll(&context, &info);
+    v1::EnrollRequest header;
+    header.mutable_header()->set_name("big");
+    ASSERT_TRUE(writer->Write(header));
+    for (int i = 0; i < kViews; ++i) {
+      v1::EnrollRequest view;
+      view.mutable_view()->set_cedd(std::string(kCeddSize, static_cast<char>(i % 8)));
+      view.mutable_view()->set_azimuth_deg(i * 3.6);
+      view.mutable_view()->set_thumbnail(std::string(60000, static_cast<char>('a' + i % 26)));
+      ASSERT_TRUE(writer->Write(view));
+    }
+    writer->WritesDone();
+    const grpc::Status enrolled = writer->Finish();
+    ASSERT_TRUE(enrolled.ok()) << enrolled.error_message();
+  }
+  v1::GetObjectRequest request;
+  request.mutable_object()->set_name("big");
+  request.set_include_views(true);
+  request.set_include_thumbnails(true);
+  std::vector<v1::View> views;
+  int pages = 0;
+  do {
+    grpc::ClientContext context;
+    v1::GetObjectResponse page;
+    const grpc::Status status = models->GetObject(&context, request, &page);
+    ASSERT_TRUE(status.ok()) << status.error_message();
+    EXPECT_LE(page.ByteSizeLong(), std::size_t{3} << 20);
+    EXPECT_EQ(page.object().name(), "big");
+    views.insert(views.end(), page.views().begin(), page.views().end());
+    request.set_view_offset(page.next_view_offset());
+    ++pages;
+  } while (request.view_offset() > 0);
+  EXPECT_GE(pages, 2);
+  ASSERT_EQ(views.size(), std::size_t{kViews});
+  for (int i = 0; i < kViews; ++i) {
+    EXPECT_NEAR(views[i].azimuth_deg(), i * 3.6, 1e-9);
+    EXPECT_EQ(views[i].thumbnail(), std::string(60000, static_cast<char>('a' + i % 26))) << i;
+  }
+  request.set_view_offset(kViews + 1);
+  grpc::ClientContext context;
+  v1::GetObjectResponse past;
+  const grpc::Status status = models->GetObject(&context, request, &past);
+  EXPECT_EQ(status.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(status.error_message(), "view_offset is 101, expected 0..100");
+}
+
 }  // namespace
 }  // namespace orbit

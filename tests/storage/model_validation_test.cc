@@ -151,5 +151,19 @@ TEST_F(RefusalTest, MetadataThatIsNotAJsonObject) {
   ExpectUnchanged();
 }
 
+// Nesting the stores' JSON functions would refuse (the review's case came back INTERNAL with the
+// INSERT statement's text) is refused here, by its depth; brackets inside strings do not count.
+TEST_F(RefusalTest, MetadataNestedTooDeep) {
+  Enrollment enrollment = SyntheticObject("deep", 1);
+  enrollment.metadata = "{\"a\": " + std::string(40, '[') + std::string(40, ']') + "}";
+  EXPECT_EQ(ErrorMessageOf([&] { store_.Enroll(enrollment); }),
+            "metadata nests objects and arrays 41 deep, more than the limit of 32");
+  enrollment.metadata = "{\"a\": " + std::string(31, '[') + std::string(31, ']') + "}";
+  EXPECT_NO_THROW(store_.Enroll(enrollment));
+  Enrollment quoted = SyntheticObject("quoted", 1);
+  quoted.metadata = "{\"note\": \"" + std::string(100, '[') + "\\\"{\"}";
+  EXPECT_NO_THROW(store_.Enroll(quoted));
+}
+
 }  // namespace
 }  // namespace orbit
