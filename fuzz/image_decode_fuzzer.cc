@@ -1,4 +1,4 @@
-// Fuzz target: an uploaded image as the server takes it (server/image_budget.h,
+// Fuzz target: an uploaded image as the server takes it (api/image_header.h,
 // server/image_decoding.h): its header read (PNG's IHDR; JPEG's marker segments up to the frame
 // header, then its scans counted), held to the budget (CheckImageBudget), decoded by OpenCV's
 // PNG or JPEG decoder, and described as a frame is (core/descriptor/cedd.h, ExtractCedd).
@@ -19,9 +19,9 @@
 #include <cstdint>
 #include <string_view>
 
+#include "api/image_header.h"
 #include "core/descriptor/cedd.h"
 #include "fuzz/fuzz_support.h"
-#include "server/image_budget.h"
 #include "server/image_decoding.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
@@ -29,13 +29,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   static const std::int64_t max_pixels = fuzz::FuzzLimits().max_image_pixels;
   const std::string_view bytes(reinterpret_cast<const char*>(data), size);
 
-  server::ImageHeader header;
-  if (!server::ReadImageHeader(bytes, "frame.image", &header).ok()) return 0;
+  ImageHeader header;
+  if (!ReadImageHeader(bytes, "frame.image", &header).ok()) return 0;
   ORBIT_FUZZ_CHECK(header.width >= 1 && header.height >= 1);
   ORBIT_FUZZ_CHECK(header.scans >= 0);
   const bool within = std::uint64_t{header.width} * header.height <= std::uint64_t(max_pixels) &&
-                      header.scans <= server::kMaxJpegScans;
-  ORBIT_FUZZ_CHECK(server::CheckImageBudget(header, max_pixels, "frame.image").ok() == within);
+                      header.scans <= kMaxJpegScans;
+  ORBIT_FUZZ_CHECK(CheckImageBudget(header, max_pixels, "frame.image").ok() == within);
   if (!within) return 0;
 
   server::DecodedImage image;

@@ -1,5 +1,5 @@
 // An uploaded image (Frame.image, View.image) decoded as the server decodes it: its header read
-// and held to the image budget first (server/image_budget.h), then one of the process's decode
+// and held to the image budget first (api/image_header.h), then one of the process's decode
 // slots taken, then OpenCV's PNG or JPEG decoder run on the bytes in place.
 #pragma once
 
@@ -9,7 +9,8 @@
 #include <grpcpp/grpcpp.h>
 #include <opencv2/core.hpp>
 
-#include "server/image_budget.h"
+#include "api/image_header.h"
+#include "server/decode_slots.h"
 
 namespace orbit::server {
 

@@ -2,7 +2,7 @@
 // makes (docs/design.md#service-behaviour): the variant of a request against the
 // server's, uploaded images decoded and described here. The conversions both ends share are in
 // api/conversion.h. Every refusal names the field and says what is wrong; it is INVALID_ARGUMENT,
-// except an image above the server's pixel limit (RESOURCE_EXHAUSTED, server/image_budget.h).
+// except an image above the server's pixel limit (RESOURCE_EXHAUSTED, api/image_header.h).
 // Thread-safe; pure but for the process's decode slots, which an image decode waits for.
 #pragma once
 
@@ -26,7 +26,7 @@ grpc::Status CheckVariant(v1::DescriptorVariant requested, DescriptorVariant ser
 
 // A frame as the engines take it. With `cedd`: exactly 144 values, each 0..7. With `image`: a PNG
 // or JPEG of at most limits.max_image_pixels pixels, read from its header before anything is
-// decoded (server/image_budget.h; RESOURCE_EXHAUSTED above it), then decoded (waiting for one of
+// decoded (api/image_header.h; RESOURCE_EXHAUSTED above it), then decoded (waiting for one of
 // the process's decode slots, held until the descriptor is computed) and its CEDD (of `region`
 // when set, which must lie inside it) computed in the server's variant. The azimuth must be
 // finite; quality.noise_sigma, when quality is set, in [0, 255] and quality.blur in [0, 1] (the

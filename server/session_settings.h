@@ -7,6 +7,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include "api/engine_names.h"
+#include "api/image_header.h"
 #include "core/descriptor/descriptor.h"
 #include "core/engines/product_pipeline.h"
 #include "core/engines/recognition_engine.h"
@@ -26,11 +27,10 @@ struct ServerLimits {
   // (the defaults, 8 x 8, use 64; the unchecked extreme, 64 x 360, would be 230 MB).
   int max_hmm_cells = 1024;
   // width x height of an uploaded image (Frame.image, View.image), read from its header before
-  // decoding (server/image_budget.h). 4096 x 4096 passes a 12 MP phone photo (4032 x 3024), a 4K
-  // frame (3840 x 2160) and anything smaller, while a decoded image stays under 128 MiB (at most
-  // 8 bytes a pixel: 4 channels of 16 bits); CEDD needs far fewer pixels than that. Unchecked, a
-  // small compressed file could claim 20000 x 20000 pixels, gigabytes once decoded.
-  int max_image_pixels = 4096 * 4096;
+  // decoding (api/image_header.h, which says why 4096 x 4096 by default; CEDD needs far fewer
+  // pixels than that). Unchecked, a small compressed file could claim 20000 x 20000 pixels,
+  // gigabytes once decoded.
+  int max_image_pixels = static_cast<int>(kDefaultMaxImagePixels);
   // Unary calls waiting for a worker, per pool (server/worker_pool.h): beyond it a call is
   // refused RESOURCE_EXHAUSTED at once rather than holding its request (up to
   // max_message_bytes) in a queue the workers may never reach in time.

@@ -58,7 +58,7 @@ TEST(ImageDecodingTest, RefusalsNameTheField) {
   s = DecodeImage("GIF89a", "frame.image", kMaxPixels, &image);
   EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);
   EXPECT_EQ(s.error_message(),
-            "frame.image is not a PNG or JPEG image (the formats this server decodes)");
+            "frame.image is not a PNG or JPEG image (the formats Orbit decodes)");
 
   s = DecodeImage(png.substr(0, 60), "frame.image", kMaxPixels, &image);  // header, no data
   EXPECT_EQ(s.error_code(), grpc::StatusCode::INVALID_ARGUMENT);

@@ -21,7 +21,7 @@
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/noise_estimate.h"
 #include "core/descriptor/view_description.h"
-#include "server/image_budget.h"
+#include "server/decode_slots.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::server {
@@ -179,7 +179,7 @@ TEST(RequestReadingTest, BadFramesAreRefusedNamingTheField) {
   frame.clear_cedd();
   frame.set_image("not an image");
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
-                "frame.image is not a PNG or JPEG image (the formats this server decodes)");
+                "frame.image is not a PNG or JPEG image (the formats Orbit decodes)");
   frame.set_image(Png(CoilImage()));
   frame.mutable_region()->set_x(100);
   frame.mutable_region()->set_width(40);
@@ -281,7 +281,7 @@ TEST(RequestReadingTest, OnlyPngAndJpegImagesAreDecoded) {
   cv::imencode(".bmp", image, bmp);
   frame.set_image(std::string(bmp.begin(), bmp.end()));
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),
-                "frame.image is not a PNG or JPEG image (the formats this server decodes)");
+                "frame.image is not a PNG or JPEG image (the formats Orbit decodes)");
   // A sound header over broken data.
   frame.set_image(Png(image).substr(0, 100));
   ExpectInvalid(ToQueryFrame(frame, kLire, kLimits, &query),

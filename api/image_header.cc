@@ -1,15 +1,13 @@
-#include "server/image_budget.h"
+#include "api/image_header.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <utility>
 
-#include "core/base/parallel_for.h"
-#include "server/error_status.h"
-
-namespace orbit::server {
+namespace orbit {
 namespace {
 
 constexpr std::string_view kAccepted = "PNG or JPEG";
@@ -29,6 +27,10 @@ std::uint32_t BigEndian16(std::string_view bytes, std::size_t at) {
 // REQUIRES: at + 4 <= bytes.size().
 std::uint32_t BigEndian32(std::string_view bytes, std::size_t at) {
   return BigEndian16(bytes, at) << 16 | BigEndian16(bytes, at + 2);
+}
+
+grpc::Status InvalidArgument(std::string message) {
+  return {grpc::StatusCode::INVALID_ARGUMENT, std::move(message)};
 }
 
 grpc::Status Malformed(std::string_view field, std::string_view what) {
@@ -196,7 +198,7 @@ grpc::Status ReadImageHeader(std::string_view bytes, std::string_view field, Ima
     status = ReadJpegHeader(bytes, field, out);
   } else {
     return InvalidArgument(std::string(field) + " is not a " + std::string(kAccepted) +
-                           " image (the formats this server decodes)");
+                           " image (the formats Orbit decodes)");
   }
   if (status.ok() && (out->width == 0 || out->height == 0)) {
     return InvalidArgument(std::string(field) + " is " + std::to_string(out->width) + "x" +
@@ -232,39 +234,4 @@ grpc::Status CheckImageBudget(const ImageHeader& header, std::int64_t max_pixels
   return grpc::Status::OK;
 }
 
-DecodeSlots::DecodeSlots(int slots) : capacity_(slots), free_(slots) {}
-
-DecodeSlots::Slot DecodeSlots::Acquire() {
-  MutexLock lock(&mutex_);
-  while (free_ <= 0) freed_.Wait(&mutex_);
-  --free_;
-  return Slot(this);
-}
-
-void DecodeSlots::Release() {
-  {
-    MutexLock lock(&mutex_);
-    ++free_;
-  }
-  freed_.Signal();
-}
-
-DecodeSlots::Slot& DecodeSlots::Slot::operator=(Slot&& other) noexcept {
-  if (this != &other) {
-    if (owner_ != nullptr) owner_->Release();
-    owner_ = other.owner_;
-    other.owner_ = nullptr;
-  }
-  return *this;
-}
-
-DecodeSlots::Slot::~Slot() {
-  if (owner_ != nullptr) owner_->Release();
-}
-
-DecodeSlots& ProcessDecodeSlots() {
-  static DecodeSlots slots(AvailableCpus());
-  return slots;
-}
-
-}  // namespace orbit::server
+}  // namespace orbit

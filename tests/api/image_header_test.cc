@@ -1,6 +1,6 @@
-// The image budget (server/image_budget.h): image sizes read from PNG and JPEG headers as the
-// decoders read them, the pixel limit with its message, and the decode slots.
-#include "server/image_budget.h"
+// The image budget (api/image_header.h): image sizes read from PNG and JPEG headers as the
+// decoders read them, and the pixel limit with its message.
+#include "api/image_header.h"
 
 #include <zlib.h>
 
@@ -17,15 +17,13 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
-#include "server/session_settings.h"
-
-namespace orbit::server {
+namespace orbit {
 namespace {
 
 using ::testing::HasSubstr;
 using ::testing::StartsWith;
 
-constexpr std::int64_t kDefaultMax = ServerLimits{}.max_image_pixels;
+constexpr std::int64_t kDefaultMax = kDefaultMaxImagePixels;
 
 std::string Encode(const std::string& extension, const cv::Mat& image,
                    const std::vector<int>& parameters = {}) {
@@ -126,7 +124,7 @@ void ExpectSizeAsDecoded(const std::string& bytes, ImageFormat format, int width
   EXPECT_EQ(decoded.rows, height);
 }
 
-TEST(ImageBudgetTest, ReadsTheSizeOfRealPngImages) {
+TEST(ImageHeaderTest, ReadsTheSizeOfRealPngImages) {
   ExpectSizeAsDecoded(Encode(".png", Noise(37, 21, CV_8UC3)), ImageFormat::kPng, 37, 21);
   ExpectSizeAsDecoded(Encode(".png", Noise(5, 300, CV_8UC1)), ImageFormat::kPng, 5, 300);
   ExpectSizeAsDecoded(Encode(".png", Noise(64, 48, CV_8UC4)), ImageFormat::kPng, 64, 48);
@@ -136,14 +134,14 @@ TEST(ImageBudgetTest, ReadsTheSizeOfRealPngImages) {
                       ImageFormat::kPng, 40, 30);
 }
 
-TEST(ImageBudgetTest, ReadsTheSizeOfRealJpegImages) {
+TEST(ImageHeaderTest, ReadsTheSizeOfRealJpegImages) {
   ExpectSizeAsDecoded(Encode(".jpg", Noise(640, 480, CV_8UC3)), ImageFormat::kJpeg, 640, 480);
   ExpectSizeAsDecoded(Encode(".jpg", Noise(33, 17, CV_8UC1)), ImageFormat::kJpeg, 33, 17);
   ExpectSizeAsDecoded(Encode(".jpg", Noise(300, 200, CV_8UC3), {cv::IMWRITE_JPEG_PROGRESSIVE, 1}),
                       ImageFormat::kJpeg, 300, 200);
 }
 
-TEST(ImageBudgetTest, JpegSegmentsAreSkippedByTheirLengthAsLibjpegDoes) {
+TEST(ImageHeaderTest, JpegSegmentsAreSkippedByTheirLengthAsLibjpegDoes) {
   const std::string image = Encode(".jpg", Noise(120, 90, CV_8UC3));
   const std::string rest = image.substr(2);  // after SOI
   // An EXIF-like APP1 carrying a whole 8x8 thumbnail, SOF included: the image is 120x90.
@@ -160,7 +158,7 @@ TEST(ImageBudgetTest, JpegSegmentsAreSkippedByTheirLengthAsLibjpegDoes) {
       ImageFormat::kJpeg, 120, 90);
 }
 
-TEST(ImageBudgetTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
+TEST(ImageHeaderTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
   // A decompression bomb: a PNG claiming 20000x20000 (1.2 GB decoded).
   const grpc::Status bomb =
       CheckImageBudget(Read(PngClaiming(20000, 20000)), kDefaultMax, "frame.image");
@@ -189,7 +187,7 @@ TEST(ImageBudgetTest, RefusesImagesAboveTheBudgetNamingTheirSizeAndTheMaximum) {
       "frame.image is 4000x3001 pixels; at most 12000000 pixels are decoded");
 }
 
-TEST(ImageBudgetTest, SizesWhoseProductOverflowsAreRefusedNotWrapped) {
+TEST(ImageHeaderTest, SizesWhoseProductOverflowsAreRefusedNotWrapped) {
   // 65536 x 65536 = 2^32, 0 in 32 bits; 2^31-1 squared is near 2^62.
   for (const auto& [width, height] : std::vector<std::pair<std::uint32_t, std::uint32_t>>{
            {65536, 65536}, {0x7fffffff, 0x7fffffff}, {0x7fffffff, 2}, {4294967, 1001}}) {
@@ -206,16 +204,15 @@ TEST(ImageBudgetTest, SizesWhoseProductOverflowsAreRefusedNotWrapped) {
                 "frame.image is a PNG whose header gives a width or height above 2^31 - 1");
 }
 
-TEST(ImageBudgetTest, ZeroSizesAreRefused) {
+TEST(ImageHeaderTest, ZeroSizesAreRefused) {
   ExpectInvalid(PngClaiming(0, 100), "frame.image is 0x100 pixels; an image has at least one");
   ExpectInvalid(PngClaiming(100, 0), "frame.image is 100x0 pixels; an image has at least one");
   ExpectInvalid(JpegClaiming(640, 0), "frame.image is 640x0 pixels; an image has at least one");
   ExpectInvalid(JpegClaiming(0, 0), "frame.image is 0x0 pixels; an image has at least one");
 }
 
-TEST(ImageBudgetTest, OtherFormatsAndGarbageAreRefusedListingTheAcceptedOnes) {
-  const std::string message =
-      "frame.image is not a PNG or JPEG image (the formats this server decodes)";
+TEST(ImageHeaderTest, OtherFormatsAndGarbageAreRefusedListingTheAcceptedOnes) {
+  const std::string message = "frame.image is not a PNG or JPEG image (the formats Orbit decodes)";
   ExpectInvalid("", message);
   ExpectInvalid("x", message);
   ExpectInvalid("not an image", message);
@@ -226,7 +223,7 @@ TEST(ImageBudgetTest, OtherFormatsAndGarbageAreRefusedListingTheAcceptedOnes) {
   ExpectInvalid("\x89PNG\r\n\x1a", message);  // 7 of the signature's 8 bytes
 }
 
-TEST(ImageBudgetTest, TruncatedHeadersAreRefused) {
+TEST(ImageHeaderTest, TruncatedHeadersAreRefused) {
   const std::string png = Encode(".png", Noise(30, 20, CV_8UC3));
   for (std::size_t n = 8; n < 33; ++n) {
     ExpectInvalid(png.substr(0, n), "frame.image is a PNG whose header (IHDR) is truncated");
@@ -242,7 +239,7 @@ TEST(ImageBudgetTest, TruncatedHeadersAreRefused) {
   EXPECT_EQ(Read(jpeg.substr(0, sof_end)).height, 20u);
 }
 
-TEST(ImageBudgetTest, MalformedPngHeadersAreRefused) {
+TEST(ImageHeaderTest, MalformedPngHeadersAreRefused) {
   ExpectInvalid(kPngSignature + PngChunk("tEXt", std::string(13, 'a')) + Ihdr(10, 10),
                 "frame.image is a PNG whose first chunk is not a 13-byte header (IHDR)");
   ExpectInvalid(kPngSignature + PngChunk("IHDR", std::string(14, '\0')),
@@ -261,7 +258,7 @@ TEST(ImageBudgetTest, MalformedPngHeadersAreRefused) {
   EXPECT_EQ(Read(PngClaiming(10, 12, 1, 0, 1)).height, 12u);  // 1-bit grey, Adam7
 }
 
-TEST(ImageBudgetTest, MalformedOrUnsupportedJpegHeadersAreRefused) {
+TEST(ImageHeaderTest, MalformedOrUnsupportedJpegHeadersAreRefused) {
   const std::string sof = Sof(0xc0, 64, 48);
   const std::string sos = JpegSegment(0xda, std::string("\1\1\0\0\x3f\0", 6));
   ExpectInvalid(kSoi + kApp0 + sos + sof + kEoi,
@@ -305,7 +302,7 @@ std::string JpegWithExtraScans(int extra) {
   return jpeg + kEoi;
 }
 
-TEST(ImageBudgetTest, CountsTheScansOfAJpegAndRefusesTooMany) {
+TEST(ImageHeaderTest, CountsTheScansOfAJpegAndRefusesTooMany) {
   EXPECT_EQ(Read(Encode(".jpg", Noise(64, 64, CV_8UC3))).scans, 1);
   EXPECT_EQ(Read(Encode(".jpg", Noise(64, 64, CV_8UC3), {cv::IMWRITE_JPEG_PROGRESSIVE, 1})).scans,
             10);
@@ -338,7 +335,7 @@ TEST(ImageBudgetTest, CountsTheScansOfAJpegAndRefusesTooMany) {
 
 // Whatever bytes a client sends, the reader never reports a size other than the one OpenCV
 // decodes: single-byte changes, insertions and cuts of real images.
-TEST(ImageBudgetTest, NeverDisagreesWithTheDecoderOnMutatedImages) {
+TEST(ImageHeaderTest, NeverDisagreesWithTheDecoderOnMutatedImages) {
   std::mt19937 random(13);
   const std::vector<std::string> originals = {
       Encode(".jpg", Noise(24, 16, CV_8UC3)),
@@ -373,35 +370,5 @@ TEST(ImageBudgetTest, NeverDisagreesWithTheDecoderOnMutatedImages) {
   EXPECT_GT(agreed, 100);  // the comparison ran, not only refusals
 }
 
-TEST(ImageBudgetTest, DecodeSlotsAdmitAtMostTheirCapacityAndWakeAWaiter) {
-  DecodeSlots slots(2);
-  EXPECT_EQ(slots.capacity(), 2);
-  DecodeSlots::Slot first = slots.Acquire();
-  std::optional<DecodeSlots::Slot> second = slots.Acquire();
-  std::atomic<bool> third_held = false;
-  std::thread waiter([&] {
-    DecodeSlots::Slot third = slots.Acquire();
-    third_held = true;
-  });
-  // Both slots are held: the waiter cannot get one, however long it is given.
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));
-  EXPECT_FALSE(third_held);
-  second.reset();  // frees one
-  waiter.join();
-  EXPECT_TRUE(third_held);
-  // The waiter's slot went back when it ended, and a slot moved from is held once: with `first`
-  // held, exactly one more can be taken (a second Acquire here would wait for ever).
-  DecodeSlots::Slot again = slots.Acquire();
-  DecodeSlots::Slot moved = std::move(again);
-  moved = DecodeSlots::Slot();  // gives it back
-  DecodeSlots::Slot last = slots.Acquire();
-}
-
-TEST(ImageBudgetTest, TheProcessDecodesAtMostOneImagePerCore) {
-  EXPECT_EQ(ProcessDecodeSlots().capacity(),
-            static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
-  EXPECT_EQ(&ProcessDecodeSlots(), &ProcessDecodeSlots());
-}
-
 }  // namespace
-}  // namespace orbit::server
+}  // namespace orbit

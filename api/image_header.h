@@ -1,13 +1,13 @@
-// The image budget: what an uploaded image (Frame.image, View.image) may cost the server, checked
-// before a single pixel is decoded.
+// The image budget: what an image may cost whoever decodes it (the server for Frame.image and
+// View.image, the device library and `orbit import` for files), checked before a single pixel is
+// decoded.
 //
 // An encoded image says in its first bytes how large it is, and a decoder allocates and fills
 // that many pixels: a 1.2 MB PNG can claim 20000x20000 pixels and cost 1.2 GB and seconds of CPU
-// (docs/service.md, "Limits (flags of `orbit serve`)"). So the server reads the dimensions from
-// the header itself, refuses images above ServerLimits::max_image_pixels, and only then decodes;
-// and at most one image per core is decoded at a time across the process (DecodeSlots), so
-// several large-but-allowed images cannot take every worker's memory at once. A progressive JPEG
-// can also repeat cheap scans, each a pass over every block of the image: a 4 MB message could
+// (docs/service.md, "Limits (flags of `orbit serve`)"). So the dimensions are read from the
+// header itself, images above the budget are refused, and only then is anything decoded (the
+// server also decodes at most one image per core at a time: server/decode_slots.h). A progressive
+// JPEG can also repeat cheap scans, each a pass over every block of the image: a 4 MB message could
 // hold 100000 of them, so the scans are counted too and bounded by kMaxJpegScans.
 //
 // Only PNG and JPEG are accepted: the two formats devices send, the two whose headers are read
@@ -21,9 +21,7 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include "core/base/mutex.h"
-
-namespace orbit::server {
+namespace orbit {
 
 enum class ImageFormat { kPng, kJpeg };
 
@@ -42,6 +40,11 @@ struct ImageHeader {
 // review of libjpeg-turbo). A scan without data is one pass over the image, so the bound caps
 // them at 256 passes; a scan with data costs what its bytes do, bounded by the message size.
 inline constexpr int kMaxJpegScans = 256;
+
+// The default budget, width x height: 4096 x 4096 passes a 12 MP phone photo (4032 x 3024), a 4K
+// frame (3840 x 2160) and anything smaller, while a decoded image stays under 128 MiB (at most 8
+// bytes a pixel: 4 channels of 16 bits). The server's --max-image-pixels starts here.
+inline constexpr std::int64_t kDefaultMaxImagePixels = std::int64_t{4096} * 4096;
 
 // Reads the dimensions of an encoded image from its header:
 //  - PNG: the IHDR chunk, which the format requires first and libpng takes as the only header;
@@ -74,59 +77,4 @@ grpc::Status ReadImageHeader(std::string_view bytes, std::string_view field, Ima
 grpc::Status CheckImageBudget(const ImageHeader& header, std::int64_t max_pixels,
                               std::string_view field);
 
-// A counting semaphore over decodes: at most `slots` holders at once; Acquire() blocks (on a
-// condition variable: it sleeps, it never spins) until one is free. A slot is held for the whole
-// life of a decoded image (decode, then description), so `slots` x ServerLimits::max_image_pixels
-// x 8 bytes (4 channels of 16 bits, the most OpenCV decodes a PNG or JPEG to) bounds the
-// memory decoded images hold at once. Holders must not wait for anything else while holding a
-// slot (no deadlock is possible then). Thread-safe.
-class DecodeSlots {
- public:
-  // A held slot, released when destroyed. Movable; an empty (default or moved-from) Slot holds
-  // nothing.
-  class [[nodiscard]] Slot {
-   public:
-    Slot() = default;
-    Slot(Slot&& other) noexcept : owner_(other.owner_) { other.owner_ = nullptr; }
-    Slot& operator=(Slot&& other) noexcept;
-    Slot(const Slot&) = delete;
-    Slot& operator=(const Slot&) = delete;
-    ~Slot();
-
-   private:
-    friend class DecodeSlots;
-    explicit Slot(DecodeSlots* owner) : owner_(owner) {}
-    DecodeSlots* owner_ = nullptr;
-  };
-
-  // REQUIRES: slots >= 1.
-  explicit DecodeSlots(int slots);
-  // REQUIRES: no Slot of this object is held.
-  ~DecodeSlots() = default;
-
-  DecodeSlots(const DecodeSlots&) = delete;
-  DecodeSlots& operator=(const DecodeSlots&) = delete;
-
-  // Waits until a slot is free, then holds it.
-  Slot Acquire() ABSL_LOCKS_EXCLUDED(mutex_);
-
-  // The number of slots, held or free.
-  int capacity() const { return capacity_; }
-
- private:
-  void Release() ABSL_LOCKS_EXCLUDED(mutex_);
-
-  const int capacity_;
-  Mutex mutex_;
-  CondVar freed_;
-  int free_ ABSL_GUARDED_BY(mutex_);
-};
-
-// The decode slots every image decoded by this process goes through: one per core
-// (AvailableCpus, core/base/parallel_for.h: the CPUs this process may run on). Decoding is
-// CPU-bound, so more decodes at once than cores would not finish sooner; they would only hold more
-// memory. The worker pool already bounds decodes by its size; these slots keep the bound when
-// --workers is above the core count.
-DecodeSlots& ProcessDecodeSlots();
-
-}  // namespace orbit::server
+}  // namespace orbit
