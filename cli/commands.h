@@ -17,6 +17,7 @@ void AddDeleteCommand(CLI::App& app, int& exit_code);
 void AddBackupCommand(CLI::App& app, int& exit_code);
 void AddEvalCommand(CLI::App& app, int& exit_code);
 void AddServeCommand(CLI::App& app, int& exit_code);
+void AddTokenCommand(CLI::App& app, int& exit_code);
 void AddLoadtestCommand(CLI::App& app, int& exit_code);
 void AddWalkCommand(CLI::App& app, int& exit_code);
 

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   orbit::cli::AddBackupCommand(app, exit_code);
   orbit::cli::AddEvalCommand(app, exit_code);
   orbit::cli::AddServeCommand(app, exit_code);
+  orbit::cli::AddTokenCommand(app, exit_code);
   orbit::cli::AddLoadtestCommand(app, exit_code);
   orbit::cli::AddWalkCommand(app, exit_code);
 

@@ -1,5 +1,5 @@
 // orbit serve: runs the recognition server on its embedded SQLite store, or on a PostgreSQL store
-// that several servers share, until SIGTERM or SIGINT.
+// that several servers share, until SIGTERM or SIGINT; SIGHUP reloads the token file.
 #include <pthread.h>
 #include <signal.h>
 
@@ -49,6 +49,7 @@ int RunServe(ServeOptions& o) {
   sigemptyset(&signals);
   sigaddset(&signals, SIGTERM);
   sigaddset(&signals, SIGINT);
+  sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
 
   std::cerr << config.Describe();
@@ -64,7 +65,11 @@ int RunServe(ServeOptions& o) {
   std::cerr << "orbit serve: listening on " << server.address() << std::endl;
 
   int received = 0;
-  sigwait(&signals, &received);
+  // SIGHUP reads the token file again and serves on; SIGTERM and SIGINT stop.
+  while (sigwait(&signals, &received) == 0 && received == SIGHUP) {
+    std::cerr << "orbit serve: SIGHUP: reloading the token file" << std::endl;
+    server.ReloadCredentials();
+  }
   std::cerr << "orbit serve: " << (received == SIGTERM ? "SIGTERM" : "SIGINT")
             << ": shutting down (up to " << config.shutdown_grace_seconds << " s)" << std::endl;
   server.Shutdown();
@@ -115,7 +120,8 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   CLI::App* cmd = app.add_subcommand(
       "serve",
       "Run the recognition server (gRPC) on an embedded SQLite model store (--db), or on a\n"
-      "PostgreSQL one that replicas share (--store), until SIGTERM or SIGINT. Every option\n"
+      "PostgreSQL one that replicas share (--store), until SIGTERM or SIGINT (SIGHUP reloads\n"
+      "the token file). Every option\n"
       "can also come from the environment (ORBIT_...) or from a config file (--config FILE,\n"
       "`option = value` lines). Without --tokens the server accepts anyone, so it listens on\n"
       "loopback only unless --allow-remote-without-tokens is given.");
@@ -137,8 +143,9 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str()
       ->envname("ORBIT_LISTEN");
   cmd->add_option("--tokens", o->tokens,
-                  "token file: lines `<token> recognize|admin`; clients send\n"
-                  "`authorization: Bearer <token>`")
+                  "token file: lines `<name> recognize|admin <sha256>` as `orbit token` prints\n"
+                  "them (`<token> <role>` still read, with a warning); mode 600. Clients send\n"
+                  "`authorization: Bearer <token>`. Read again on SIGHUP or when it changes")
       ->check(CLI::ExistingFile)
       ->envname("ORBIT_TOKENS");
   cmd->add_option("--tls-cert", o->tls_cert, "PEM certificate chain: serve TLS (with --tls-key)")
@@ -147,6 +154,11 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--tls-key", o->tls_key, "PEM private key of --tls-cert")
       ->check(CLI::ExistingFile)
       ->envname("ORBIT_TLS_KEY");
+  cmd->add_option("--audit-log", c.audit_log,
+                  "where every enrollment, added view and deletion, and every refused token, is\n"
+                  "recorded (a JSON line each): a file (appended, mode 600) or - for stderr")
+      ->capture_default_str()
+      ->envname("ORBIT_AUDIT_LOG");
   cmd->add_flag("--allow-remote-without-tokens", c.allow_remote_without_tokens,
                 "serve a non-loopback address with no access control (unsafe)");
   cmd->add_option("--variant", o->variant,

@@ -15,6 +15,7 @@ packages=(
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
   libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
+  libssl-dev  # SHA-256 of the server's tokens (server/token_file.h)
   python3-grpcio python3-protobuf
   postgresql-15  # the tests' PostgreSQL server (tests/support/postgres_test_cluster.h)
   haproxy  # the gRPC balancer of docker/haproxy.cfg, run by tests/docker/replicas_test.cc

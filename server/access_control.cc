@@ -1,73 +1,128 @@
 #include "server/access_control.h"
 
-#include <fstream>
-#include <sstream>
-#include <stdexcept>
+#include <openssl/crypto.h>
+#include <sys/stat.h>
+
+#include <set>
+
+#include "server/audit_log.h"
 
 namespace orbit::server {
-namespace {
-
-constexpr std::size_t kMinTokenLength = 16;
-
-}  // namespace
 
 AccessControl AccessControl::Open() { return AccessControl(); }
 
 AccessControl AccessControl::FromFile(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(file.string() + ": cannot read the token file");
   AccessControl access;
-  access.enabled_ = true;
-  std::string line;
-  for (int number = 1; std::getline(in, line); ++number) {
-    const std::string where = file.string() + ":" + std::to_string(number) + ": ";
-    std::istringstream fields(line);
-    std::string token, role, extra;
-    if (!(fields >> token) || token[0] == '#') continue;
-    if (!(fields >> role) || (fields >> extra)) {
-      throw std::runtime_error(where + "expected `<token> <role>`");
-    }
-    if (token.size() < kMinTokenLength) {
-      throw std::runtime_error(where + "token shorter than " + std::to_string(kMinTokenLength) +
-                               " characters");
-    }
-    Role parsed;
-    if (role == "recognize") {
-      parsed = Role::kRecognize;
-    } else if (role == "admin") {
-      parsed = Role::kAdmin;
-    } else {
-      throw std::runtime_error(where + "unknown role '" + role + "' (recognize or admin)");
-    }
-    if (!access.roles_.emplace(token, Grant{parsed, "line " + std::to_string(number)}).second) {
-      throw std::runtime_error(where + "duplicate token");
-    }
-  }
-  if (access.roles_.empty()) throw std::runtime_error(file.string() + ": no tokens in the file");
+  access.shared_->file = file;
+  TokenFile read = ReadTokenFile(file);
+  MutexLock lock(&access.shared_->mutex);
+  access.shared_->grants = std::make_shared<const std::vector<TokenGrant>>(std::move(read.grants));
+  access.shared_->warnings = std::move(read.warnings);
+  access.shared_->stamp = StampOf(file).value_or(FileStamp{});
   return access;
 }
 
+std::size_t AccessControl::token_count() const {
+  MutexLock lock(&shared_->mutex);
+  return shared_->grants ? shared_->grants->size() : 0;
+}
+
+std::vector<std::string> AccessControl::warnings() const {
+  MutexLock lock(&shared_->mutex);
+  return shared_->warnings;
+}
+
+void AccessControl::AuditTo(AuditLog* audit) {
+  MutexLock lock(&shared_->mutex);
+  shared_->audit = audit;
+}
+
 grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Role needed,
-                                      std::string* token_name) const {
+                                      std::string_view call, std::string* token_name) const {
   if (token_name != nullptr) token_name->clear();
-  if (!enabled_) return grpc::Status::OK;
+  if (!enabled()) return grpc::Status::OK;
+  std::shared_ptr<const std::vector<TokenGrant>> grants;
+  AuditLog* audit = nullptr;
+  {
+    MutexLock lock(&shared_->mutex);
+    grants = shared_->grants;
+    audit = shared_->audit;
+  }
+  const TokenGrant* granted = nullptr;
+  grpc::Status status;
   const auto& metadata = context.client_metadata();
   const auto header = metadata.find("authorization");
-  if (header == metadata.end()) {
-    return {grpc::StatusCode::UNAUTHENTICATED, "missing `authorization: Bearer <token>` metadata"};
-  }
-  const std::string value(header->second.data(), header->second.size());
   constexpr std::string_view kBearer = "Bearer ";
-  if (value.compare(0, kBearer.size(), kBearer) != 0) {
-    return {grpc::StatusCode::UNAUTHENTICATED, "authorization metadata is not `Bearer <token>`"};
+  if (header == metadata.end()) {
+    status = {grpc::StatusCode::UNAUTHENTICATED,
+              "missing `authorization: Bearer <token>` metadata"};
+  } else if (const std::string_view value(header->second.data(), header->second.size());
+             value.substr(0, kBearer.size()) != kBearer) {
+    status = {grpc::StatusCode::UNAUTHENTICATED, "authorization metadata is not `Bearer <token>`"};
+  } else {
+    // Every grant is compared, each in constant time: how long this takes says nothing about
+    // how close a guess came, nor which grant it resembles.
+    const TokenDigest digest = DigestOf(value.substr(kBearer.size()));
+    for (const TokenGrant& grant : *grants) {
+      if (CRYPTO_memcmp(digest.data(), grant.digest.data(), digest.size()) == 0) {
+        granted = &grant;
+      }
+    }
+    if (granted == nullptr) {
+      status = {grpc::StatusCode::UNAUTHENTICATED, "unknown token"};
+    } else if (needed == Role::kAdmin && granted->role != Role::kAdmin) {
+      status = {grpc::StatusCode::PERMISSION_DENIED, "this call needs a token with the admin role"};
+    }
   }
-  const auto role = roles_.find(value.substr(kBearer.size()));
-  if (role == roles_.end()) return {grpc::StatusCode::UNAUTHENTICATED, "unknown token"};
-  if (needed == Role::kAdmin && role->second.role != Role::kAdmin) {
-    return {grpc::StatusCode::PERMISSION_DENIED, "this call needs a token with the admin role"};
+  if (!status.ok()) {
+    if (audit != nullptr) {
+      const std::string peer = context.peer();
+      audit->Record({.call = call,
+                     .token = granted != nullptr ? std::string_view(granted->name) : "",
+                     .peer = peer,
+                     .outcome = status.error_code(),
+                     .message = status.error_message()});
+    }
+    return status;
   }
-  if (token_name != nullptr) *token_name = role->second.name;
+  if (token_name != nullptr) *token_name = granted->name;
   return grpc::Status::OK;
+}
+
+std::optional<AccessControl::FileStamp> AccessControl::StampOf(const std::filesystem::path& file) {
+  struct stat info {};
+  if (stat(file.c_str(), &info) != 0) return std::nullopt;
+  std::error_code error;
+  return FileStamp{std::filesystem::last_write_time(file, error),
+                   static_cast<std::uintmax_t>(info.st_size),
+                   static_cast<std::uint64_t>(info.st_ino)};
+}
+
+bool AccessControl::FileChanged() const {
+  if (!enabled()) return false;
+  const std::optional<FileStamp> now = StampOf(*shared_->file);
+  MutexLock lock(&shared_->mutex);
+  return now && !(*now == shared_->stamp);
+}
+
+std::vector<std::string> AccessControl::Reload() {
+  const std::optional<FileStamp> stamp = StampOf(*shared_->file);
+  TokenFile read = ReadTokenFile(*shared_->file);
+  auto fresh = std::make_shared<const std::vector<TokenGrant>>(std::move(read.grants));
+  std::vector<std::string> revoked;
+  MutexLock lock(&shared_->mutex);
+  for (const TokenGrant& old : *shared_->grants) {
+    bool kept = false;
+    for (const TokenGrant& grant : *fresh) {
+      kept = kept || (grant.name == old.name && grant.digest == old.digest &&
+                      (grant.role == Role::kAdmin || old.role == Role::kRecognize));
+    }
+    if (!kept) revoked.push_back(old.name);
+  }
+  shared_->grants = std::move(fresh);
+  shared_->warnings = std::move(read.warnings);
+  shared_->stamp = stamp.value_or(FileStamp{});
+  return revoked;
 }
 
 }  // namespace orbit::server

@@ -41,6 +41,9 @@ class EnrollmentStream {
   // views; else as ToModelViews. Waits for decode slots when views carry images.
   grpc::Status ToEnrollment(const ServerLimits& limits, Enrollment* out) const;
 
+  // The name the header gave; "" before the header.
+  const std::string& name() const { return header_.name(); }
+
  private:
   const DescriptorVariant variant_;
   const std::int64_t max_bytes_;

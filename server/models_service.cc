@@ -50,6 +50,11 @@ v1::ObjectInfo ToObjectInfo(const ObjectSummary& summary) {
   return info;
 }
 
+// An ObjectRef as the audit log names it: the name, or "id N".
+std::string ObjectRefText(const v1::ObjectRef& ref) {
+  return ref.ref_case() == v1::ObjectRef::kName ? ref.name() : "id " + std::to_string(ref.id());
+}
+
 // The id an ObjectRef names. Throws StoreError kNotFound, std::invalid_argument when unset.
 ObjectId Resolve(ModelStore& store, const v1::ObjectRef& ref) {
   switch (ref.ref_case()) {
@@ -75,8 +80,8 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
   EnrollReactor(grpc::CallbackServerContext* context, v1::ObjectInfo* response,
                 const ModelsEnvironment& env)
       : context_(context), response_(response), env_(env) {
-    std::string token;
-    if (grpc::Status allowed = env_.access.Authorize(*context, Role::kAdmin, &token);
+    if (grpc::Status allowed =
+            env_.access.Authorize(*context, Role::kAdmin, "Models/Enroll", &token_);
         !allowed.ok()) {
       Answer(allowed, RefusalReason::kAccess);
       return;
@@ -89,7 +94,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
     // close the stream as soon as it is admitted, before the first read starts: the cancellation
     // then completes that read.
     registered_ = true;
-    if (grpc::Status admitted = env_.enrollments.Add(this, token); !admitted.ok()) {
+    if (grpc::Status admitted = env_.enrollments.Add(this, token_); !admitted.ok()) {
       Answer(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
                            ? RefusalReason::kShuttingDown
                            : RefusalReason::kMaxEnrollments);
@@ -112,8 +117,11 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
     }
     if (!ok) {
       if (context_->IsCancelled()) {
+        const grpc::Status broke(grpc::StatusCode::CANCELLED,
+                                 "the enrollment stream broke; nothing was stored");
+        Audit(broke);
         env_.metrics.CountEnrollment(EnrollmentOutcome::kCancelled);
-        Finish({grpc::StatusCode::CANCELLED, "the enrollment stream broke; nothing was stored"});
+        Finish(broke);
       } else {
         stream_ended_ = Clock::now();
         {
@@ -153,9 +161,10 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
       MutexLock lock(&mutex_);
       if (committing_ || closing_) return;
       closing_ = status;
-      closing_reason_ = status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED
-                            ? RefusalReason::kIdleTimeout
-                            : RefusalReason::kShuttingDown;
+      closing_reason_ =
+          status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED ? RefusalReason::kIdleTimeout
+          : status.error_code() == grpc::StatusCode::UNAUTHENTICATED ? RefusalReason::kAccess
+                                                                     : RefusalReason::kShuttingDown;
     }
     context_->TryCancel();
   }
@@ -175,6 +184,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
   // Ends the call with `status`, counting the enrollment by its outcome: the time since the
   // stream ended when it was stored, the refusal under `reason` when it was not.
   void Answer(const grpc::Status& status, RefusalReason reason) {
+    if (reason != RefusalReason::kAccess) Audit(status);  // Authorize recorded its refusal
     ServerMetrics& metrics = env_.metrics;
     if (status.ok()) {
       metrics.CountEnrollment(EnrollmentOutcome::kStored);
@@ -187,6 +197,16 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
                                   : EnrollmentOutcome::kRefused);
     }
     Finish(status);
+  }
+
+  void Audit(const grpc::Status& status) {
+    const std::string peer = context_->peer();
+    env_.audit.Record({.call = "Models/Enroll",
+                       .token = token_,
+                       .peer = peer,
+                       .object = stream_.name(),
+                       .outcome = status.error_code(),
+                       .message = status.error_message()});
   }
 
   // On the worker pool, after the client closed its side. Throws what the catalogue's Enroll
@@ -204,6 +224,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
   v1::ObjectInfo* const response_;
   const ModelsEnvironment& env_;
   v1::EnrollRequest request_;
+  std::string token_;               // the caller's token's name, once authorized
   Clock::time_point stream_ended_;  // when the client closed its side
   EnrollmentStream stream_{env_.catalogue.variant(), env_.limits.max_enrollment_bytes};
   bool registered_ = false;  // set by the constructor before its first read, read by OnDone
@@ -227,8 +248,13 @@ grpc::ServerUnaryReactor* ModelsService::AddViews(grpc::CallbackServerContext* c
                                                   const v1::AddViewsRequest* request,
                                                   v1::ObjectInfo* response) {
   return RunUnaryCall(
-      context, env_.access, Role::kAdmin, env_.gate, env_.bulk_pool, env_.metrics,
-      [this, request, response] {
+      context, env_.access,
+      {.name = "Models/AddViews",
+       .role = Role::kAdmin,
+       .pool = env_.bulk_pool,
+       .audit = &env_.audit,
+       .object = ObjectRefText(request->object())},
+      env_.gate, env_.metrics, [this, request, response] {
         const ObjectId id = Resolve(env_.catalogue.store(), request->object());
         if (request->views().empty()) {
           return env_.metrics.Refuse(InvalidArgument("views is empty"),
@@ -253,8 +279,9 @@ grpc::ServerUnaryReactor* ModelsService::ListObjects(grpc::CallbackServerContext
                                                      const v1::ListObjectsRequest* request,
                                                      v1::ListObjectsResponse* response) {
   return RunUnaryCall(
-      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
-      [this, request, response] {
+      context, env_.access,
+      {.name = "Models/ListObjects", .role = Role::kRecognize, .pool = env_.pool}, env_.gate,
+      env_.metrics, [this, request, response] {
         ListRequest page;
         page.limit = request->page_size() == 0 ? kDefaultPageSize : request->page_size();
         if (page.limit < 1 || page.limit > kMaxPageSize) {
@@ -287,8 +314,9 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
                                                    const v1::GetObjectRequest* request,
                                                    v1::GetObjectResponse* response) {
   return RunUnaryCall(
-      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics,
-      [this, request, response] {
+      context, env_.access,
+      {.name = "Models/GetObject", .role = Role::kRecognize, .pool = env_.pool}, env_.gate,
+      env_.metrics, [this, request, response] {
         const ObjectId id = Resolve(env_.catalogue.store(), request->object());
         const std::optional<StoredObject> object = env_.catalogue.store().Get(id);
         if (!object) {
@@ -326,8 +354,13 @@ grpc::ServerUnaryReactor* ModelsService::GetObject(grpc::CallbackServerContext* 
 grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContext* context,
                                                       const v1::DeleteObjectRequest* request,
                                                       v1::DeleteObjectResponse* response) {
-  return RunUnaryCall(context, env_.access, Role::kAdmin, env_.gate, env_.pool, env_.metrics,
-                      [this, request, response] {
+  return RunUnaryCall(context, env_.access,
+                      {.name = "Models/DeleteObject",
+                       .role = Role::kAdmin,
+                       .pool = env_.pool,
+                       .audit = &env_.audit,
+                       .object = ObjectRefText(request->object())},
+                      env_.gate, env_.metrics, [this, request, response] {
                         const ObjectId id = Resolve(env_.catalogue.store(), request->object());
                         *response->mutable_deleted() = ToObjectInfo(env_.catalogue.Delete(id));
                         return grpc::Status::OK;
@@ -338,7 +371,9 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
                                                     const v1::ServerInfoRequest* /*request*/,
                                                     v1::ServerInfoResponse* response) {
   return RunUnaryCall(
-      context, env_.access, Role::kRecognize, env_.gate, env_.pool, env_.metrics, [this, response] {
+      context, env_.access,
+      {.name = "Models/ServerInfo", .role = Role::kRecognize, .pool = env_.pool}, env_.gate,
+      env_.metrics, [this, response] {
         const std::shared_ptr<const ViewIndexSnapshot> index = env_.catalogue.Snapshot();
         response->set_version(env_.version);
         response->set_variant(ToProtoVariant(env_.catalogue.variant()));

@@ -10,6 +10,7 @@
 
 #include "orbit/v1/models.grpc.pb.h"
 #include "server/access_control.h"
+#include "server/audit_log.h"
 #include "server/model_catalogue.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
@@ -30,6 +31,7 @@ struct ModelsEnvironment {
   ServerMetrics& metrics;        // enrollments and refusals are counted here
   const ServingGate& gate;       // closed until the index is loaded: every call refused UNAVAILABLE
   SessionRegistry& enrollments;  // the open Enroll streams (--max-enrollments)
+  AuditLog& audit;               // every administrative call's outcome
 };
 
 class ModelsService final : public v1::Models::CallbackService {

@@ -63,8 +63,19 @@ std::unique_ptr<ModelStore> OpenSqliteStore(const ServerConfig& config) {
 
 OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   ValidateServerConfig(config_);
+  audit_ = std::make_unique<AuditLog>(config_.audit_log);
   if (config_.tokens_file) {
     access_ = AccessControl::FromFile(*config_.tokens_file);
+    for (const std::string& warning : access_.warnings()) {
+      std::cerr << "orbit serve: warning: " << warning << std::endl;
+    }
+    access_.AuditTo(audit_.get());
+    if (!config_.tls_cert && !IsLoopbackAddress(config_.listen)) {
+      std::cerr << "orbit serve: warning: tokens on " << config_.listen
+                << " travel in clear text: anyone on the path can read and reuse them. Give "
+                   "--tls-cert and --tls-key, or serve behind a proxy that terminates TLS"
+                << std::endl;
+    }
   } else if (!IsLoopbackAddress(config_.listen) && !config_.allow_remote_without_tokens) {
     throw std::runtime_error(
         "refusing to serve " + config_.listen +
@@ -107,9 +118,9 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
       SessionEnvironment{*catalogue_, *calibrator_, *pool_, *bulk_pool_, *registry_, config_.limits,
                          config_.session_defaults, *metrics_, gate_},
       access_);
-  models_ = std::make_unique<ModelsService>(
-      ModelsEnvironment{*catalogue_, *pool_, *bulk_pool_, access_, config_.limits,
-                        config_.session_defaults, kOrbitVersion, *metrics_, gate_, *enrollments_});
+  models_ = std::make_unique<ModelsService>(ModelsEnvironment{
+      *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
+      kOrbitVersion, *metrics_, gate_, *enrollments_, *audit_});
   metrics_->WatchSessions(*registry_);
   metrics_->WatchIndex(*catalogue_);
   metrics_->WatchWorkers(*pool_, *bulk_pool_);
@@ -188,16 +199,41 @@ std::string OrbitServer::metrics_address() const {
 void OrbitServer::SweepIdleSessions() {
   const auto timeout = std::chrono::seconds(config_.limits.idle_timeout_seconds);
   MutexLock lock(&sweeper_mutex_);
-  for (;;) {
+  for (int sweep = 1;; ++sweep) {
     const auto next_sweep = std::chrono::steady_clock::now() + std::chrono::milliseconds(250);
     while (!stopping_ && sweeper_wake_.WaitUntil(&sweeper_mutex_, next_sweep)) {
     }
     if (stopping_) return;
+    // The token file is looked at every second: an operator's edit holds without a signal.
+    if (sweep % 4 == 0 && access_.FileChanged()) ReloadCredentials();
     const auto now = std::chrono::steady_clock::now();
     registry_->CloseIdle(now - timeout, config_.limits.idle_timeout_seconds);
     enrollments_->CloseIdle(
         now - std::chrono::seconds(config_.limits.enrollment_idle_timeout_seconds),
         config_.limits.enrollment_idle_timeout_seconds);
+  }
+}
+
+void OrbitServer::ReloadCredentials() {
+  if (!access_.enabled()) return;
+  try {
+    const std::vector<std::string> revoked = access_.Reload();
+    std::cerr << "orbit serve: tokens reloaded from " << config_.tokens_file->string() << ": "
+              << access_.token_count() << " in force";
+    for (std::size_t i = 0; i < revoked.size(); ++i) {
+      std::cerr << (i == 0 ? "; revoked: " : ", ") << revoked[i];
+    }
+    std::cerr << std::endl;
+    for (const std::string& warning : access_.warnings()) {
+      std::cerr << "orbit serve: warning: " << warning << std::endl;
+    }
+    const grpc::Status status(grpc::StatusCode::UNAUTHENTICATED,
+                              "the token of this stream was revoked");
+    registry_->CloseTokens(revoked, status);
+    enrollments_->CloseTokens(revoked, status);
+  } catch (const std::exception& e) {
+    std::cerr << "orbit serve: the token file was not reloaded, the tokens in force stay: "
+              << e.what() << std::endl;
   }
 }
 

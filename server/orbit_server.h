@@ -24,6 +24,7 @@
 
 #include "core/base/mutex.h"
 #include "server/access_control.h"
+#include "server/audit_log.h"
 #include "server/server_config.h"
 #include "server/serving_gate.h"
 #include "storage/model_store.h"
@@ -70,12 +71,19 @@ class OrbitServer {
   // stops before the workers do.
   void Shutdown() ABSL_LOCKS_EXCLUDED(sweeper_mutex_);
 
+  // Reads the token file again (on SIGHUP; the server also does when the file changes): the
+  // new grants hold from the next call, and the sessions and enrollments of a token whose grant
+  // is gone, replaced or lessened end with UNAUTHENTICATED. A bad file is reported on stderr and
+  // the grants in force stay. Nothing without --tokens.
+  void ReloadCredentials();
+
  private:
   void SweepIdleSessions() ABSL_LOCKS_EXCLUDED(sweeper_mutex_);
   // Health of every service: SERVING when `fit`, NOT_SERVING otherwise.
   void SetServing(bool fit);
 
   ServerConfig config_;
+  std::unique_ptr<AuditLog> audit_;  // before access_, which records refusals in it
   AccessControl access_;
   ServingGate gate_;  // opened once the index is loaded
   std::unique_ptr<ServerMetrics> metrics_;

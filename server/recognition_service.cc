@@ -25,7 +25,9 @@ class RefusedSession final : public grpc::ServerBidiReactor<v1::SessionRequest, 
 grpc::ServerBidiReactor<v1::SessionRequest, v1::SessionUpdate>* RecognitionService::Session(
     grpc::CallbackServerContext* context) {
   std::string token;
-  if (grpc::Status allowed = access_.Authorize(*context, Role::kRecognize, &token); !allowed.ok()) {
+  if (grpc::Status allowed =
+          access_.Authorize(*context, Role::kRecognize, "Recognition/Session", &token);
+      !allowed.ok()) {
     return new RefusedSession(env_.metrics.Refuse(allowed, RefusalReason::kAccess));
   }
   if (grpc::Status admitted = env_.gate.Admit(); !admitted.ok()) {
@@ -42,8 +44,9 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
                                      [](const v1::Frame& frame) { return !frame.image().empty(); });
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
   return RunUnaryCall(
-      context, access_, Role::kRecognize, env_.gate, workers, env_.metrics,
-      [this, context, request, response] {
+      context, access_,
+      {.name = "Recognition/Recognize", .role = Role::kRecognize, .pool = workers}, env_.gate,
+      env_.metrics, [this, context, request, response] {
         using Clock = std::chrono::steady_clock;
         ServerMetrics& metrics = env_.metrics;
         if (request->frames().empty()) {

@@ -1,5 +1,7 @@
 #include "server/server_config.h"
 
+#include <arpa/inet.h>
+
 #include <sstream>
 #include <stdexcept>
 
@@ -17,7 +19,10 @@ bool IsLoopbackAddress(const std::string& host_and_port) {
   } else if (host.front() == '[') {
     host = host.substr(1, host.find(']') - 1);
   }
-  return host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+  in_addr ipv4{};
+  const bool ipv4_loopback =
+      inet_pton(AF_INET, host.c_str(), &ipv4) == 1 && (ntohl(ipv4.s_addr) >> 24) == 127;
+  return host == "localhost" || host == "::1" || ipv4_loopback;
 }
 
 void ValidateServerConfig(const ServerConfig& config) {
@@ -85,6 +90,7 @@ std::string ServerConfig::Describe() const {
   out << "  listen              " << listen << "\n"
       << "  access control      "
       << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"
+      << "  audit log           " << (audit_log == "-" ? std::string("stderr") : audit_log) << "\n"
       << "  tls                 "
       << (tls_cert ? "certificate " + tls_cert->string() + ", key " + tls_key->string() : "off")
       << "\n"

@@ -22,9 +22,12 @@ struct ServerConfig {
   // NOT_SERVING (its models may be stale; server/model_change_follower.h).
   int store_grace_seconds = 10;
   std::string listen = "127.0.0.1:50051";            // HOST:PORT; port 0 picks a free port
-  std::optional<std::filesystem::path> tokens_file;  // server/access_control.h
-  std::optional<std::filesystem::path> tls_cert;     // PEM certificate chain (with tls_key)
-  std::optional<std::filesystem::path> tls_key;      // PEM private key
+  std::optional<std::filesystem::path> tokens_file;  // server/token_file.h
+  // Where administrative calls and refused authentications are recorded, a JSON line each
+  // (server/audit_log.h): a file, or "-" for stderr.
+  std::string audit_log = "-";
+  std::optional<std::filesystem::path> tls_cert;  // PEM certificate chain (with tls_key)
+  std::optional<std::filesystem::path> tls_key;   // PEM private key
   // Serving without tokens on a non-loopback address exposes enrollment and deletion to anyone
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;
@@ -57,7 +60,8 @@ struct ServerConfig {
 // naming the option. OrbitServer calls it.
 void ValidateServerConfig(const ServerConfig& config);
 
-// True for 127.0.0.0/8, ::1 and "localhost" (HOST of a HOST:PORT address, brackets allowed).
+// True for an IPv4 address in 127.0.0.0/8, ::1 and "localhost" (HOST of a HOST:PORT address,
+// brackets allowed). A host name is not resolved: "127.example.com" is not loopback.
 bool IsLoopbackAddress(const std::string& host_and_port);
 
 }  // namespace orbit::server

@@ -10,11 +10,14 @@
 namespace orbit::server {
 namespace {
 
-// The registry closes a session for its idle timeout (DEADLINE_EXCEEDED) or for the server's
-// shutdown (UNAVAILABLE).
+// The registry closes a session for its idle timeout (DEADLINE_EXCEEDED), its token's revocation
+// (UNAUTHENTICATED) or the server's shutdown (UNAVAILABLE).
 RefusalReason ReasonOfClose(const grpc::Status& status) {
-  return status.error_code() == grpc::StatusCode::DEADLINE_EXCEEDED ? RefusalReason::kIdleTimeout
-                                                                    : RefusalReason::kShuttingDown;
+  switch (status.error_code()) {
+    case grpc::StatusCode::DEADLINE_EXCEEDED: return RefusalReason::kIdleTimeout;
+    case grpc::StatusCode::UNAUTHENTICATED: return RefusalReason::kAccess;  // token revoked
+    default: return RefusalReason::kShuttingDown;
+  }
 }
 
 }  // namespace

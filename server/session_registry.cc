@@ -1,5 +1,6 @@
 #include "server/session_registry.h"
 
+#include <algorithm>
 #include <string>
 
 #include "server/error_status.h"
@@ -44,6 +45,16 @@ void SessionRegistry::CloseIdle(std::chrono::steady_clock::time_point cutoff,
       session->Close({grpc::StatusCode::DEADLINE_EXCEEDED,
                       limits_.noun + " closed after " + std::to_string(idle_timeout_seconds) +
                           " s without " + limits_.activity});
+    }
+  }
+}
+
+void SessionRegistry::CloseTokens(const std::vector<std::string>& tokens,
+                                  const grpc::Status& status) {
+  MutexLock lock(&mutex_);
+  for (const auto& [session, token] : sessions_) {
+    if (!token.empty() && std::find(tokens.begin(), tokens.end(), token) != tokens.end()) {
+      session->Close(status);
     }
   }
 }

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <string>
 #include <unordered_map>
+#include <vector>
 
 #include <grpcpp/grpcpp.h>
 
@@ -51,6 +52,10 @@ class SessionRegistry {
 
   // Closes, with DEADLINE_EXCEEDED, every stream idle since before `cutoff`.
   void CloseIdle(std::chrono::steady_clock::time_point cutoff, int idle_timeout_seconds)
+      ABSL_LOCKS_EXCLUDED(mutex_);
+
+  // Closes every stream opened with one of `tokens` (names) with `status`.
+  void CloseTokens(const std::vector<std::string>& tokens, const grpc::Status& status)
       ABSL_LOCKS_EXCLUDED(mutex_);
 
   // Refuses new sessions from now on and closes every open one with `status`.

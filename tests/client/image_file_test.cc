@@ -44,8 +44,9 @@ TEST(ImageFileTest, RefusesAnImageAboveTheBudgetBeforeDecodingIt) {
   ScratchDir dir;
   const std::string large = (dir / "large.png").string();
   ASSERT_TRUE(cv::imwrite(large, cv::Mat(4000, 5000, CV_8UC3, cv::Scalar(10, 20, 30))));
-  EXPECT_EQ(ErrorOf(large), large + " is 5000x4000 pixels; at most 16777216 pixels (4096x4096) "
-                                    "are decoded");
+  EXPECT_EQ(ErrorOf(large), large +
+                                " is 5000x4000 pixels; at most 16777216 pixels (4096x4096) "
+                                "are decoded");
   EXPECT_EQ(ReadImageFile(large, 20'000'000).size(), cv::Size(5000, 4000));
 }
 

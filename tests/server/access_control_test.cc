@@ -1,19 +1,25 @@
-// Who may call what: the token file `orbit serve --tokens` reads, every refusal it promises
-// (each naming the file, and the line when there is one), and the status each call gets
-// (server/access_control.h; docs/design.md#service-behaviour).
+// Who may call what (server/access_control.h; docs/design.md#access-control): the status each
+// call gets, the grant's name, constant-time matching of digests, reloading the token file, and
+// the refusals recorded in the audit log. The file's own rules are token_file_test.cc's.
 //
 // The calls' metadata is put on a real grpc::ServerContext with gRPC's own test peer,
 // grpc::testing::ServerContextTestSpouse, so no server needs to run.
 #include "server/access_control.h"
 
+#include "server/audit_log.h"
+
 #include <fstream>
 #include <functional>
+#include <set>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <grpcpp/test/server_context_test_spouse.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
+#include "tests/support/server_process.h"
 #include "tests/support/storage_test_support.h"
 #include "tests/support/test_data.h"
 
@@ -30,7 +36,7 @@ constexpr char kRecognizeToken[] = "recognize-token-0123456789";  // 26 characte
 class AccessControlFileTest : public ::testing::Test {
  protected:
   std::filesystem::path Write(const std::string& text) {
-    std::ofstream(file_) << text;
+    testing::WriteTokenFile(file_, text);
     return file_;
   }
 
@@ -41,84 +47,24 @@ class AccessControlFileTest : public ::testing::Test {
   const std::filesystem::path file_ = dir_ / "tokens.txt";
 };
 
-// The status of a call carrying `authorization` (none when nullptr) that needs `needed`.
-grpc::Status Call(const AccessControl& access, const char* authorization, Role needed) {
+// The status of a call carrying `authorization` (none when nullptr) that needs `needed`; the
+// grant's name in *name when given.
+grpc::Status Call(const AccessControl& access, const char* authorization, Role needed,
+                  std::string* name = nullptr) {
   grpc::ServerContext context;
   grpc::testing::ServerContextTestSpouse spouse(&context);
   if (authorization != nullptr) spouse.AddClientMetadata("authorization", authorization);
-  return access.Authorize(context, needed);
+  return access.Authorize(context, needed, "Models/Test", name);
 }
 
 std::string Bearer(const std::string& token) { return "Bearer " + token; }
-
-TEST_F(AccessControlFileTest, ReadsOneTokenPerLineIgnoringBlankLinesAndComments) {
-  const AccessControl access =
-      AccessControl::FromFile(Write("# the operators\n"
-                                    "\n" +
-                                    std::string(kAdminToken) + " admin\n" +
-                                    "   \t\n"
-                                    "#the devices, one per line\n" +
-                                    kRecognizeToken + "   recognize\n"));
-  EXPECT_TRUE(access.enabled());
-  EXPECT_EQ(access.token_count(), 2u);
-  EXPECT_TRUE(Call(access, Bearer(kAdminToken).c_str(), Role::kAdmin).ok());
-  EXPECT_TRUE(Call(access, Bearer(kRecognizeToken).c_str(), Role::kRecognize).ok());
-}
-
-TEST_F(AccessControlFileTest, AcceptsATokenOfExactlySixteenCharacters) {
-  const AccessControl access = AccessControl::FromFile(Write("0123456789abcdef recognize\n"));
-  EXPECT_EQ(access.token_count(), 1u);
-  EXPECT_TRUE(Call(access, "Bearer 0123456789abcdef", Role::kRecognize).ok());
-}
-
-TEST_F(AccessControlFileTest, RefusesAnUnreadableFile) {
-  const std::filesystem::path missing = dir_ / "no-such-file.txt";
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(missing); }),
-            missing.string() + ": cannot read the token file");
-}
-
-TEST_F(AccessControlFileTest, RefusesALineWithoutExactlyATokenAndARole) {
-  Write("# header\n" + std::string(kAdminToken) + "\n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            At(2) + "expected `<token> <role>`");
-  Write(std::string(kAdminToken) + " admin\n\n" + kRecognizeToken + " recognize extra\n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            At(3) + "expected `<token> <role>`");
-}
-
-TEST_F(AccessControlFileTest, RefusesAnUnknownRole) {
-  Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " Admin\n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            At(2) + "unknown role 'Admin' (recognize or admin)");
-}
-
-TEST_F(AccessControlFileTest, RefusesATokenShorterThanSixteenCharacters) {
-  Write("\n\n0123456789abcde admin\n");  // 15 characters
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            At(3) + "token shorter than 16 characters");
-}
-
-TEST_F(AccessControlFileTest, RefusesADuplicateTokenAtItsSecondLine) {
-  Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " recognize\n# again\n" +
-        kAdminToken + " recognize\n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            At(4) + "duplicate token");
-}
-
-TEST_F(AccessControlFileTest, RefusesAFileWithNoTokenAtAll) {
-  Write("");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            file_.string() + ": no tokens in the file");
-  Write("# nobody may call yet\n\n   \n");
-  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { AccessControl::FromFile(file_); }),
-            file_.string() + ": no tokens in the file");
-}
 
 class AccessControlAuthorizeTest : public AccessControlFileTest {
  protected:
   AccessControlAuthorizeTest() {
     access_ = AccessControl::FromFile(
-        Write(std::string(kAdminToken) + " admin\n" + kRecognizeToken + " recognize\n"));
+        Write(TokenFileLine("ops", Role::kAdmin, kAdminToken) + "\n" +
+              TokenFileLine("phone", Role::kRecognize, kRecognizeToken) + "\n"));
   }
 
   AccessControl access_ = AccessControl::Open();
@@ -164,6 +110,70 @@ TEST_F(AccessControlAuthorizeTest, UnknownTokenIsUnauthenticatedWhateverTheCall)
             grpc::StatusCode::UNAUTHENTICATED);
   EXPECT_EQ(Call(access_, "Bearer ", Role::kRecognize).error_code(),
             grpc::StatusCode::UNAUTHENTICATED);
+}
+
+TEST_F(AccessControlAuthorizeTest, NamesTheGrantOfAnAuthorizedCaller) {
+  std::string name = "stale";
+  ASSERT_TRUE(Call(access_, Bearer(kRecognizeToken).c_str(), Role::kRecognize, &name).ok());
+  EXPECT_EQ(name, "phone");
+  ASSERT_TRUE(Call(access_, Bearer(kAdminToken).c_str(), Role::kAdmin, &name).ok());
+  EXPECT_EQ(name, "ops");
+  EXPECT_FALSE(Call(access_, "Bearer unknown-token-000000", Role::kRecognize, &name).ok());
+  EXPECT_EQ(name, "");
+}
+
+TEST_F(AccessControlAuthorizeTest, AReloadHoldsAtTheNextCallAndNamesTheRevoked) {
+  const std::string other_token = "other-token-0123456789";
+  Write(TokenFileLine("ops", Role::kRecognize, kAdminToken) + "\n" +    // lessened
+        TokenFileLine("phone", Role::kAdmin, kRecognizeToken) + "\n" +  // raised
+        TokenFileLine("drone", Role::kRecognize, other_token) + "\n");  // new
+  EXPECT_TRUE(access_.FileChanged());
+  EXPECT_EQ(access_.Reload(), std::vector<std::string>{"ops"});
+  EXPECT_FALSE(access_.FileChanged());
+  EXPECT_EQ(Call(access_, Bearer(kAdminToken).c_str(), Role::kAdmin).error_code(),
+            grpc::StatusCode::PERMISSION_DENIED);
+  EXPECT_TRUE(Call(access_, Bearer(kRecognizeToken).c_str(), Role::kAdmin).ok());
+  EXPECT_TRUE(Call(access_, Bearer(other_token).c_str(), Role::kRecognize).ok());
+  // A name that now holds another token is revoked too, as is a name that is gone.
+  Write(TokenFileLine("phone", Role::kAdmin, "phone-token-rotated-0001") + "\n");
+  const std::vector<std::string> revoked = access_.Reload();
+  EXPECT_EQ(std::set<std::string>(revoked.begin(), revoked.end()),
+            (std::set<std::string>{"ops", "phone", "drone"}));
+  EXPECT_EQ(Call(access_, Bearer(kRecognizeToken).c_str(), Role::kRecognize).error_code(),
+            grpc::StatusCode::UNAUTHENTICATED);
+  EXPECT_TRUE(Call(access_, "Bearer phone-token-rotated-0001", Role::kAdmin).ok());
+}
+
+TEST_F(AccessControlAuthorizeTest, ABadFileOnReloadKeepsTheGrantsInForce) {
+  Write("phone recognize not-a-digest\n");
+  EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { access_.Reload(); }),
+            At(1) + "expected the token's SHA-256 as 64 hex digits");
+  EXPECT_TRUE(Call(access_, Bearer(kAdminToken).c_str(), Role::kAdmin).ok());
+  EXPECT_EQ(access_.token_count(), 2u);
+}
+
+TEST_F(AccessControlAuthorizeTest, RecordsEveryRefusedCallInTheAuditLog) {
+  const std::filesystem::path log = dir_ / "audit.jsonl";
+  {
+    AuditLog audit(log.string());
+    access_.AuditTo(&audit);
+    EXPECT_FALSE(Call(access_, "Bearer unknown-token-000000", Role::kRecognize).ok());
+    EXPECT_FALSE(Call(access_, Bearer(kRecognizeToken).c_str(), Role::kAdmin).ok());
+    EXPECT_TRUE(Call(access_, Bearer(kAdminToken).c_str(), Role::kAdmin).ok());  // not recorded
+    access_.AuditTo(nullptr);
+  }
+  std::ifstream in(log);
+  std::vector<nlohmann::json> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+  ASSERT_EQ(lines.size(), 2u);
+  EXPECT_EQ(lines[0]["call"], "Models/Test");
+  EXPECT_EQ(lines[0]["token"], "");
+  EXPECT_EQ(lines[0]["outcome"], "UNAUTHENTICATED");
+  EXPECT_EQ(lines[0]["message"], "unknown token");
+  EXPECT_EQ(lines[1]["token"], "phone");
+  EXPECT_EQ(lines[1]["outcome"], "PERMISSION_DENIED");
+  EXPECT_EQ(std::filesystem::status(log).permissions() & std::filesystem::perms::all,
+            std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
 }
 
 TEST(AccessControlOpenTest, AdmitsEveryCallerWithEveryRight) {

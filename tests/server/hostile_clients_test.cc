@@ -322,7 +322,7 @@ TEST(HostileClients, OneTokenCannotHoldEverySessionSlot) {
   std::filesystem::create_directories(dir);
   const std::string hog = "hog-token-0123456789";
   const std::string device_token = "device-token-0123456789";
-  std::ofstream(dir / "tokens") << hog << " recognize\n" << device_token << " recognize\n";
+  testing::WriteTokenFile(dir / "tokens", hog + " recognize\n" + device_token + " recognize\n");
   ServerProcessOptions options;
   options.tokens_file = dir / "tokens";
   options.extra_args = {"--max-sessions", "6", "--max-sessions-per-token", "4"};

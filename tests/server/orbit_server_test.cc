@@ -5,6 +5,7 @@
 #include <signal.h>
 #include <zlib.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <future>
@@ -13,6 +14,7 @@
 #include <thread>
 
 #include <grpcpp/grpcpp.h>
+#include <nlohmann/json.hpp>
 
 #include "api/conversion.h"
 #include "client/image_file.h"
@@ -21,6 +23,7 @@
 #include "core/engines/product_pipeline.h"
 #include "orbit/v1/models.grpc.pb.h"
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "server/token_file.h"
 #include "storage/postgres_connection.h"
 #include "tests/support/free_port.h"
 #include "tests/support/health_check.h"
@@ -601,17 +604,12 @@ TEST(Server, ClosesIdleSessionsWithDeadlineExceeded) {
 
 // ---- access control, TLS ----
 
-std::filesystem::path WriteFile(const std::string& name, const std::string& text) {
-  const auto path =
-      std::filesystem::temp_directory_path() / (name + "_" + std::to_string(getpid()));
-  std::ofstream(path) << text;
-  return path;
-}
-
 TEST(Server, TokensGrantRoles) {
-  const auto tokens = WriteFile("orbit_tokens",
-                                "# operators\nadmin-token-0123456789 admin\n"
-                                "device-token-0123456789 recognize\n");
+  const auto tokens =
+      std::filesystem::temp_directory_path() / ("orbit_tokens_" + std::to_string(getpid()));
+  testing::WriteTokenFile(tokens,
+                          "# operators\nadmin-token-0123456789 admin\n"
+                          "device-token-0123456789 recognize\n");
   ServerProcess server({.tokens_file = tokens});
   v1::ObjectInfo info;
   v1::ListObjectsResponse list;
@@ -634,6 +632,82 @@ TEST(Server, TokensGrantRoles) {
   EXPECT_TRUE(session.status.ok()) << session.status.error_message();
   EXPECT_EQ(session.updates.size(), 1u);
   std::filesystem::remove(tokens);
+}
+
+// Tokens rotated while serving: a SIGHUP reads the file again, the revoked token's session ends
+// with UNAUTHENTICATED at once while another token's carries on; an edit without a signal is read
+// within seconds; and every administrative call, and every refused token, is one JSON line of the
+// audit log naming the token, the call, the object and the outcome.
+TEST(Server, RotatesTokensWhileServingAndAuditsEveryAdministrativeCall) {
+  testing::ScratchDir dir;
+  const auto tokens = dir / "tokens";
+  const auto audit = dir / "audit.jsonl";
+  const std::string admin = "admin-token-0123456789", phone = "phone-token-0123456789",
+                    drone = "drone-token-0123456789";
+  using server::Role;
+  using server::TokenFileLine;
+  testing::WriteTokenFile(tokens, TokenFileLine("ops", Role::kAdmin, admin) + "\n" +
+                                      TokenFileLine("phone", Role::kRecognize, phone) + "\n" +
+                                      TokenFileLine("drone", Role::kRecognize, drone) + "\n");
+  ServerProcess server({.tokens_file = tokens, .extra_args = {"--audit-log", audit.string()}});
+  v1::ObjectInfo info;
+  ASSERT_TRUE(Client(server.address(), admin).Enroll("obj80", 80, &info, {0, 90}).ok());
+
+  Client phone_client(server.address(), phone), drone_client(server.address(), drone);
+  grpc::ClientContext phone_context, drone_context;
+  auto phone_stream = phone_client.OpenSession(phone_context);
+  auto drone_stream = drone_client.OpenSession(drone_context);
+  v1::SessionUpdate update;
+  ASSERT_TRUE(phone_stream->Write(CoilFrame(80, 0, 0)) && phone_stream->Read(&update));
+  ASSERT_TRUE(drone_stream->Write(CoilFrame(80, 0, 0)) && drone_stream->Read(&update));
+
+  // The phone's token is revoked: it is no longer in the file.
+  testing::WriteTokenFile(tokens, TokenFileLine("ops", Role::kAdmin, admin) + "\n" +
+                                      TokenFileLine("drone", Role::kRecognize, drone) + "\n");
+  kill(server.pid(), SIGHUP);
+  EXPECT_FALSE(phone_stream->Read(&update));
+  const grpc::Status ended = phone_stream->Finish();
+  EXPECT_EQ(ended.error_code(), grpc::UNAUTHENTICATED) << ended.error_message();
+  EXPECT_EQ(ended.error_message(), "the token of this stream was revoked");
+  EXPECT_TRUE(drone_stream->Write(CoilFrame(80, 90, 90)) && drone_stream->Read(&update))
+      << "another token's session carries on";
+  v1::ListObjectsResponse list;
+  EXPECT_EQ(phone_client.List(&list).error_code(), grpc::UNAUTHENTICATED);
+
+  // An edit without a signal: the drone's token is revoked within a few seconds.
+  testing::WriteTokenFile(tokens, TokenFileLine("ops", Role::kAdmin, admin) + "\n");
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (drone_client.List(&list).ok() && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  EXPECT_EQ(drone_client.List(&list).error_code(), grpc::UNAUTHENTICATED);
+  drone_stream->WritesDone();
+  EXPECT_EQ(drone_stream->Finish().error_code(), grpc::UNAUTHENTICATED);
+
+  ASSERT_TRUE(Client(server.address(), admin).Delete("obj80").ok());
+  EXPECT_NE(server.Log().find("tokens reloaded from " + tokens.string() +
+                              ": 2 in force; "
+                              "revoked: phone"),
+            std::string::npos)
+      << server.Log();
+
+  std::ifstream in(audit);
+  std::vector<nlohmann::json> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(nlohmann::json::parse(line));
+  const auto has = [&lines](const std::string& call, const std::string& token,
+                            const std::string& object, const std::string& outcome) {
+    return std::any_of(lines.begin(), lines.end(), [&](const nlohmann::json& line) {
+      return line["call"] == call && line["token"] == token && line["object"] == object &&
+             line["outcome"] == outcome &&
+             line["peer"].get<std::string>().rfind("ipv4:127.0.0.1:", 0) == 0;
+    });
+  };
+  EXPECT_TRUE(has("Models/Enroll", "ops", "obj80", "OK"));
+  EXPECT_TRUE(has("Models/DeleteObject", "ops", "obj80", "OK"));
+  EXPECT_TRUE(has("Models/ListObjects", "", "", "UNAUTHENTICATED"));
+  for (const nlohmann::json& line : lines) {
+    EXPECT_EQ(line.dump().find(admin), std::string::npos) << "no token is ever written";
+  }
 }
 
 TEST(Server, RefusesToServeARemoteAddressWithoutTokens) {

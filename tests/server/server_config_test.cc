@@ -34,8 +34,8 @@ TEST(ServerConfigTest, LoopbackAddresses) {
        {"127.0.0.1:50051", "127.8.9.10:1", "localhost:80", "[::1]:50051", "::1"}) {
     EXPECT_TRUE(IsLoopbackAddress(address)) << address;
   }
-  for (const char* address :
-       {"0.0.0.0:50051", "10.0.0.1:50051", "[::]:50051", "example.com:443", "128.0.0.1:1"}) {
+  for (const char* address : {"0.0.0.0:50051", "10.0.0.1:50051", "[::]:50051", "example.com:443",
+                              "128.0.0.1:1", "127.example.com:443", "127.0.0.1.nip.io:50051"}) {
     EXPECT_FALSE(IsLoopbackAddress(address)) << address;
   }
 }

@@ -163,6 +163,12 @@ RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args) {
   return result;
 }
 
+void WriteTokenFile(const std::filesystem::path& file, const std::string& lines) {
+  std::ofstream(file) << lines;
+  std::filesystem::permissions(
+      file, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
+}
+
 void MakeSelfSignedCertificate(const std::filesystem::path& dir, const std::string& common_name,
                                const std::string& subject_alt_names) {
   const std::string command =
@@ -178,9 +184,8 @@ ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir, cons
                                           const std::string& admin_token,
                                           const std::string& reader_token) {
   std::filesystem::create_directories(dir);
-  std::ofstream(dir / "tokens") << "# operators\n"
-                                << admin_token << " admin\n"
-                                << reader_token << " recognize\n";
+  WriteTokenFile(dir / "tokens",
+                 "# operators\n" + admin_token + " admin\n" + reader_token + " recognize\n");
   std::ofstream(dir / "reader.token") << "# the device's token\n" << reader_token << "\n";
   MakeSelfSignedCertificate(dir, host, "DNS:" + host);
   ServerProcessOptions options;

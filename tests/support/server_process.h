@@ -37,6 +37,10 @@ struct ServerProcessOptions {
       {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
 };
 
+// Writes `lines` to the token file `file`, readable and writable by its owner alone (mode 600),
+// as `orbit serve --tokens` requires.
+void WriteTokenFile(const std::filesystem::path& file, const std::string& lines);
+
 // Writes a self-signed certificate for `subject_alt_names` (e.g. "DNS:orbit.test" or
 // "DNS:localhost,IP:127.0.0.1") to dir/cert.pem and its key to dir/key.pem, with openssl.
 // Throws std::runtime_error when openssl fails.
