@@ -19,7 +19,7 @@ namespace {
 struct ServeOptions {
   server::ServerConfig config;
   std::string database;
-  std::string tokens, tls_cert, tls_key;
+  std::string tokens, tls_cert, tls_key, tls_client_ca;
   std::string variant;  // "": the store's objects', the product's for an empty store
   std::string index = "kdtree";
   std::string engine{Product().engine};
@@ -37,6 +37,7 @@ int RunServe(ServeOptions& o) {
   if (!o.tokens.empty()) config.tokens_file = o.tokens;
   if (!o.tls_cert.empty()) config.tls_cert = o.tls_cert;
   if (!o.tls_key.empty()) config.tls_key = o.tls_key;
+  if (!o.tls_client_ca.empty()) config.tls_client_ca = o.tls_client_ca;
   if (!o.variant.empty()) config.variant = *ParseVariant(o.variant);
   config.index.search = o.index == "exact" ? SearchMode::kExact : SearchMode::kKdTree;
   config.session_defaults.engine = ParseSessionEngine(o.engine);
@@ -154,6 +155,13 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--tls-key", o->tls_key, "PEM private key of --tls-cert")
       ->check(CLI::ExistingFile)
       ->envname("ORBIT_TLS_KEY");
+  cmd->add_option("--tls-client-ca", o->tls_client_ca,
+                  "PEM CA bundle: mutual TLS, every client must show a certificate it signed;\n"
+                  "token-file lines `<name> <role> certificate` grant a role to the certificate\n"
+                  "whose common name is <name>. Certificate, key and CA files are watched:\n"
+                  "renewed ones are served within 5 s")
+      ->check(CLI::ExistingFile)
+      ->envname("ORBIT_TLS_CLIENT_CA");
   cmd->add_option("--audit-log", c.audit_log,
                   "where every enrollment, added view and deletion, and every refused token, is\n"
                   "recorded (a JSON line each): a file (appended, mode 600) or - for stderr")

@@ -5,9 +5,30 @@
 
 #include <set>
 
+#include <grpc/grpc_security_constants.h>
+
 #include "server/audit_log.h"
 
 namespace orbit::server {
+namespace {
+
+// The grant of the client certificate the connection was verified with (mutual TLS: gRPC has
+// checked it against --tls-client-ca), found by its common name; nullptr without one.
+const TokenGrant* CertifiedGrant(const grpc::ServerContextBase& context,
+                                 const std::vector<TokenGrant>& grants) {
+  const std::shared_ptr<const grpc::AuthContext> auth = context.auth_context();
+  if (auth == nullptr || !auth->IsPeerAuthenticated()) return nullptr;
+  for (const grpc::string_ref& name : auth->FindPropertyValues(GRPC_X509_CN_PROPERTY_NAME)) {
+    for (const TokenGrant& grant : grants) {
+      if (grant.certificate && grant.name == std::string_view(name.data(), name.size())) {
+        return &grant;
+      }
+    }
+  }
+  return nullptr;
+}
+
+}  // namespace
 
 AccessControl AccessControl::Open() { return AccessControl(); }
 
@@ -54,8 +75,15 @@ grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Ro
   const auto header = metadata.find("authorization");
   constexpr std::string_view kBearer = "Bearer ";
   if (header == metadata.end()) {
-    status = {grpc::StatusCode::UNAUTHENTICATED,
-              "missing `authorization: Bearer <token>` metadata"};
+    granted = CertifiedGrant(context, *grants);
+    if (granted == nullptr) {
+      status = {grpc::StatusCode::UNAUTHENTICATED,
+                "missing `authorization: Bearer <token>` metadata (or a client certificate "
+                "the token file names)"};
+    } else if (needed == Role::kAdmin && granted->role != Role::kAdmin) {
+      status = {grpc::StatusCode::PERMISSION_DENIED,
+                "this call needs a certificate or token with the admin role"};
+    }
   } else if (const std::string_view value(header->second.data(), header->second.size());
              value.substr(0, kBearer.size()) != kBearer) {
     status = {grpc::StatusCode::UNAUTHENTICATED, "authorization metadata is not `Bearer <token>`"};
@@ -64,7 +92,8 @@ grpc::Status AccessControl::Authorize(const grpc::ServerContextBase& context, Ro
     // how close a guess came, nor which grant it resembles.
     const TokenDigest digest = DigestOf(value.substr(kBearer.size()));
     for (const TokenGrant& grant : *grants) {
-      if (CRYPTO_memcmp(digest.data(), grant.digest.data(), digest.size()) == 0) {
+      if (!grant.certificate &&
+          CRYPTO_memcmp(digest.data(), grant.digest.data(), digest.size()) == 0) {
         granted = &grant;
       }
     }
@@ -115,6 +144,7 @@ std::vector<std::string> AccessControl::Reload() {
     bool kept = false;
     for (const TokenGrant& grant : *fresh) {
       kept = kept || (grant.name == old.name && grant.digest == old.digest &&
+                      grant.certificate == old.certificate &&
                       (grant.role == Role::kAdmin || old.role == Role::kRecognize));
     }
     if (!kept) revoked.push_back(old.name);

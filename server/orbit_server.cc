@@ -1,9 +1,7 @@
 #include "server/orbit_server.h"
 
 #include <chrono>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 #include <stdexcept>
 
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
@@ -21,6 +19,7 @@
 #include "server/server_metrics.h"
 #include "server/session_engine.h"
 #include "server/session_registry.h"
+#include "server/tls_credentials.h"
 #include "server/worker_pool.h"
 #include "storage/postgres_model_store.h"
 #include "storage/sqlite_model_store.h"
@@ -32,25 +31,6 @@ namespace {
 // The bulk workers' niceness (WorkerPool): enough that CFS gives a session's descriptor frame
 // the core at once when an enrollment or an image is being processed (weight 110 against 1024).
 constexpr int kBulkWorkerNice = 10;
-
-std::string ReadFile(const std::filesystem::path& file, const char* what) {
-  std::ifstream in(file);
-  if (!in) throw std::runtime_error(std::string("cannot read the ") + what + " " + file.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
-std::shared_ptr<grpc::ServerCredentials> Credentials(const ServerConfig& config) {
-  if (!config.tls_cert && !config.tls_key) return grpc::InsecureServerCredentials();
-  if (!config.tls_cert || !config.tls_key) {
-    throw std::runtime_error("TLS needs both --tls-cert and --tls-key");
-  }
-  grpc::SslServerCredentialsOptions options;
-  options.pem_key_cert_pairs.push_back(
-      {ReadFile(*config.tls_key, "TLS key"), ReadFile(*config.tls_cert, "TLS certificate")});
-  return grpc::SslServerCredentials(options);
-}
 
 // The SQLite file (created when missing).
 std::unique_ptr<ModelStore> OpenSqliteStore(const ServerConfig& config) {
@@ -136,7 +116,9 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(config_.listen, Credentials(config_), &port_);
+  builder.AddListeningPort(
+      config_.listen,
+      ServerTlsCredentials({config_.tls_cert, config_.tls_key, config_.tls_client_ca}), &port_);
   builder.SetMaxReceiveMessageSize(config_.limits.max_message_bytes);
   ApplyConnectionLimits(config_.connections, builder);
   builder.RegisterService(recognition_.get());

@@ -7,6 +7,7 @@
 
 #include "api/engine_names.h"
 #include "core/engines/product_pipeline.h"
+#include "server/tls_credentials.h"
 #include "storage/postgres_connection.h"
 
 namespace orbit::server {
@@ -92,7 +93,12 @@ std::string ServerConfig::Describe() const {
       << (tokens_file ? "tokens from " + tokens_file->string() : "none (loopback only)") << "\n"
       << "  audit log           " << (audit_log == "-" ? std::string("stderr") : audit_log) << "\n"
       << "  tls                 "
-      << (tls_cert ? "certificate " + tls_cert->string() + ", key " + tls_key->string() : "off")
+      << (tls_cert ? "certificate " + tls_cert->string() + ", key " + tls_key->string() +
+                         (tls_client_ca ? ", client certificates of " + tls_client_ca->string()
+                                        : std::string()) +
+                         " (files watched: renewed ones served within " +
+                         std::to_string(kCertificateRefreshSeconds) + " s)"
+                   : "off")
       << "\n"
       << "  descriptor variant  "
       << (variant ? std::string(VariantName(*variant))

@@ -28,6 +28,9 @@ struct ServerConfig {
   std::string audit_log = "-";
   std::optional<std::filesystem::path> tls_cert;  // PEM certificate chain (with tls_key)
   std::optional<std::filesystem::path> tls_key;   // PEM private key
+  // PEM CA bundle: mutual TLS, every client shows a certificate it signed
+  // (server/tls_credentials.h).
+  std::optional<std::filesystem::path> tls_client_ca;
   // Serving without tokens on a non-loopback address exposes enrollment and deletion to anyone
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;

@@ -114,8 +114,10 @@ TokenFile ReadTokenFile(const std::filesystem::path& file) {
         throw std::runtime_error(where + "name '" + field[0] +
                                  "' is not 1..64 letters, digits, '_', '-' or '.'");
       }
-      if (!ParseDigest(field[2], &grant.digest)) {
-        throw std::runtime_error(where + "expected the token's SHA-256 as 64 hex digits");
+      grant.certificate = field[2] == "certificate";
+      if (!grant.certificate && !ParseDigest(field[2], &grant.digest)) {
+        throw std::runtime_error(where +
+                                 "expected the token's SHA-256 as 64 hex digits, or `certificate`");
       }
       grant.name = field[0];
     } else {
@@ -129,7 +131,9 @@ TokenFile ReadTokenFile(const std::filesystem::path& file) {
                                 TokenFileLine(grant.name, role, field[0]) +
                                 "` instead, which holds only its SHA-256");
     }
-    if (!digests.insert(grant.digest).second) throw std::runtime_error(where + "duplicate token");
+    if (!grant.certificate && !digests.insert(grant.digest).second) {
+      throw std::runtime_error(where + "duplicate token");
+    }
     if (!names.insert(grant.name).second) {
       throw std::runtime_error(where + "duplicate name '" + grant.name + "'");
     }

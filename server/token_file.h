@@ -5,6 +5,8 @@
 //                            it: the file holds nothing a reader could call with
 //   <token> <role>           a token in clear text, still read, with a warning; named
 //                            "token-" and the first 8 hex digits of its SHA-256
+//   <name> <role> certificate  a client of mutual TLS whose certificate's common name is <name>
+//                            (orbit serve --tls-client-ca: the certificate is verified first)
 //
 // Roles are `recognize` and `admin`. Blank lines and lines whose first field starts with '#' are
 // comments. Names are 1..64 letters, digits, '_', '-' and '.'; tokens at least 16 characters.
@@ -31,7 +33,8 @@ using TokenDigest = std::array<std::uint8_t, 32>;  // SHA-256
 struct TokenGrant {
   std::string name;
   Role role = Role::kRecognize;
-  TokenDigest digest{};
+  TokenDigest digest{};      // unused for a certificate's grant
+  bool certificate = false;  // granted to a client certificate named `name`, not to a token
 };
 
 struct TokenFile {

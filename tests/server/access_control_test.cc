@@ -147,7 +147,7 @@ TEST_F(AccessControlAuthorizeTest, AReloadHoldsAtTheNextCallAndNamesTheRevoked) 
 TEST_F(AccessControlAuthorizeTest, ABadFileOnReloadKeepsTheGrantsInForce) {
   Write("phone recognize not-a-digest\n");
   EXPECT_EQ(ErrorMessageOf<std::runtime_error>([&] { access_.Reload(); }),
-            At(1) + "expected the token's SHA-256 as 64 hex digits");
+            At(1) + "expected the token's SHA-256 as 64 hex digits, or `certificate`");
   EXPECT_TRUE(Call(access_, Bearer(kAdminToken).c_str(), Role::kAdmin).ok());
   EXPECT_EQ(access_.token_count(), 2u);
 }

@@ -76,6 +76,20 @@ TEST_F(TokenFileTest, ReadsHashedLinesByNameAndClearOnesWithAWarning) {
                                   "` instead, which holds only its SHA-256");
 }
 
+TEST_F(TokenFileTest, ReadsAGrantToAClientCertificateByItsName) {
+  const TokenFile read =
+      ReadTokenFile(Write("device-7 recognize certificate\n"
+                          "device-8 recognize certificate\n" +
+                          TokenFileLine("ops", Role::kAdmin, kAdminToken) + "\n"));
+  ASSERT_EQ(read.grants.size(), 3u);
+  EXPECT_EQ(read.grants[0].name, "device-7");
+  EXPECT_TRUE(read.grants[0].certificate);
+  EXPECT_TRUE(read.grants[1].certificate);
+  EXPECT_FALSE(read.grants[2].certificate);
+  Write("device-7 recognize certificate\ndevice-7 admin certificate\n");
+  EXPECT_EQ(ReadError(), At(2) + "duplicate name 'device-7'");
+}
+
 TEST_F(TokenFileTest, WarnsOfACommentThatLooksLikeATokenLine) {
   const TokenFile read =
       ReadTokenFile(Write("#secret-token-012345 admin\n" +
@@ -98,7 +112,7 @@ TEST_F(TokenFileTest, RefusesEachBadLineNamingFileAndLine) {
   Write(good + "phone/7 recognize " + HexOf(DigestOf("x")) + "\n");
   EXPECT_EQ(ReadError(), At(2) + "name 'phone/7' is not 1..64 letters, digits, '_', '-' or '.'");
   Write(good + "phone recognize 0123abcd\n");
-  EXPECT_EQ(ReadError(), At(2) + "expected the token's SHA-256 as 64 hex digits");
+  EXPECT_EQ(ReadError(), At(2) + "expected the token's SHA-256 as 64 hex digits, or `certificate`");
   Write(good + "0123456789abcde admin\n");  // 15 characters
   EXPECT_EQ(ReadError(), At(2) + "token shorter than 16 characters");
   Write(good + std::string(kAdminToken) + " recognize\n");  // the same token, in clear text
