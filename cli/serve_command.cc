@@ -234,6 +234,11 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "each device or fleet a token of its own")
       ->check(CLI::Range(0, 100000))
       ->capture_default_str();
+  cmd->add_option("--max-recognize-calls-per-token", c.limits.max_recognize_calls_per_token,
+                  "Recognize calls one token may have in progress at once, with --tokens (0: no\n"
+                  "such limit)")
+      ->check(CLI::Range(0, 100000))
+      ->capture_default_str();
   cmd->add_option("--max-enrollments", c.limits.max_enrollments, "Enroll streams open at once")
       ->check(CLI::Range(1, 10000))
       ->capture_default_str();

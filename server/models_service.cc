@@ -391,6 +391,7 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
         limits->set_max_enrollment_bytes(env_.limits.max_enrollment_bytes);
         limits->set_enrollment_idle_timeout_seconds(env_.limits.enrollment_idle_timeout_seconds);
         limits->set_max_sessions_per_token(env_.limits.max_sessions_per_token);
+        limits->set_max_recognize_calls_per_token(env_.limits.max_recognize_calls_per_token);
         limits->set_max_views_per_object(static_cast<int>(kMaxViewsPerObject));
         limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
         limits->set_max_image_pixels(env_.limits.max_image_pixels);

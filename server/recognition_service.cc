@@ -45,8 +45,11 @@ grpc::ServerUnaryReactor* RecognitionService::Recognize(grpc::CallbackServerCont
   WorkerPool& workers = has_image ? env_.bulk_pool : env_.pool;
   return RunUnaryCall(
       context, access_,
-      {.name = "Recognition/Recognize", .role = Role::kRecognize, .pool = workers}, env_.gate,
-      env_.metrics, [this, context, request, response] {
+      {.name = "Recognition/Recognize",
+       .role = Role::kRecognize,
+       .pool = workers,
+       .per_token = &recognize_calls_},
+      env_.gate, env_.metrics, [this, context, request, response] {
         using Clock = std::chrono::steady_clock;
         ServerMetrics& metrics = env_.metrics;
         if (request->frames().empty()) {

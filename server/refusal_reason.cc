@@ -8,6 +8,7 @@ std::string_view RefusalReasonName(RefusalReason reason) {
     case RefusalReason::kAccess: return "access";
     case RefusalReason::kMaxSessions: return "max_sessions";
     case RefusalReason::kMaxEnrollments: return "max_enrollments";
+    case RefusalReason::kTokenCalls: return "token_calls";
     case RefusalReason::kFrameRate: return "frame_rate";
     case RefusalReason::kSessionLimit: return "session_limit";
     case RefusalReason::kImageBudget: return "image_budget";

@@ -21,6 +21,8 @@ enum class RefusalReason {
   kMaxSessions,     // max_sessions: --max-sessions streams already open, or
                     // --max-sessions-per-token of the caller's token
   kMaxEnrollments,  // max_enrollments: --max-enrollments Enroll streams already open
+  kTokenCalls,      // token_calls: --max-recognize-calls-per-token of the caller's token's
+                    // Recognize calls already in progress
   kFrameRate,       // frame_rate: a session over --max-fps
   kSessionLimit,    // session_limit: window above --max-window, window x HMM states above
                     // --max-hmm-cells
@@ -46,12 +48,13 @@ std::string_view RefusalReasonName(RefusalReason reason);
 // Every (code, reason) pair the server answers with, so that each series exists, at 0, from
 // the start (a counter that appears only at its first increment hides that first increment
 // from rate() and increase()).
-inline constexpr std::array<std::pair<grpc::StatusCode, RefusalReason>, 20> kRefusalKinds = {{
+inline constexpr std::array<std::pair<grpc::StatusCode, RefusalReason>, 21> kRefusalKinds = {{
     {grpc::StatusCode::INVALID_ARGUMENT, RefusalReason::kInvalidField},
     {grpc::StatusCode::UNAUTHENTICATED, RefusalReason::kAccess},
     {grpc::StatusCode::PERMISSION_DENIED, RefusalReason::kAccess},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kMaxSessions},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kMaxEnrollments},
+    {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kTokenCalls},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kFrameRate},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kSessionLimit},
     {grpc::StatusCode::RESOURCE_EXHAUSTED, RefusalReason::kImageBudget},

@@ -127,7 +127,8 @@ std::string ServerConfig::Describe() const {
       << ", messages <= " << limits.max_message_bytes
       << " bytes, images <= " << limits.max_image_pixels << " pixels, idle "
       << limits.idle_timeout_seconds << " s, " << limits.max_queued_calls
-      << " calls queued per pool, " << limits.max_sessions_per_token << " sessions per token, "
+      << " calls queued per pool, " << limits.max_sessions_per_token << " sessions and "
+      << limits.max_recognize_calls_per_token << " Recognize calls per token, "
       << limits.max_enrollments << " enrollments of <= " << limits.max_enrollment_bytes
       << " bytes (idle " << limits.enrollment_idle_timeout_seconds << " s)\n"
       << "  connections         " << DescribeConnections(connections) << "\n"

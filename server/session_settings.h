@@ -43,6 +43,10 @@ struct ServerLimits {
   // Session streams one token may hold at once (with --tokens): one device's token cannot take
   // every slot of max_sessions. 0: no per-token limit.
   int max_sessions_per_token = 64;
+  // Recognize calls one token may have in progress (queued or running) at once, with --tokens:
+  // one token cannot fill the calls' queue (max_queued_calls) while other devices wait.
+  // 0: no per-token limit.
+  int max_recognize_calls_per_token = 8;
 };
 
 struct SessionSettings {

@@ -20,6 +20,7 @@
 
 #include "server/access_control.h"
 #include "server/audit_log.h"
+#include "server/calls_per_token.h"
 #include "server/error_status.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
@@ -35,6 +36,8 @@ struct UnaryCall {
   // With role kAdmin, every outcome is recorded here (server/audit_log.h), naming `object`.
   AuditLog* audit = nullptr;
   std::string object = {};  // the object the call names; "" when none
+  // Calls of this kind one token may have in progress (queued or running); nullptr: no limit.
+  CallsPerToken* per_token = nullptr;
 };
 
 // `work` is called as grpc::Status work() on a pool thread; the response it fills must outlive
@@ -50,10 +53,18 @@ grpc::ServerUnaryReactor* RunUnaryCall(grpc::CallbackServerContext* context,
     reactor->Finish(metrics.Refuse(allowed, RefusalReason::kAccess));
     return reactor;
   }
-  // Answers the call, recording an administrative call's outcome first.
+  if (call.per_token != nullptr) {
+    if (grpc::Status admitted = call.per_token->Acquire(token); !admitted.ok()) {
+      reactor->Finish(metrics.Refuse(admitted, RefusalReason::kTokenCalls));
+      return reactor;
+    }
+  }
+  // Answers the call, recording an administrative call's outcome first, and gives its place
+  // among its token's calls back.
   auto finish = [context, reactor, token, name = call.name, object = call.object,
-                 audit =
-                     call.role == Role::kAdmin ? call.audit : nullptr](const grpc::Status& status) {
+                 audit = call.role == Role::kAdmin ? call.audit : nullptr,
+                 per_token = call.per_token](const grpc::Status& status) {
+    if (per_token != nullptr) per_token->Release(token);
     if (audit != nullptr) {
       const std::string peer = context->peer();
       audit->Record({.call = name,

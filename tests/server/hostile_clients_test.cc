@@ -27,6 +27,7 @@
 #include "tests/support/http_client.h"
 #include "tests/support/metric_sample.h"
 #include "tests/support/server_process.h"
+#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -69,11 +70,13 @@ class PendingCalls {
   explicit PendingCalls(std::shared_ptr<grpc::Channel> channel)
       : stub_(v1::Recognition::NewStub(std::move(channel))) {}
 
-  void Send(const v1::RecognizeRequest& request, std::chrono::milliseconds deadline) {
+  void Send(const v1::RecognizeRequest& request, std::chrono::milliseconds deadline,
+            const std::string& token = "") {
     calls_.push_back(std::make_unique<Call>());
     Call* call = calls_.back().get();
     call->request = request;
     call->context.set_deadline(std::chrono::system_clock::now() + deadline);
+    if (!token.empty()) call->context.AddMetadata("authorization", "Bearer " + token);
     stub_->async()->Recognize(&call->context, &call->request, &call->response,
                               [this, call](grpc::Status status) {
                                 std::lock_guard lock(mutex_);
@@ -355,6 +358,37 @@ TEST(HostileClients, OneTokenCannotHoldEverySessionSlot) {
   EXPECT_TRUE(device.Close().ok());
   for (auto& session : hogged) EXPECT_TRUE(session->Close().ok());
   std::filesystem::remove_all(dir);
+}
+
+// One token sending Recognize calls as fast as it can: beyond its share of calls in progress it
+// is refused at once, naming the limit, and another token's call is still taken and answered.
+TEST(HostileClients, OneTokenCannotFillTheCallQueue) {
+  testing::ScratchDir dir;
+  const std::string hog = "hog-token-0123456789", device = "device-token-0123456789";
+  testing::WriteTokenFile(dir / "tokens", hog + " recognize\n" + device + " recognize\n");
+  ServerProcessOptions options;
+  options.tokens_file = dir / "tokens";
+  options.extra_args = {"--bulk-workers", "1", "--max-recognize-calls-per-token", "3"};
+  ServerProcess server(options);
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  PendingCalls hogged(channel);
+  for (int i = 0; i < 10; ++i) hogged.Send(ImageBatch(4), std::chrono::seconds(60), hog);
+  std::this_thread::sleep_for(std::chrono::seconds(1));
+  PendingCalls fair(channel);
+  v1::RecognizeRequest one = ImageBatch(1);
+  fair.Send(one, std::chrono::seconds(60), device);
+  const std::vector<grpc::Status> answered = fair.Wait();
+  EXPECT_TRUE(answered[0].ok()) << answered[0].error_message();
+  hogged.CancelAll();
+  const std::vector<grpc::Status> statuses = hogged.Wait();
+  EXPECT_EQ(CountCode(statuses, grpc::StatusCode::RESOURCE_EXHAUSTED), 10 - 3);
+  for (const grpc::Status& status : statuses) {
+    if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
+      EXPECT_EQ(status.error_message(),
+                "this token already has 3 calls in progress (--max-recognize-calls-per-token); "
+                "wait for one to end");
+    }
+  }
 }
 
 }  // namespace

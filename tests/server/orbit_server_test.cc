@@ -710,6 +710,21 @@ TEST(Server, RotatesTokensWhileServingAndAuditsEveryAdministrativeCall) {
   }
 }
 
+// Tokens over plain text on an address others can reach: served (a proxy may terminate TLS in
+// front), with a warning that says what is at stake and what to do.
+TEST(Server, WarnsThatTokensTravelInClearTextOffLoopbackWithoutTls) {
+  testing::ScratchDir dir;
+  testing::WriteTokenFile(
+      dir / "tokens",
+      server::TokenFileLine("ops", server::Role::kAdmin, "admin-token-0123456789") + "\n");
+  ServerProcess remote({.listen = "0.0.0.0:0", .tokens_file = dir / "tokens"});
+  EXPECT_NE(remote.Log().find("warning: tokens on 0.0.0.0:0 travel in clear text"),
+            std::string::npos)
+      << remote.Log();
+  ServerProcess local({.tokens_file = dir / "tokens"});
+  EXPECT_EQ(local.Log().find("clear text"), std::string::npos) << local.Log();
+}
+
 TEST(Server, RefusesToServeARemoteAddressWithoutTokens) {
   const auto refused = testing::StartServerExpectingRefusal(
       {"serve", "--db", (std::filesystem::temp_directory_path() / "orbit_refused.db").string(),
