@@ -14,6 +14,7 @@
 #include "tests/support/metric_sample.h"
 #include "tests/support/raw_connections.h"
 #include "tests/support/server_process.h"
+#include "tests/support/well_behaved_session.h"
 
 namespace orbit {
 namespace {
@@ -34,16 +35,18 @@ grpc::Status AskInfo(const std::string& address,
 }
 
 // More idle connections than `ulimit -n 200` has descriptors (the review's flood): the server
-// refuses what it has no room for, a client already connected keeps being answered, and once the
-// flood ends a new client is answered at once. Without admission gRPC's listener closed for good
-// at the first EMFILE and every later call timed out.
+// refuses what it has no room for, a client already connected keeps being answered (a device's
+// session keeps its p99), and once the flood ends a new client is answered at once. Without
+// admission gRPC's listener closed for good at the first EMFILE and every later call timed out.
 TEST(ConnectionAdmission, ServesAgainAfterAFloodLargerThanItsDescriptorTable) {
   ServerProcessOptions options;
   options.descriptor_limit = 200;
   options.metrics = true;
   ServerProcess server(options);
-  auto connected = v1::Models::NewStub(
-      grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials()));
+  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  auto connected = v1::Models::NewStub(channel);
+  testing::WellBehavedSession device(channel);
+  const auto baseline = device.P99(50);
   const auto ask_connected = [&] {
     grpc::ClientContext context;
     context.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
@@ -55,10 +58,15 @@ TEST(ConnectionAdmission, ServesAgainAfterAFloodLargerThanItsDescriptorTable) {
     RawConnections flood(server.port(), 260, RawGreeting::kPrefaceSettings);
     EXPECT_EQ(flood.connected(), 260) << "the kernel completes the handshakes for the listener";
     EXPECT_TRUE(ask_connected().ok()) << "a connected client is answered during the flood";
+    const auto during = device.P99(50);
+    EXPECT_LE(during, testing::KeptP99(baseline))
+        << "p99 " << testing::Milliseconds(during) << " ms during the flood, "
+        << testing::Milliseconds(baseline) << " ms before";
     // Refused connections are closed by the server at once: the descriptors the server keeps
     // free are never lent to the flood.
     EXPECT_GE(flood.ClosedByServerWithin(std::chrono::seconds(2)), 260 - 200);
   }
+  EXPECT_TRUE(device.Close().ok());
   const grpc::Status after = AskInfo(server.address());
   EXPECT_TRUE(after.ok()) << "after the flood: " << after.error_message() << "\n" << server.Log();
   // The operator is told, in the log and in the metrics.

@@ -28,13 +28,16 @@
 #include "tests/support/metric_sample.h"
 #include "tests/support/server_process.h"
 #include "tests/support/test_data.h"
+#include "tests/support/well_behaved_session.h"
 
 namespace orbit {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+using testing::KeptP99;
 using testing::ServerProcess;
 using testing::ServerProcessOptions;
+using testing::WellBehavedSession;
 
 // A 4096 x 4096 PNG of one grey: about 50 KB on the wire, 48 MiB and a tenth of a second or more
 // of a core once decoded. 64 of them fit in one 4 MiB Recognize call.
@@ -55,12 +58,6 @@ v1::RecognizeRequest ImageBatch(int frames) {
     frame->set_azimuth_deg(i);
   }
   return request;
-}
-
-std::string Descriptor(int seed) {
-  std::string cedd(kCeddSize, '\0');
-  for (int i = 0; i < kCeddSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
-  return cedd;
 }
 
 // Recognize calls in flight, as a client that sends and forgets (gRPC's callback API: they make
@@ -119,59 +116,22 @@ int CountCode(const std::vector<grpc::Status>& statuses, grpc::StatusCode code) 
                     [code](const grpc::Status& s) { return s.error_code() == code; }));
 }
 
+// Every status of `code` among `statuses` says `message` (or contains it, when `whole` is false).
+void ExpectEveryRefusalSays(const std::vector<grpc::Status>& statuses, grpc::StatusCode code,
+                            const std::string& message, bool whole) {
+  for (const grpc::Status& status : statuses) {
+    if (status.error_code() != code) continue;
+    if (whole) {
+      EXPECT_EQ(status.error_message(), message);
+    } else {
+      EXPECT_NE(status.error_message().find(message), std::string::npos) << status.error_message();
+    }
+  }
+}
+
 double Metric(const ServerProcess& server, const std::string& series) {
   return testing::Sample(testing::HttpRequest(server.metrics_address(), "GET", "/metrics").body,
                          series);
-}
-
-// A well-behaved device: one session, descriptor frames one after another, each answer timed.
-class WellBehavedSession {
- public:
-  explicit WellBehavedSession(const std::shared_ptr<grpc::Channel>& channel,
-                              const std::string& token = "")
-      : stub_(v1::Recognition::NewStub(channel)) {
-    if (!token.empty()) context_.AddMetadata("authorization", "Bearer " + token);
-    stream_ = stub_->Session(&context_);
-    v1::SessionRequest open;
-    open.mutable_open();
-    stream_->Write(open);
-  }
-
-  // The 99th percentile of `frames` frames' round trips (the server's answer included).
-  Clock::duration P99(int frames) {
-    std::vector<Clock::duration> times;
-    for (int i = 0; i < frames; ++i) {
-      v1::SessionRequest request;
-      request.mutable_frame()->set_cedd(Descriptor(i));
-      request.mutable_frame()->set_azimuth_deg((i * 5) % 360);
-      const auto start = Clock::now();
-      v1::SessionUpdate update;
-      if (!stream_->Write(request) || !stream_->Read(&update)) {
-        ADD_FAILURE() << "the well-behaved session ended: " << stream_->Finish().error_message();
-        return Clock::duration::max();
-      }
-      times.push_back(Clock::now() - start);
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));  // under --max-fps 60
-    }
-    std::sort(times.begin(), times.end());
-    return times[(times.size() * 99) / 100];
-  }
-
-  grpc::Status Close() {
-    stream_->WritesDone();
-    return stream_->Finish();
-  }
-
- private:
-  std::unique_ptr<v1::Recognition::Stub> stub_;
-  grpc::ClientContext context_;
-  std::unique_ptr<grpc::ClientReaderWriter<v1::SessionRequest, v1::SessionUpdate>> stream_;
-};
-
-// The bound a well-behaved session's p99 keeps under attack: a few times its own p99 measured
-// just before on the same server, plus a margin for a machine shared with the attacker.
-Clock::duration KeptP99(Clock::duration baseline) {
-  return 3 * baseline + std::chrono::milliseconds(50);
 }
 
 grpc::Status EnrollOne(v1::Models::Stub& models, const std::string& name,
@@ -185,7 +145,7 @@ grpc::Status EnrollOne(v1::Models::Stub& models, const std::string& name,
   writer->Write(header);
   for (int v = 0; v < 4; ++v) {
     v1::EnrollRequest view;
-    view.mutable_view()->set_cedd(Descriptor(v));
+    view.mutable_view()->set_cedd(testing::SyntheticCedd(v));
     view.mutable_view()->set_azimuth_deg(v * 90.0);
     writer->Write(view);
   }
@@ -226,9 +186,8 @@ TEST(HostileClients, AbandonedCallsAreDroppedAndHoldNoOneElseUp) {
   EXPECT_LE(image_frames, 10 * 8) << "of 640 image frames sent";
   EXPECT_GE(Metric(server, R"(orbit_refusals_total{code="CANCELLED",reason="caller_gone"})"), 1);
   EXPECT_LE(under_attack, KeptP99(baseline))
-      << "p99 " << std::chrono::duration<double, std::milli>(under_attack).count()
-      << " ms under attack, " << std::chrono::duration<double, std::milli>(baseline).count()
-      << " ms before";
+      << "p99 " << testing::Milliseconds(under_attack) << " ms under attack, "
+      << testing::Milliseconds(baseline) << " ms before";
   EXPECT_TRUE(device.Close().ok());
 }
 
@@ -246,12 +205,8 @@ TEST(HostileClients, CallsBeyondTheQueueAreRefusedAtOnceNamingTheLimit) {
   const std::vector<grpc::Status> statuses = calls.Wait();
   const int refused = CountCode(statuses, grpc::StatusCode::RESOURCE_EXHAUSTED);
   EXPECT_GE(refused, 8 - 1 - 2) << "one running and two queued at most";
-  for (const grpc::Status& status : statuses) {
-    if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
-      EXPECT_NE(status.error_message().find("--max-queued-calls 2"), std::string::npos)
-          << status.error_message();
-    }
-  }
+  ExpectEveryRefusalSays(statuses, grpc::StatusCode::RESOURCE_EXHAUSTED, "--max-queued-calls 2",
+                         false);
   auto models = v1::Models::NewStub(channel);
   EXPECT_TRUE(EnrollOne(*models, "after", std::chrono::seconds(10)).ok());
 }
@@ -282,13 +237,16 @@ TEST(HostileClients, SigtermAnswersQueuedWorkAndKeepsItsGrace) {
 }
 
 // Enrollments held open without a message: no more than --max-enrollments at once, each ended
-// after --enrollment-idle-timeout, and then an operator enrolls again.
+// after --enrollment-idle-timeout, and then an operator enrolls again; a device's session beside
+// them keeps its p99.
 TEST(HostileClients, HeldEnrollmentsAreCappedAndEndedWhenIdle) {
   ServerProcessOptions options;
   options.extra_args = {"--max-enrollments", "2", "--enrollment-idle-timeout", "2"};
   ServerProcess server(options);
   auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
   auto models = v1::Models::NewStub(channel);
+  WellBehavedSession device(channel);
+  const Clock::duration baseline = device.P99(50);
   struct Held {
     grpc::ClientContext context;
     v1::ObjectInfo info;
@@ -315,6 +273,8 @@ TEST(HostileClients, HeldEnrollmentsAreCappedAndEndedWhenIdle) {
   }
   const grpc::Status after = EnrollOne(*models, "after", std::chrono::seconds(10));
   EXPECT_TRUE(after.ok()) << after.error_message();
+  EXPECT_LE(device.P99(50), KeptP99(baseline));
+  EXPECT_TRUE(device.Close().ok());
 }
 
 // One token opening sessions until it holds its share is refused beyond it; a device with
@@ -382,13 +342,11 @@ TEST(HostileClients, OneTokenCannotFillTheCallQueue) {
   hogged.CancelAll();
   const std::vector<grpc::Status> statuses = hogged.Wait();
   EXPECT_EQ(CountCode(statuses, grpc::StatusCode::RESOURCE_EXHAUSTED), 10 - 3);
-  for (const grpc::Status& status : statuses) {
-    if (status.error_code() == grpc::StatusCode::RESOURCE_EXHAUSTED) {
-      EXPECT_EQ(status.error_message(),
-                "this token already has 3 calls in progress (--max-recognize-calls-per-token); "
-                "wait for one to end");
-    }
-  }
+  ExpectEveryRefusalSays(
+      statuses, grpc::StatusCode::RESOURCE_EXHAUSTED,
+      "this token already has 3 calls in progress (--max-recognize-calls-per-token); wait for "
+      "one to end",
+      true);
 }
 
 }  // namespace
