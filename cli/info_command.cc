@@ -54,7 +54,13 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
         {"max_views_per_object", l.max_views_per_object()},
         {"idle_timeout_seconds", l.idle_timeout_seconds()},
         {"max_image_pixels", l.max_image_pixels()},
-        {"max_hmm_cells", l.max_hmm_cells()}}},
+        {"max_hmm_cells", l.max_hmm_cells()},
+        {"max_queued_calls", l.max_queued_calls()},
+        {"max_sessions_per_token", l.max_sessions_per_token()},
+        {"max_recognize_calls_per_token", l.max_recognize_calls_per_token()},
+        {"max_enrollments", l.max_enrollments()},
+        {"max_enrollment_bytes", l.max_enrollment_bytes()},
+        {"enrollment_idle_timeout_seconds", l.enrollment_idle_timeout_seconds()}}},
   };
 }
 
@@ -81,7 +87,12 @@ int RunInfo(const InfoOptions& options) {
             << ", messages <= " << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]
             << " views per object, idle timeout " << l["idle_timeout_seconds"]
             << " s, images <= " << l["max_image_pixels"]
-            << " pixels, HMM window x states <= " << l["max_hmm_cells"] << "\n";
+            << " pixels, HMM window x states <= " << l["max_hmm_cells"] << "\n"
+            << "          " << l["max_queued_calls"] << " calls queued per pool; per token "
+            << l["max_sessions_per_token"] << " sessions and " << l["max_recognize_calls_per_token"]
+            << " Recognize calls; " << l["max_enrollments"]
+            << " enrollments of <= " << l["max_enrollment_bytes"]
+            << " bytes, idle <= " << l["enrollment_idle_timeout_seconds"] << " s\n";
   return 0;
 }
 

@@ -53,6 +53,8 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_EQ(info_json["session_defaults"]["false_accept_rate"], 0.17);
   EXPECT_EQ(info_json["limits"]["max_image_pixels"], 16777216);
   EXPECT_EQ(info_json["limits"]["max_hmm_cells"], 1024);
+  EXPECT_EQ(info_json["limits"]["max_enrollment_bytes"], 256 << 20);
+  EXPECT_EQ(info_json["limits"]["max_recognize_calls_per_token"], 8);
 
   // Object 2 between its enrolled views, the compass 90 degrees off.
   const std::string frames = CoilImageArguments(2, {30, 50, 70, 90}, 90);

@@ -268,6 +268,12 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
   EXPECT_EQ(info.session_defaults().engine(), v1::ENGINE_HMM);
   EXPECT_EQ(info.limits().max_image_pixels(), 4096 * 4096);
   EXPECT_EQ(info.limits().max_hmm_cells(), 1024);
+  EXPECT_EQ(info.limits().max_queued_calls(), 32);
+  EXPECT_EQ(info.limits().max_sessions_per_token(), 64);
+  EXPECT_EQ(info.limits().max_recognize_calls_per_token(), 8);
+  EXPECT_EQ(info.limits().max_enrollments(), 4);
+  EXPECT_EQ(info.limits().max_enrollment_bytes(), std::int64_t{256} << 20);
+  EXPECT_EQ(info.limits().enrollment_idle_timeout_seconds(), 30);
 
   for (const v1::Engine engine : {v1::ENGINE_VCI, v1::ENGINE_HMM, v1::ENGINE_VCI_HMM}) {
     v1::SessionOptions options;
