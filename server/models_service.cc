@@ -90,10 +90,9 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
       Answer(admitted, RefusalReason::kStarting);
       return;
     }
-    // OnDone leaves the registry, whether or not this stream was admitted. The registry may
-    // close the stream as soon as it is admitted, before the first read starts: the cancellation
-    // then completes that read.
-    registered_ = true;
+    // OnDone leaves the registry (Remove ignores a stream never admitted). The registry may close
+    // the stream as soon as it is admitted, before the first read starts: the cancellation then
+    // completes that read.
     if (grpc::Status admitted = env_.enrollments.Add(this, token_); !admitted.ok()) {
       Answer(admitted, admitted.error_code() == grpc::StatusCode::UNAVAILABLE
                            ? RefusalReason::kShuttingDown
@@ -105,14 +104,16 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
 
   void OnReadDone(bool ok) override {
     std::optional<grpc::Status> closing;
+    RefusalReason closing_reason = RefusalReason::kInternal;
     {
       MutexLock lock(&mutex_);
       closing = closing_;
+      closing_reason = closing_reason_;
       if (ok && !closing) last_activity_ = Clock::now().time_since_epoch().count();
     }
     if (closing) {
-      // Closed by the registry (idle, shutdown) or refused by it: the client sees CANCELLED.
-      Answer(*closing, closing_reason_);
+      // Closed by the registry (idle, revoked token, shutdown): the client sees CANCELLED.
+      Answer(*closing, closing_reason);
       return;
     }
     if (!ok) {
@@ -174,7 +175,7 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
   }
 
   void OnDone() override {
-    if (registered_) env_.enrollments.Remove(this);
+    env_.enrollments.Remove(this);
     delete this;
   }
 
@@ -227,14 +228,12 @@ class EnrollReactor final : public grpc::ServerReadReactor<v1::EnrollRequest>,
   std::string token_;               // the caller's token's name, once authorized
   Clock::time_point stream_ended_;  // when the client closed its side
   EnrollmentStream stream_{env_.catalogue.variant(), env_.limits.max_enrollment_bytes};
-  bool registered_ = false;  // set by the constructor before its first read, read by OnDone
   std::atomic<Clock::rep> last_activity_{Clock::now().time_since_epoch().count()};
   // Taken after the registry's lock (it calls Close with that lock held), never before it.
   Mutex mutex_ ABSL_ACQUIRED_AFTER(env_.enrollments.mutex());
   bool committing_ ABSL_GUARDED_BY(mutex_) = false;
   std::optional<grpc::Status> closing_ ABSL_GUARDED_BY(mutex_);
-  // Written with closing_, before the cancellation that makes OnReadDone read it.
-  RefusalReason closing_reason_ = RefusalReason::kInternal;
+  RefusalReason closing_reason_ ABSL_GUARDED_BY(mutex_) = RefusalReason::kInternal;
 };
 
 }  // namespace
