@@ -334,9 +334,12 @@ TEST(HostileClients, OneTokenCannotFillTheCallQueue) {
   PendingCalls hogged(channel);
   for (int i = 0; i < 10; ++i) hogged.Send(ImageBatch(4), std::chrono::seconds(60), hog);
   std::this_thread::sleep_for(std::chrono::seconds(1));
+  // The device's call, of descriptor frames, is taken and answered while the hog's are in
+  // progress.
   PendingCalls fair(channel);
-  v1::RecognizeRequest one = ImageBatch(1);
-  fair.Send(one, std::chrono::seconds(60), device);
+  v1::RecognizeRequest one;
+  one.add_frames()->set_cedd(testing::SyntheticCedd(1));
+  fair.Send(one, std::chrono::seconds(20), device);
   const std::vector<grpc::Status> answered = fair.Wait();
   EXPECT_TRUE(answered[0].ok()) << answered[0].error_message();
   hogged.CancelAll();
