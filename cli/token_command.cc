@@ -20,8 +20,9 @@ void AddTokenCommand(CLI::App& app, int& exit_code) {
       "token",
       "Make a new token for `orbit serve --tokens FILE`. Prints two lines: the token, to give\n"
       "to the device or operator that will call (clients send it as `authorization: Bearer\n"
-      "<token>`, `orbit --token-file`), and the line to append to FILE, which holds only the\n"
-      "token's SHA-256 under NAME. The token itself is not kept: lose it and make another.\n"
+      "<token>`; orbit's networked commands take --token or --token-file), and the line to\n"
+      "append to FILE, which holds only the token's SHA-256 under NAME. The token itself is\n"
+      "not kept: lose it and make another.\n"
       "The server reads FILE again on SIGHUP or when it changes.\n"
       "  orbit token --name phone-7 --role recognize");
   cmd->add_option("--name", o->name,
