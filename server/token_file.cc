@@ -16,7 +16,9 @@ namespace {
 constexpr std::size_t kMinTokenLength = 16;
 constexpr std::size_t kMaxNameLength = 64;
 
-bool IsNameCharacters(std::string_view name) {
+}  // namespace
+
+bool IsTokenName(std::string_view name) {
   if (name.empty() || name.size() > kMaxNameLength) return false;
   for (const char c : name) {
     const bool ok = (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
@@ -25,6 +27,8 @@ bool IsNameCharacters(std::string_view name) {
   }
   return true;
 }
+
+namespace {
 
 bool ParseRole(std::string_view text, Role* role) {
   if (text == "recognize") {
@@ -184,8 +188,6 @@ std::string NewToken() {
 std::string TokenFileLine(std::string_view name, Role role, std::string_view token) {
   return std::string(name) + " " + std::string(RoleName(role)) + " " + HexOf(DigestOf(token));
 }
-
-bool IsTokenName(std::string_view name) { return IsNameCharacters(name); }
 
 std::string_view RoleName(Role role) { return role == Role::kAdmin ? "admin" : "recognize"; }
 

@@ -26,7 +26,6 @@ inline std::string SyntheticCedd(int seed) {
   return cedd;
 }
 
-// A well-behaved device: one session, descriptor frames one after another, each answer timed.
 class WellBehavedSession {
  public:
   using Clock = std::chrono::steady_clock;
