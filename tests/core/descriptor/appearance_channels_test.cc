@@ -107,6 +107,45 @@ TEST(AppearanceChannelsTest, TwoRedsThatCeddCallsOneAreTwoHere) {
                          ExtractCedd(red, DescriptorVariant::kCeddRobust).values.begin()));
 }
 
+TEST(AppearanceChannelsTest, AFaintTintCountsAsEveryHue) {
+  // A bluish white, BGR (204, 200, 200): the canonical frame scales it by 200 / 204 to
+  // (200, 196, 196); OpenCV's HSV gives hue 120 (bin 8), saturation 5, value 200 (bin 3).
+  // Its chroma, 5 * 200 / 255 = 3.9, is a quarter of kSureChroma: a quarter of its count is
+  // blue's, the rest is spread over the 12 hues of (saturation 0, value 3), bins h * 16 + 3.
+  // Each then holds at least 48 * sqrt(0.75 / 12) = 12, clipped to 7; a hue taken at its
+  // word would fill bin 131 alone.
+  const DescriptorValues tint = Channels(cv::Mat(64, 64, CV_8UC3, cv::Scalar(204, 200, 200)));
+  for (int i = 0; i < kColourChannelSize; ++i) {
+    EXPECT_EQ(tint[kColourChannelOffset + i], i % 16 == 3 ? 7 : 0) << "colour bin " << i;
+  }
+  // Chroma 48 (BGR 248, 200, 200 -> 200, 161, 161): above kSureChroma, blue's alone.
+  const DescriptorValues blue = Channels(cv::Mat(64, 64, CV_8UC3, cv::Scalar(248, 200, 200)));
+  EXPECT_EQ(blue[kColourChannelOffset + 131], 7);
+  EXPECT_EQ(Sum(blue, kColourChannelOffset, kColourChannelSize), 7);
+}
+
+TEST(AppearanceChannelsTest, SensorNoiseDoesNotMoveAGreysColours) {
+  // A grey card on a darker grey wall, then the same under sensor noise of deviation 25 grey
+  // levels (what a dim room's camera adds). Noise turns a grey pixel's hue random; were that
+  // hue counted, every noisy frame of a grey object would match some coloured one.
+  cv::Mat clean(128, 128, CV_8UC3, cv::Scalar(90, 90, 90));
+  cv::rectangle(clean, cv::Rect(40, 40, 48, 48), cv::Scalar(170, 170, 170), cv::FILLED);
+  cv::Mat noise(clean.size(), CV_16SC3);
+  cv::RNG random(7);
+  random.fill(noise, cv::RNG::NORMAL, 0, 25);
+  cv::Mat noisy;
+  clean.convertTo(noisy, CV_16SC3);
+  noisy += noise;
+  noisy.convertTo(noisy, CV_8UC3);
+  const auto colours = [](const DescriptorValues& v) {
+    DescriptorValues part{};
+    std::copy(v.begin() + kColourChannelOffset,
+              v.begin() + kColourChannelOffset + kColourChannelSize, part.begin());
+    return part;
+  };
+  EXPECT_GE(Tanimoto(colours(Channels(clean)), colours(Channels(noisy))), 0.9);
+}
+
 // eth-80-dev's ring views, each cropped to its box grown by 10% a side.
 struct RealView {
   std::string object;
