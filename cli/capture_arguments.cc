@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <stdexcept>
 
 #include "cli/progress_bar.h"
 
@@ -18,30 +19,26 @@ void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments) {
                   "frame_index,azimuth_deg[,elevation_deg] (docs/capture.md)")
       ->needs(video);
   video->needs("--orientation");
-  CLI::Option* box = command
-                         .add_option("--box", arguments.box,
-                                     "the object's box x,y,w,h on the first frame, in pixels; "
-                                     "tracked\nthrough the video (default: the whole frame)")
-                         ->needs(video);
-  command
-      .add_option("--boxes", arguments.boxes,
-                  "CSV frame_index,x,y,w,h: the object's box in every frame")
-      ->needs(video)
-      ->excludes(box);
   std::string trackers;
   for (TrackerKind kind : kTrackerKinds) {
     trackers += (trackers.empty() ? "" : ", ") + std::string(TrackerName(kind));
   }
   // The name is checked by ParseTrackerName when the capture opens.
-  command.add_option("--tracker", arguments.tracker, "the tracker following --box: " + trackers)
+  command
+      .add_option("--tracker", arguments.tracker,
+                  "with --video: the tracker following --box: " + trackers)
       ->capture_default_str();
 }
 
-std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments) {
+std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments,
+                                           const BoxArguments& boxes) {
   CaptureOptions options;
   options.tracker = ParseTrackerName(arguments.tracker);
-  if (!arguments.box.empty()) options.first_box = ParseBox(arguments.box);
-  if (!arguments.boxes.empty()) options.boxes = ReadBoxesFile(arguments.boxes);
+  if (boxes.box.size() > 1) {
+    throw std::invalid_argument("with --video, give one --box: the object on the first frame");
+  }
+  if (!boxes.box.empty()) options.first_box = ParseBox(boxes.box.front(), "--box");
+  if (!boxes.boxes.empty()) options.boxes = ReadBoxesFile(boxes.boxes);
   return std::make_unique<CaptureReader>(
       arguments.video, OrientationLog::ReadFile(arguments.orientation), std::move(options));
 }

@@ -1,5 +1,6 @@
 // The capture flags of `orbit enroll --video` and `orbit recognize --video` (docs/capture.md):
-// the video, its orientation log and where the object is.
+// the video, its orientation log and the tracker; where the object is comes from the command's
+// --box or --boxes (cli/box_arguments.h).
 #pragma once
 
 #include <memory>
@@ -7,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli/box_arguments.h"
 #include "client/capture_reader.h"
 
 namespace orbit::cli {
@@ -14,18 +16,20 @@ namespace orbit::cli {
 struct CaptureArguments {
   std::string video;        // --video
   std::string orientation;  // --orientation, the CSV log
-  std::string box;          // --box x,y,w,h on the first frame, tracked
-  std::string boxes;        // --boxes FILE, one box per frame
-  std::string tracker = std::string(TrackerName(TrackerKind::kCsrt));  // --tracker
+  // --tracker
+  std::string tracker = std::string(TrackerName(TrackerKind::kCsrt));
 };
 
-// Registers --video, --orientation, --box, --boxes and --tracker on `command`; --orientation
-// is needed with --video, --box and --boxes exclude each other.
+// Registers --video, --orientation and --tracker on `command`; --orientation is needed with
+// --video.
 void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments);
 
-// Opens the capture the flags name. Throws as CaptureReader, OrientationLog::ReadFile,
-// ReadBoxesFile, ParseBox and ParseTrackerName do (messages name the file and line).
-std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments);
+// Opens the capture the flags name, the object on the first frame (one --box, tracked) or in
+// every frame (--boxes FILE, CSV frame_index,x,y,w,h). Throws std::invalid_argument for more
+// than one --box, and as CaptureReader, OrientationLog::ReadFile, ReadBoxesFile, ParseBox and
+// ParseTrackerName do (messages name the flag, or the file and line).
+std::unique_ptr<CaptureReader> OpenCapture(const CaptureArguments& arguments,
+                                           const BoxArguments& boxes);
 
 // The progress callback of a capture: a bar on stderr ("frames"), drawn by cli/progress_bar.h
 // for runs longer than two seconds; nothing when `enabled` is false (`orbit recognize` printing

@@ -3,10 +3,12 @@
 // Descriptors and typical distances are computed here (client/enroller.h).
 #include <iostream>
 #include <memory>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "cli/box_arguments.h"
 #include "cli/capture_arguments.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"
@@ -24,6 +26,7 @@ struct EnrollOptions {
   std::string name;
   std::vector<std::string> images;
   std::vector<double> azimuths;
+  BoxArguments boxes;
   CaptureArguments capture;
   double step = kDefaultEnrollmentStepDeg;
   std::string metadata = "{}";
@@ -42,7 +45,7 @@ std::string CaptureCoverageText(const CaptureViewSelection& selection, double st
 }
 
 int RunEnrollFromVideo(const EnrollOptions& options) {
-  const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture);
+  const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture, options.boxes);
   const Connection connection(ToConnectionOptions(options.network));
   Enroller enroller(connection, {.seed = options.seed, .threads = options.threads});
   const Enroller::VideoEnrollment enrolled = enroller.FromVideo(
@@ -64,10 +67,14 @@ int RunEnroll(const EnrollOptions& options) {
     return RunEnrollFromVideo(options);
   }
   if (options.images.empty()) throw std::invalid_argument("give --image F --azimuth A, or --video");
+  // Every image is read and every box checked before the server is called: a bad one enrolls
+  // nothing.
   const std::vector<cv::Mat> pixels = ReadImageArguments(options.images, options.azimuths);
+  const std::vector<std::optional<cv::Rect>> regions =
+      ImageRegions(options.boxes, options.images, pixels);
   std::vector<EnrollmentImage> images;
   for (std::size_t i = 0; i < pixels.size(); ++i) {
-    images.push_back({pixels[i], options.azimuths[i], {}, {}});
+    images.push_back({pixels[i], options.azimuths[i], regions[i], {}});
   }
   const Connection connection(ToConnectionOptions(options.network));
   Enroller enroller(connection, {.seed = options.seed, .threads = options.threads});
@@ -85,8 +92,10 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "enroll",
       "Enroll a new object on a server from images around it: --image F --azimuth A, once per\n"
-      "view; or from a video of a walk around it: --video V --orientation LOG [--box x,y,w,h],\n"
-      "which keeps the sharpest frame of every --step degrees of azimuth. Descriptors and\n"
+      "view, and where the object is in each (--box x,y,w,h once per --image, or --boxes\n"
+      "boxes.csv; grown by --box-margin; default: the whole image); or from a video of a walk\n"
+      "around it: --video V --orientation LOG [--box x,y,w,h on the first frame], which keeps\n"
+      "the sharpest frame of every --step degrees of azimuth. Descriptors and\n"
       "typical distances are computed here; the object is stored atomically and recognisable\n"
       "at once. Needs a token with the admin role when the server has tokens.");
   AddNetworkOptions(*command, options->network, /*server_required=*/true);
@@ -95,6 +104,7 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
   command->add_option("--azimuth", options->azimuths,
                       "that view's azimuth in degrees (repeat, in the order of --image)");
   AddCaptureOptions(*command, options->capture);
+  AddBoxOptions(*command, options->boxes);
   command
       ->add_option("--step", options->step,
                    "with --video: one view per this many degrees of azimuth")

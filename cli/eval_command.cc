@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/box_arguments.h"
 #include "cli/commands.h"
 #include "cli/progress_bar.h"
 #include "evaluation/dataset.h"
@@ -37,8 +38,8 @@ struct EvalOptions {
   std::string layout = "coil100";
   std::string data;
   std::string manifest;
-  std::string boxes;        // boxes.csv: describe each image's box instead of the whole image
-  double box_margin = 0.1;  // share of the box's size added on each side
+  std::string boxes;                      // boxes.csv: describe each image's object region
+  double box_margin = kDefaultBoxMargin;  // share of the box's size added on each side
   std::vector<std::string> methods = EvaluationOptions{}.methods;
   std::vector<std::string> variants = Names(EvaluationOptions{}.variants, VariantName);
   std::vector<std::string> distortions =
@@ -284,11 +285,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--boxes", o->boxes,
                       "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each "
                       "image's box, grown by --box-margin, instead of the whole image");
-  command
-      ->add_option("--box-margin", o->box_margin,
-                   "share of a box's width (height) added left and right (above and below)")
-      ->check(CLI::Range(0.0, 1.0))
-      ->capture_default_str();
+  AddBoxMarginOption(*command, o->box_margin);
   command->add_option("--objects", o->objects,
                       "objects in the model set, e.g. 1-20 or 1-5,9 (coil100: object numbers; "
                       "manifest: order of first appearance); default all");

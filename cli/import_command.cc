@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "cli/box_arguments.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"
 #include "cli/network_options.h"
 #include "cli/progress_bar.h"
 #include "client/enroller.h"
-#include "client/image_file.h"
 #include "client/models_client.h"
 #include "client/rpc_error.h"
 #include "core/base/parallel_for.h"
@@ -39,22 +39,24 @@ struct ImportOptions {
   std::string data;
   std::string objects;
   std::string manifest;
+  std::string boxes;  // boxes.csv: describe each image's object region instead of the whole image
+  double box_margin = kDefaultBoxMargin;
   std::string variant;  // "": the store's (the product's for a new one); the server's with --server
   std::uint64_t seed = kDefaultViewNoiseSeed;
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
-// The model views of one object (its images are positions in `images`), each image described as
-// every enrollment path describes it (core/descriptor/view_description.h: CEDD and typical
-// distance, `seed` the base of the seed rule), on `threads` threads. The numbers depend on the
-// images alone, whatever the thread count.
+// The model views of one object (its images are positions in `images`), each image (its
+// object's region, when it has a box) described as every enrollment path describes it
+// (core/descriptor/view_description.h: CEDD and typical distance, `seed` the base of the seed
+// rule), on `threads` threads. The numbers depend on the images alone, whatever the thread count.
 std::vector<ModelView> ComputeViews(const std::vector<DatasetImage>& images,
                                     const DatasetObject& object, DescriptorVariant variant,
                                     std::uint64_t seed, unsigned threads) {
   std::vector<ModelView> views(object.images.size());
   ParallelFor(views.size(), static_cast<int>(threads), [&](std::size_t f) {
     const DatasetImage& image = images[object.images[f]];
-    const ViewDescription described = DescribeView(ReadImageFile(image.path), variant, seed);
+    const ViewDescription described = DescribeView(ReadDescribedRegion(image), variant, seed);
     views[f] = {described.descriptor, image.azimuth, image.elevation, described.typical_distance};
   });
   return views;
@@ -137,11 +139,13 @@ ImportTarget ServerTarget(const ImportOptions& options) {
 
 int RunImport(const ImportOptions& options) {
   const bool remote = UsesServer(options.db, options.network);
-  const std::vector<DatasetImage> images =
+  std::vector<DatasetImage> images =
       SelectDataset({options.layout, options.data, options.manifest, options.objects, ""}).known;
+  if (!options.boxes.empty()) AttachBoxes(images, ReadBoxes(options.boxes), options.box_margin);
   const std::vector<DatasetObject> objects = GroupByObject(images);
-  // Every name is checked before anything is computed or written.
+  // Every name and every box is checked before anything is computed or written.
   for (const DatasetObject& object : objects) ValidateObjectName(object.name);
+  CheckBoxes(images);
   const ImportTarget target = remote ? ServerTarget(options) : StoreTarget(options);
   const DescriptorVariant variant = target.variant;
 
@@ -200,6 +204,10 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
                       "manifest: order of first appearance); default: all");
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
+  command->add_option("--boxes", options->boxes,
+                      "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each\n"
+                      "image's object, its box grown by --box-margin, instead of the whole image");
+  AddBoxMarginOption(*command, options->box_margin);
   command
       ->add_option("--variant", options->variant,
                    "descriptor variant (default: that of the store's objects, " +

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/box_arguments.h"
 #include "cli/capture_arguments.h"
 #include "cli/commands.h"
 #include "cli/image_arguments.h"
@@ -27,13 +28,14 @@ struct RecognizeOptions {
   SessionFlags session;
   std::vector<std::string> images;
   std::vector<double> azimuths;
+  BoxArguments boxes;
   CaptureArguments capture;
   bool fast = false;
   bool json = false;
 };
 
 int RunRecognizeVideo(const RecognizeOptions& options) {
-  const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture);
+  const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture, options.boxes);
   const Connection connection(ToConnectionOptions(options.network));
   RecognitionOptions session_options = ToRecognitionOptions(options.session);
   const bool json = options.json;
@@ -73,6 +75,8 @@ int RunRecognize(const RecognizeOptions& options) {
   const bool azimuths = !options.azimuths.empty();
   const std::vector<cv::Mat> frames = ReadImageArguments(
       options.images, azimuths ? options.azimuths : std::vector<double>(options.images.size()));
+  const std::vector<std::optional<cv::Rect>> regions =
+      ImageRegions(options.boxes, options.images, frames);
 
   const Connection connection(ToConnectionOptions(options.network));
   RecognitionOptions session_options = ToRecognitionOptions(options.session);
@@ -81,8 +85,8 @@ int RunRecognize(const RecognizeOptions& options) {
   auto session = RecognitionSession::Open(connection, std::move(session_options));
   try {
     for (std::size_t i = 0; i < frames.size(); ++i) {
-      session->Push(frames[i],
-                    azimuths ? std::optional<double>(options.azimuths[i]) : std::nullopt);
+      session->Push(frames[i], azimuths ? std::optional<double>(options.azimuths[i]) : std::nullopt,
+                    regions[i]);
     }
   } catch (const RpcError&) {
     // The session ended early; Close() reports why.
@@ -100,9 +104,10 @@ void AddRecognizeCommand(CLI::App& app, int& exit_code) {
       "recognize",
       "Stream images as the frames of one recognition session (--image F --azimuth A, once per\n"
       "frame, in capture order; only azimuth differences matter; no --azimuth at all: a device\n"
-      "without an orientation sensor), or a video with its orientation log (--video V\n"
-      "--orientation LOG [--box x,y,w,h], at the video's own rate unless --fast), and print the\n"
-      "server's update\n"
+      "without an orientation sensor; where the object is: --box x,y,w,h once per --image, or\n"
+      "--boxes boxes.csv, grown by --box-margin, default the whole image), or a video with its\n"
+      "orientation log (--video V --orientation LOG [--box x,y,w,h on the first frame], at the\n"
+      "video's own rate unless --fast), and print the server's update\n"
       "for each frame: one line, or with --json one JSON object with frame, decision, move,\n"
       "candidates [{id, name, score}] best first, and processing_time_us.");
   AddNetworkOptions(*command, options->network, /*server_required=*/true);
@@ -112,6 +117,7 @@ void AddRecognizeCommand(CLI::App& app, int& exit_code) {
                       "that frame's device azimuth in degrees (repeat, in the order of --image; "
                       "give none for frames without azimuth)");
   AddCaptureOptions(*command, options->capture);
+  AddBoxOptions(*command, options->boxes);
   command->add_flag("--fast", options->fast,
                     "with --video: send frames as fast as the server allows, not at the video's "
                     "rate");

@@ -40,10 +40,10 @@ std::optional<cv::Rect> ParseRect(const std::string& text) {
 
 }  // namespace
 
-cv::Rect ParseBox(const std::string& text) {
+cv::Rect ParseBox(const std::string& text, std::string_view what) {
   const std::optional<cv::Rect> box = ParseRect(text);
   if (!box) {
-    throw std::invalid_argument("box '" + text +
+    throw std::invalid_argument(std::string(what) + " '" + text +
                                 "' must be x,y,w,h in pixels (x, y >= 0; w, h > 0)");
   }
   return *box;

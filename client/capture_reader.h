@@ -19,6 +19,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <opencv2/core.hpp>
@@ -81,7 +82,8 @@ class CaptureReader {
 // non-integer or negative value; std::runtime_error when the file cannot be read.
 std::vector<cv::Rect> ReadBoxesFile(const std::string& path);
 
-// "x,y,w,h" (as `--box` takes it) as a rectangle; throws std::invalid_argument otherwise.
-cv::Rect ParseBox(const std::string& text);
+// "x,y,w,h" (as `--box` takes it) as a rectangle; throws std::invalid_argument otherwise,
+// "WHAT 'TEXT' must be x,y,w,h in pixels (x, y >= 0; w, h > 0)", `what` naming the box (a flag).
+cv::Rect ParseBox(const std::string& text, std::string_view what = "box");
 
 }  // namespace orbit

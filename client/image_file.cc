@@ -9,18 +9,35 @@
 
 namespace orbit {
 
-cv::Mat ReadImageFile(const std::string& path, std::int64_t max_pixels) {
+namespace {
+
+// The file's bytes and what its header says. Throws as ReadImageFile does for a missing or
+// unreadable file and a header that is not a PNG's or JPEG's.
+std::string ReadEncodedImage(const std::string& path, ImageHeader& header) {
   std::error_code error;
   if (!std::filesystem::is_regular_file(path, error)) {
     throw std::runtime_error(path + ": no such file");
   }
   std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   if (!in && !in.eof()) throw std::runtime_error(path + ": cannot be read");
-  ImageHeader header;
   if (grpc::Status s = ReadImageHeader(bytes, path, &header); !s.ok()) {
     throw std::runtime_error(s.error_message());
   }
+  return bytes;
+}
+
+}  // namespace
+
+cv::Size ReadImageSize(const std::string& path) {
+  ImageHeader header;
+  ReadEncodedImage(path, header);
+  return cv::Size(static_cast<int>(header.width), static_cast<int>(header.height));
+}
+
+cv::Mat ReadImageFile(const std::string& path, std::int64_t max_pixels) {
+  ImageHeader header;
+  const std::string bytes = ReadEncodedImage(path, header);
   if (grpc::Status s = CheckImageBudget(header, max_pixels, path); !s.ok()) {
     throw std::runtime_error(s.error_message());
   }

@@ -22,4 +22,9 @@ namespace orbit {
 // malformed header, is above the budget or cannot be decoded.
 cv::Mat ReadImageFile(const std::string& path, std::int64_t max_pixels = kDefaultMaxImagePixels);
 
+// The width x height of a PNG or JPEG file as its header states it, nothing decoded: what
+// ReadImageFile would return, for checking a box against an image before any work is done.
+// Throws std::runtime_error as ReadImageFile does for a file it cannot read or a bad header.
+cv::Size ReadImageSize(const std::string& path);
+
 }  // namespace orbit

@@ -13,6 +13,8 @@
 #include <system_error>
 #include <tuple>
 
+#include "client/image_file.h"
+#include "client/object_region.h"
 #include "core/base/angles.h"
 
 namespace orbit {
@@ -345,7 +347,8 @@ std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv) {
       }
       return static_cast<int>(value);
     };
-    const ImageBox box{whole("x", 0), whole("y", 0), whole("w", 1), whole("h", 1)};
+    const ImageBox box{whole("x", 0), whole("y", 0), whole("w", 1), whole("h", 1),
+                       csv.string() + ":" + std::to_string(row.line)};
     if (!boxes.emplace(std::filesystem::path(RowPath(row, csv)).lexically_normal().string(), box)
              .second) {
       throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": path \"" +
@@ -357,17 +360,39 @@ std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv) {
 
 void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, ImageBox>& boxes,
                  double margin) {
-  if (!(margin >= 0 && margin <= 1)) {
-    throw std::invalid_argument("box margin must be in 0..1, got " + std::to_string(margin));
-  }
+  CheckBoxMargin(margin);
+  // Paths are compared as absolute paths, so that an image given as an absolute path finds the
+  // box a file gives it relative to the file's folder, and the other way round.
+  const auto key = [](const std::string& path) {
+    return std::filesystem::absolute(path).lexically_normal().string();
+  };
+  std::map<std::string, const ImageBox*> by_path;
+  for (const auto& [path, box] : boxes) by_path.emplace(key(path), &box);
   for (DatasetImage& image : images) {
-    const auto found = boxes.find(std::filesystem::path(image.path).lexically_normal().string());
-    if (found == boxes.end()) throw std::invalid_argument("no box for " + image.path);
-    const ImageBox& box = found->second;
-    const int dx = static_cast<int>(std::lround(margin * box.width));
-    const int dy = static_cast<int>(std::lround(margin * box.height));
-    image.box = ImageBox{box.x - dx, box.y - dy, box.width + 2 * dx, box.height + 2 * dy};
+    const auto found = by_path.find(key(image.path));
+    if (found == by_path.end()) throw std::invalid_argument("no box for " + image.path);
+    image.box = *found->second;
+    image.box_margin = margin;
   }
+}
+
+cv::Rect DescribedRegion(const DatasetImage& image, cv::Size size) {
+  if (!image.box) return cv::Rect(cv::Point(0, 0), size);
+  const ImageBox& box = *image.box;
+  return ObjectRegion(cv::Rect(box.x, box.y, box.width, box.height), image.box_margin, size,
+                      box.origin.empty() ? "the box of " + image.path : box.origin);
+}
+
+void CheckBoxes(const std::vector<DatasetImage>& images) {
+  for (const DatasetImage& image : images) {
+    if (image.box) DescribedRegion(image, ReadImageSize(image.path));
+  }
+}
+
+cv::Mat ReadDescribedRegion(const DatasetImage& image) {
+  const cv::Mat pixels = ReadImageFile(image.path);
+  if (!image.box) return pixels;
+  return pixels(DescribedRegion(image, pixels.size())).clone();
 }
 
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {

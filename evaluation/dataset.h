@@ -17,12 +17,15 @@
 #include <string_view>
 #include <vector>
 
+#include <opencv2/core.hpp>
+
 namespace orbit {
 
 // A rectangle of an image in pixels: where the object is (a tracker's or an annotator's box).
 struct ImageBox {
   int x = 0, y = 0;           // top-left corner
   int width = 0, height = 0;  // > 0
+  std::string origin;         // where it was given, "FILE:LINE", which messages about it name
 
   friend bool operator==(const ImageBox&, const ImageBox&) = default;
 };
@@ -33,9 +36,11 @@ struct DatasetImage {
   std::string object;               // object name, e.g. "obj7"; images of one object share it
   double azimuth = 0;               // degrees, normalised to [0, 360)
   std::optional<double> elevation;  // degrees, when the dataset records it
-  // The object's region, when the dataset has boxes (AttachBoxes): what is described of the
-  // image, as a device describes its tracker's box. Empty: the whole image.
+  // The object's box as the dataset gives it, when it has boxes (AttachBoxes), and the margin
+  // grown around it: the image is described in ObjectRegion(box, box_margin)
+  // (client/object_region.h), as a device describes its tracker's box. Empty: the whole image.
   std::optional<ImageBox> box;
+  double box_margin = 0;
 
   friend bool operator==(const DatasetImage&, const DatasetImage&) = default;
 };
@@ -75,16 +80,34 @@ std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
 
 // Reads boxes: a CSV file whose header names path, x, y, w and h (`path,x,y,w,h`, as
 // eth-80-dev's and epfl-cars' boxes.csv), paths resolved as the manifest's. Returns each
-// resolved path's box. Throws std::runtime_error "FILE:LINE: problem" as ReadManifest does, and
-// for a coordinate that is not a whole number, a width or height below 1, or a path given twice.
+// resolved path's box, its origin "FILE:LINE". Throws std::runtime_error "FILE:LINE: problem"
+// as ReadManifest does, and for a coordinate that is not a whole number, a width or height
+// below 1, or a path given twice.
 std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv);
 
-// Gives every image its box from `boxes` (ReadBoxes' keys), grown by `margin` of its width on
-// the left and on the right and of its height above and below (0.1: 10% a side; the image's
-// edges clip it when it is described). Throws std::invalid_argument naming the first image
-// that has no box, or for a margin outside 0..1.
+// Gives every image its box from `boxes` (ReadBoxes' keys) and the margin grown around it when
+// it is described (ObjectRegion, client/object_region.h: 0.1 adds 10% of the box's width on
+// the left and on the right and of its height above and below). Throws std::invalid_argument
+// naming the first image that has no box, or as CheckBoxMargin for a margin outside 0..1.
 void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, ImageBox>& boxes,
                  double margin);
+
+// The region of `image`, whose pixels are `size`, that is described: ObjectRegion
+// (client/object_region.h) of its box grown by its margin, named by the box's origin in
+// messages; the whole image when it has no box. Throws std::invalid_argument as ObjectRegion
+// does for a box not inside the image.
+cv::Rect DescribedRegion(const DatasetImage& image, cv::Size size);
+
+// Checks every image's box against the image's size as its file's header states it (nothing is
+// decoded), so that a command refuses a bad box before it computes or writes anything. Throws
+// std::invalid_argument as ObjectRegion does, naming the box's origin; std::runtime_error as
+// ReadImageSize does for an image file it cannot read.
+void CheckBoxes(const std::vector<DatasetImage>& images);
+
+// Reads the image file and returns what is described of it: the object's region
+// (ObjectRegion of its box) when it has a box, else the whole image. Throws as ReadImageFile
+// (client/image_file.h) and ObjectRegion do.
+cv::Mat ReadDescribedRegion(const DatasetImage& image);
 
 // One frame of a query capture (`orbit eval --queries`): what a user's own camera took of an
 // object, to be recognised against a model set. Consecutive frames of one sequence form one

@@ -645,26 +645,12 @@ std::uint64_t ImageNoiseSeed(std::uint64_t seed, std::size_t image) {
   return MixSeed(MixSeed(seed, 0x6e6f697365ULL /* "noise" */), image);
 }
 
-namespace {
-
-// The part of the image file that is described: its box clipped to the image, or all of it.
-cv::Mat ReadDescribedRegion(const DatasetImage& image) {
-  const cv::Mat pixels = ReadImageFile(image.path);
-  if (!image.box) return pixels;
-  const cv::Rect region =
-      cv::Rect(image.box->x, image.box->y, image.box->width, image.box->height) &
-      cv::Rect(0, 0, pixels.cols, pixels.rows);
-  if (region.empty()) throw std::invalid_argument("the box of " + image.path + " is outside it");
-  return pixels(region).clone();
-}
-
-}  // namespace
-
 std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
                                           const std::vector<DescriptorVariant>& variants,
                                           const std::vector<DistortionSpec>& distortions,
                                           std::uint64_t seed) {
-  // The region alone is distorted, as a device crops its tracker's box before describing it.
+  // The region alone is distorted, as a device crops its tracker's box before describing it
+  // (evaluation/dataset.h, ReadDescribedRegion).
   const cv::Mat view = ReadDescribedRegion(image);
   // The model view is described as every enrollment path describes it; its motion-blurred
   // copy is the MB query (motion blur draws nothing). Other queries are distorted here, the

@@ -196,8 +196,10 @@ struct DescribedImage {
 // Step 1 for one image: reads it once and describes it in each of `variants` (the results in
 // that order), with its query under each of `distortions`. `position` is its place among the
 // evaluated images (known ones first, then unknown ones), which seeds the noise of its queries:
-// ImageNoiseSeed(seed, position).
-// Throws std::runtime_error naming the file when it cannot be read.
+// ImageNoiseSeed(seed, position). An image with a box is described in its object's region
+// alone (ReadDescribedRegion, evaluation/dataset.h).
+// Throws std::runtime_error naming the file when it cannot be read, std::invalid_argument
+// naming the box's origin when the box is not inside the image (ObjectRegion).
 std::vector<DescribedImage> DescribeImage(const DatasetImage& image, std::size_t position,
                                           const std::vector<DescriptorVariant>& variants,
                                           const std::vector<DistortionSpec>& distortions,

@@ -142,6 +142,56 @@ TEST(ImportCommandTest, ImportRefusesABadObjectNameBeforeWritingAnything) {
   EXPECT_FALSE(std::filesystem::exists(db));
 }
 
+// With --boxes (a dataset's boxes.csv), each image's object region is described: its box grown
+// by --box-margin and clipped to the image, the pixels `orbit enroll --box` and
+// `orbit eval --boxes` describe. A box outside its image is refused, naming the file and line,
+// before anything is written.
+TEST(ImportCommandTest, ImportWithBoxesDescribesEachImagesObjectRegion) {
+  ScratchDir dir;
+  const std::string eth = (testing::DataDir() / "eth-80-dev").string();
+  const std::string apple = eth + "/images/apple1-090-000.jpg";  // 256x256, box 32,32,192,191
+  const std::string car = eth + "/images/car1-090-000.jpg";      // 256x256, box 29,93,198,70
+  const std::string manifest =
+      dir.Write("set.csv", "path,object,azimuth\n" + apple + ",apple,0\n" + car + ",car,0\n")
+          .string();
+  const std::string import = "import --layout manifest --manifest " + manifest;
+  const std::string db = (dir / "models.db").string();
+  const std::string tight_db = (dir / "tight.db").string();
+  const auto grown = RunOrbit(import + " --db " + db + " --boxes " + eth + "/boxes.csv");
+  ASSERT_EQ(grown.exit_code, 0) << grown.err;
+  const auto tight =
+      RunOrbit(import + " --db " + tight_db + " --boxes " + eth + "/boxes.csv --box-margin 0");
+  ASSERT_EQ(tight.exit_code, 0) << tight.err;
+
+  // By hand: a tenth of the box a side, round(19.2) = 19 and round(19.1) = 19 for the apple,
+  // round(19.8) = 20 and 7 for the car; no margin, the box itself.
+  const auto expect_region = [](const std::string& db, const std::string& object,
+                                const std::string& image, const cv::Rect& region) {
+    SqliteModelStore store(db);
+    const std::optional<StoredObject> stored = store.Get(store.Find(object)->id);
+    ASSERT_EQ(stored->views.size(), 1u);
+    const ViewDescription expected =
+        DescribeView(ReadImageFile(image)(region), DescriptorVariant::kCeddRobust);
+    EXPECT_EQ(stored->views[0].descriptor, expected.descriptor) << db << " " << object;
+    EXPECT_EQ(stored->views[0].typical_distance, expected.typical_distance) << db << " " << object;
+  };
+  expect_region(db, "apple", apple, cv::Rect(13, 13, 230, 229));
+  expect_region(db, "car", car, cv::Rect(9, 86, 238, 84));
+  expect_region(tight_db, "apple", apple, cv::Rect(32, 32, 192, 191));
+  expect_region(tight_db, "car", car, cv::Rect(29, 93, 198, 70));
+
+  // The car's box runs off the bottom: refused before the apple is enrolled.
+  const std::string bad_db = (dir / "bad.db").string();
+  const std::string boxes = dir.Write("boxes.csv", "path,x,y,w,h\n" + apple + ",32,32,192,191\n" +
+                                                       car + ",29,93,198,170\n")
+                                .string();
+  const auto refused = RunOrbit(import + " --db " + bad_db + " --boxes " + boxes);
+  EXPECT_EQ(refused.exit_code, 1);
+  EXPECT_THAT(refused.err, HasSubstr(boxes + ":3: y+h must be at most the image's height 256"));
+  EXPECT_EQ(refused.out, "");
+  EXPECT_FALSE(std::filesystem::exists(bad_db));
+}
+
 // Every line of `orbit list` without its last column (updated_at).
 std::vector<std::string> WithoutTimestamps(const std::string& listing) {
   std::vector<std::string> lines = OutputLines(listing);

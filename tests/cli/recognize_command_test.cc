@@ -3,13 +3,19 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
 
 #include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include "client/image_file.h"
 #include "core/base/angles.h"
+#include "evaluation/dataset.h"
 
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
@@ -201,6 +207,60 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
                  dir + "/query3.csv" + CoilImageArguments(1, {0}));
   EXPECT_EQ(both.exit_code, 1);
   EXPECT_NE(both.err.find("give --video or --image, not both"), std::string::npos) << both.err;
+}
+
+// Two objects side by side in every frame: the box says which one the user means, and the
+// answer follows it. eth-80-dev's apple1 and car1 (and cup1, a third object) are enrolled from
+// their boxed views every 45 degrees; the frames hold the views between them, apple1 on the
+// left half, car1 on the right.
+TEST(RecognizeCommandTest, TheBoxSaysWhichObjectOfTheFrameIsRecognised) {
+  ServerProcess server;
+  const testing::ScratchDir scratch;
+  const std::string orbit = OrbitBinary() + " ";
+  const std::string at = " --server " + server.address();
+  const std::filesystem::path eth = testing::DataDir() / "eth-80-dev";
+  const auto view = [&](const std::string& object, int azimuth) {
+    char name[64];
+    std::snprintf(name, sizeof name, "images/%s-090-%03d.jpg", object.c_str(), azimuth);
+    return (eth / name).string();
+  };
+  for (const std::string object : {"apple1", "car1", "cup1"}) {
+    std::string views;
+    for (int azimuth = 0; azimuth < 360; azimuth += 45) {
+      views += " --image " + view(object, azimuth) + " --azimuth " + std::to_string(azimuth);
+    }
+    const auto r = RunCommand(orbit + "enroll" + at + " --name " + object + views + " --boxes " +
+                              (eth / "boxes.csv").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+  }
+  const std::map<std::string, ImageBox> boxes = ReadBoxes(eth / "boxes.csv");
+  const auto box_of = [&](const std::string& object, int azimuth, int shift) {
+    const ImageBox& box =
+        boxes.at(std::filesystem::path(view(object, azimuth)).lexically_normal().string());
+    return " --box " + std::to_string(box.x + shift) + "," + std::to_string(box.y) + "," +
+           std::to_string(box.width) + "," + std::to_string(box.height);
+  };
+  std::string frames, apple_boxes, car_boxes;
+  for (const int azimuth : {22, 68, 112, 158}) {
+    cv::Mat frame;
+    cv::hconcat(ReadImageFile(view("apple1", azimuth)), ReadImageFile(view("car1", azimuth)),
+                frame);
+    const std::string file = (scratch / ("frame" + std::to_string(azimuth) + ".png")).string();
+    ASSERT_TRUE(cv::imwrite(file, frame));
+    frames += " --image " + file + " --azimuth " + std::to_string(azimuth);
+    apple_boxes += box_of("apple1", azimuth, 0);
+    car_boxes += box_of("car1", azimuth, 256);  // the right half
+  }
+  for (const auto& [object, boxes_given] :
+       {std::pair{"apple1", apple_boxes}, std::pair{"car1", car_boxes}}) {
+    const auto r = RunCommand(orbit + "recognize --json" + at + frames + boxes_given);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::vector<std::string> lines = OutputLines(r.out);
+    ASSERT_EQ(lines.size(), 4u) << r.out;
+    for (const std::string& line : lines) {
+      EXPECT_EQ(nlohmann::json::parse(line)["candidates"][0]["name"], object) << line;
+    }
+  }
 }
 
 }  // namespace

@@ -76,6 +76,8 @@ TEST(CaptureReaderTest, ParsesBoxes) {
   EXPECT_EQ(ParseBox("10,20,30,40"), cv::Rect(10, 20, 30, 40));
   EXPECT_EQ(ErrorMessageOf([] { ParseBox("10,20,0,40"); }),
             "box '10,20,0,40' must be x,y,w,h in pixels (x, y >= 0; w, h > 0)");
+  EXPECT_EQ(ErrorMessageOf([] { ParseBox("10,20,30", "--box"); }),
+            "--box '10,20,30' must be x,y,w,h in pixels (x, y >= 0; w, h > 0)");
   EXPECT_THROW(ParseBox("10,20,30"), std::invalid_argument);
   EXPECT_THROW(ParseBox("a,20,30,40"), std::invalid_argument);
   EXPECT_THROW(ParseBox("12,40,105066666666666666666666666666660,7"), std::invalid_argument);

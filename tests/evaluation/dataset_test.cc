@@ -58,20 +58,23 @@ TEST(ParseObjectRangeTest, RejectsMalformedSelectionsNamingTheItem) {
   EXPECT_THAT(ErrorMessageOf([] { ParseObjectRange("1-1000000000"); }), HasSubstr("too large"));
 }
 
-TEST(BoxesTest, Eth80BoxesAreAttachedGrownByTheMargin) {
+TEST(BoxesTest, Eth80BoxesAreAttachedAndDescribedGrownByTheMargin) {
   const auto folder = testing::DataDir() / "eth-80-dev";
   const std::map<std::string, ImageBox> boxes = ReadBoxes(folder / "boxes.csv");
   EXPECT_EQ(boxes.size(), 40u * 41u);  // every view of all.csv
   std::vector<DatasetImage> ring = ReadManifest(folder / "ring.csv");
   ASSERT_EQ(ring.size(), 640u);
   AttachBoxes(ring, boxes, 0.1);
-  // The first ring view, images/apple1-090-000.jpg, boxed 32,32,192,191 in boxes.csv: grown by
-  // round(19.2) = 19 and round(19.1) = 19 a side.
-  EXPECT_EQ(boxes.at((folder / "images/apple1-090-000.jpg").lexically_normal().string()),
-            (ImageBox{32, 32, 192, 191}));
+  // The first ring view, images/apple1-090-000.jpg, boxed 32,32,192,191 on line 27 of
+  // boxes.csv, described grown by round(19.2) = 19 and round(19.1) = 19 a side.
+  const ImageBox expected{32, 32, 192, 191, (folder / "boxes.csv").string() + ":27"};
+  EXPECT_EQ(boxes.at((folder / "images/apple1-090-000.jpg").lexically_normal().string()), expected);
   ASSERT_TRUE(ring[0].box.has_value());
-  EXPECT_EQ(*ring[0].box, (ImageBox{13, 13, 230, 229}));
+  EXPECT_EQ(*ring[0].box, expected);
+  EXPECT_EQ(ring[0].box_margin, 0.1);
+  EXPECT_EQ(DescribedRegion(ring[0], {256, 256}), cv::Rect(13, 13, 230, 229));
   for (const DatasetImage& image : ring) EXPECT_TRUE(image.box.has_value()) << image.path;
+  CheckBoxes(ring);  // every box lies inside its image
 }
 
 TEST(BoxesTest, ABoxFileIsCheckedLineByLineAndEveryImageNeedsABox) {
@@ -79,10 +82,15 @@ TEST(BoxesTest, ABoxFileIsCheckedLineByLineAndEveryImageNeedsABox) {
   const auto file = dir.Write("boxes.csv", "path,x,y,w,h\na.png,1,2,30,40\n");
   const std::map<std::string, ImageBox> boxes = ReadBoxes(file);
   ASSERT_EQ(boxes.size(), 1u);
-  EXPECT_EQ(boxes.begin()->second, (ImageBox{1, 2, 30, 40}));
+  EXPECT_EQ(boxes.begin()->second, (ImageBox{1, 2, 30, 40, file.string() + ":2"}));
   std::vector<DatasetImage> images{{(dir / "a.png").string(), "a", 0, {}, {}}};
-  AttachBoxes(images, boxes, 0.25);  // 7.5 -> 8 and 10 a side
-  EXPECT_EQ(images[0].box, (ImageBox{-7, -8, 46, 60}));
+  AttachBoxes(images, boxes, 0.25);  // 7.5 -> 8 and 10 a side, clipped at 0
+  EXPECT_EQ(images[0].box, boxes.begin()->second);
+  EXPECT_EQ(DescribedRegion(images[0], {100, 100}), cv::Rect(0, 0, 39, 52));
+  EXPECT_EQ(ErrorMessageOf([&] {
+              DescribedRegion(images[0], {20, 100});
+            }),
+            file.string() + ":2: x+w must be at most the image's width 20");
   images.push_back({(dir / "b.png").string(), "b", 0, {}, {}});
   EXPECT_EQ(ErrorMessageOf([&] { AttachBoxes(images, boxes, 0.1); }),
             "no box for " + (dir / "b.png").string());

@@ -60,12 +60,14 @@ TEST(DescribeImageTest, ModelViewIsDescribeViewsWithTheOptionsSeed) {
   EXPECT_NE(described[0].view.descriptor, described[1].view.descriptor);
 }
 
-// With a box, the box alone (clipped to the image) is described and distorted, as a device
-// crops its tracker's box: the same numbers as the cropped image.
-TEST(DescribeImageTest, ABoxedImageIsDescribedAsItsBoxAlone) {
+// With a box, its object's region alone (the box grown by the margin, clipped to the image) is
+// described and distorted, as a device crops its tracker's box: the same numbers as the cropped
+// image. A box not inside the image is refused, naming it.
+TEST(DescribeImageTest, ABoxedImageIsDescribedAsItsRegionAlone) {
   DatasetImage image = Coil100Image();
-  image.box = ImageBox{-10, 30, 60, 200};  // clipped to x 0..49, y 30..127
-  const cv::Mat region = ReadImageFile(image.path)(cv::Rect(0, 30, 50, 98));
+  image.box = ImageBox{10, 30, 60, 90, "boxes.csv:2"};
+  image.box_margin = 0.25;  // 15 and round(22.5) = 23 a side: x -5..85, y 7..143, clipped
+  const cv::Mat region = ReadImageFile(image.path)(cv::Rect(0, 7, 85, 121));
   const std::vector<DescribedImage> described =
       DescribeImage(image, 0, {DescriptorVariant::kCeddHsvHog}, {ParseDistortionSpec("mb")}, 7);
   const ViewDescription expected = DescribeView(region, DescriptorVariant::kCeddHsvHog, 7);
@@ -73,9 +75,10 @@ TEST(DescribeImageTest, ABoxedImageIsDescribedAsItsBoxAlone) {
   EXPECT_EQ(described[0].view.descriptor, expected.descriptor);
   EXPECT_EQ(described[0].view.typical_distance, expected.typical_distance);
   EXPECT_EQ(described[0].queries.at(0), expected.distorted[0]);
-  image.box = ImageBox{500, 500, 10, 10};
-  EXPECT_THROW(DescribeImage(image, 0, {DescriptorVariant::kCeddLire}, {}, 7),
-               std::invalid_argument);
+  image.box = ImageBox{100, 100, 40, 10, "boxes.csv:2"};
+  EXPECT_EQ(testing::ErrorMessageOf(
+                [&] { DescribeImage(image, 0, {DescriptorVariant::kCeddLire}, {}, 7); }),
+            "boxes.csv:2: x+w must be at most the image's width 128");
 }
 
 // A query's noise is seeded by the image's position, so two places draw different noise; any
