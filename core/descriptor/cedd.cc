@@ -11,6 +11,7 @@
 #include "core/descriptor/appearance_channels.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <stdexcept>
@@ -37,6 +38,7 @@ constexpr std::int64_t kLumaB = 114, kLumaG = 587, kLumaR = 299;
 // the largest cost per block.
 class Divider {
  public:
+  Divider() : Divider(1) {}
   explicit Divider(std::int64_t divisor) : divisor_(divisor), inverse_(1.0 / divisor) {}
 
   struct Result {
@@ -59,6 +61,25 @@ class Divider {
  private:
   std::int64_t divisor_;
   double inverse_;
+};
+
+// Dividers by divisor, each built once: a cedd-full grid's cells and blocks come in only a few
+// sizes (its edges are at floor(i * side / 40)), and building a Divider costs a floating-point
+// division. Direct-mapped: a divisor that finds its slot taken simply replaces it.
+class DividerCache {
+ public:
+  const Divider& operator()(std::int64_t divisor) {
+    Slot& slot = slots_[static_cast<std::uint64_t>(divisor) % slots_.size()];
+    if (slot.divisor != divisor) slot = {divisor, Divider(divisor)};
+    return slot.divider;
+  }
+
+ private:
+  struct Slot {
+    std::int64_t divisor = 1;
+    Divider divider;
+  };
+  std::array<Slot, 32> slots_;
 };
 
 // Brings any supported image to 8-bit BGR (a view, not a copy, when it already is).
@@ -137,9 +158,9 @@ class LireQuadrantMean {
 };
 
 // cedd-full defines the quadrant mean as the exact truncated mean, with no floating point.
-double ExactQuadrantMean(const std::int64_t* cell, std::int64_t pixels) {
+double ExactQuadrantMean(const std::int64_t* cell, const Divider& thousand_pixels) {
   const std::int64_t luma1000 = kLumaB * cell[0] + kLumaG * cell[1] + kLumaR * cell[2];
-  return static_cast<double>(Divider(1000 * pixels).Divide(luma1000).quotient);
+  return static_cast<double>(thousand_pixels.Divide(luma1000).quotient);
 }
 
 }  // namespace
@@ -176,6 +197,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
   const std::int64_t lire_block_area = lire ? cell_pixels(grid.left[0], grid.top[0]) * 4 : 1;
   const LireQuadrantMean lire_quadrant_mean(bgr, grid, lire_block_area);
   const Divider lire_block(lire_block_area);
+  DividerCache dividers;
 
   cedd::Histogram histogram = {};
   for (int by = 0; by < grid.blocks_y(); ++by) {
@@ -198,14 +220,15 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
       double quadrant[4];  // top-left, top-right, bottom-left, bottom-right
       for (int q = 0; q < 4; ++q) {
         const int col = columns[q % 2], row = rows[q / 2];
-        quadrant[q] = lire ? lire_quadrant_mean(cell_sums(col, row), col, row)
-                           : ExactQuadrantMean(cell_sums(col, row), cell_pixels(col, row));
+        quadrant[q] =
+            lire ? lire_quadrant_mean(cell_sums(col, row), col, row)
+                 : ExactQuadrantMean(cell_sums(col, row), dividers(1000 * cell_pixels(col, row)));
       }
       const cedd::TextureClasses texture =
           cedd::ClassifyTexture({quadrant[0], quadrant[1], quadrant[2], quadrant[3]});
 
       // Mean colour with integer division (docs/design.md#colour-of-a-block).
-      const Divider block = lire ? lire_block : Divider(pixels);
+      const Divider& block = lire ? lire_block : dividers(pixels);
       const cedd::Fuzzy24 colour =
           cedd::FuzzyColour(static_cast<int>(block.Divide(channel[2]).quotient),
                             static_cast<int>(block.Divide(channel[1]).quotient),

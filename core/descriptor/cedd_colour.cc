@@ -41,14 +41,25 @@ int ChromaticBin(int hue) { return hue <= 6 ? 3 + hue : 3; }
 // computed by the same expression as the reference, hence bit-identical.
 struct MembershipTables {
   std::array<std::array<double, 8>, 360> hue;
+  // Per hue, the sets it belongs to (membership > 0), in increasing order: at most two, since
+  // only neighbouring trapezoids overlap. The rules of any other set never fire.
+  struct HueSets {
+    std::array<int, 8> sets;
+    int count = 0;
+  };
+  std::array<HueSets, 360> hue_sets;
   std::array<std::array<double, 2>, 256> saturation10;
   std::array<std::array<double, 3>, 256> value10;
   std::array<std::array<double, 2>, 256> saturation24;
   std::array<std::array<double, 2>, 256> value24;
 
   MembershipTables() {
-    for (int h = 0; h < 360; ++h)
-      for (int i = 0; i < 8; ++i) hue[h][i] = Membership(h, kHue[i]);
+    for (int h = 0; h < 360; ++h) {
+      for (int i = 0; i < 8; ++i) {
+        hue[h][i] = Membership(h, kHue[i]);
+        if (hue[h][i] > 0) hue_sets[h].sets[hue_sets[h].count++] = i;
+      }
+    }
     for (int x = 0; x < 256; ++x) {
       for (int i = 0; i < 2; ++i) saturation10[x][i] = Membership(x, kSaturation10[i]);
       for (int i = 0; i < 3; ++i) value10[x][i] = Membership(x, kValue10[i]);
@@ -91,19 +102,20 @@ Fuzzy10 FuzzyLink10(const Hsv& hsv) {
   const auto& hue = t.hue[hsv.h];
   const auto& sat = t.saturation10[hsv.s];
   const auto& val = t.value10[hsv.v];
+  const auto& hue_sets = t.hue_sets[hsv.h];
   // Rules fire in the reference's order (48 rules: 4 per hue, then 2 per hue), so each bin's
   // sum is accumulated in the same order; a rule fires only if all three memberships are > 0.
   Fuzzy10 bins{};
-  for (int h = 0; h < 8; ++h) {
-    if (hue[h] <= 0) continue;
+  for (int i = 0; i < hue_sets.count; ++i) {
+    const int h = hue_sets.sets[i];
     for (const Rule10& rule : kAchromaticRules) {
       if (sat[rule.saturation] > 0 && val[rule.value] > 0) {
         bins[rule.bin] += std::min(hue[h], std::min(sat[rule.saturation], val[rule.value]));
       }
     }
   }
-  for (int h = 0; h < 8; ++h) {
-    if (hue[h] <= 0) continue;
+  for (int i = 0; i < hue_sets.count; ++i) {
+    const int h = hue_sets.sets[i];
     for (const Rule10& rule : kChromaticRules) {
       if (sat[rule.saturation] > 0 && val[rule.value] > 0) {
         bins[ChromaticBin(h)] += std::min(hue[h], std::min(sat[rule.saturation], val[rule.value]));

@@ -1,6 +1,6 @@
-// CanonicalFrame (core/descriptor/canonical_frame.h): its size, its brightness rule on
-// hand-computed colours, and what it is for: a frame's descriptor that stays put under gain and
-// noise.
+// CanonicalFrame (core/descriptor/canonical_frame.h): its size, its blur against OpenCV's, its
+// brightness rule on hand-computed colours, and what it is for: a frame's descriptor that stays
+// put under gain and noise.
 #include "core/descriptor/canonical_frame.h"
 
 #include <stdexcept>
@@ -56,6 +56,23 @@ TEST(CanonicalFrameTest, ScalesTheBrightestChannelsPercentileTo200) {
 TEST(CanonicalFrameTest, LeavesANearlyBlackFrameAlone) {
   const cv::Mat frame = CanonicalFrame(cv::Mat(128, 128, CV_8UC3, cv::Scalar(10, 20, 5)));
   EXPECT_EQ(frame.at<cv::Vec3b>(64, 64), cv::Vec3b(10, 20, 5));
+}
+
+TEST(CanonicalFrameTest, BlursExactlyAsOpenCVsGaussian) {
+  // Step 2 is computed in its own integer arithmetic (canonical_frame.cc); it must stay OpenCV's
+  // GaussianBlur of deviation 2 to the last bit, borders and small images included.
+  cv::RNG random(11);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int width = 1 + random.uniform(0, 160), height = 1 + random.uniform(0, 160);
+    cv::Mat image(height, width, CV_8UC3);
+    random.fill(image, cv::RNG::UNIFORM, 0, 256);
+    if (trial % 2 == 1) cv::threshold(image, image, 128, 255, cv::THRESH_BINARY);  // hard edges
+    cv::Mat expected;
+    cv::GaussianBlur(image, expected, cv::Size(0, 0), kCanonicalBlurSigma);
+    const cv::Mat blurred = CanonicalFrame(
+        image, {.area = 0, .blur_sigma = kCanonicalBlurSigma, .normalise_brightness = false});
+    ASSERT_EQ(cv::norm(blurred, expected, cv::NORM_INF), 0) << width << "x" << height;
+  }
 }
 
 TEST(CanonicalFrameTest, RefusesWhatItCannotPrepare) {
