@@ -127,6 +127,8 @@ int RunEval(const EvalOptions& o) {
       AttachBoxes(known, boxes, o.box_margin);
       AttachBoxes(unknown, boxes, o.box_margin);
     }
+    SetBoxMargin(known, o.box_margin);
+    SetBoxMargin(unknown, o.box_margin);
     EvaluationOptions options = ToEvaluationOptions(o);
     std::unique_ptr<ProgressBar> progress;
     if (!o.no_progress) {
@@ -203,7 +205,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--data", o->data, "the COIL-100 folder (--layout coil100)");
   command->add_option("--manifest", o->manifest,
-                      "CSV with columns path,object,azimuth[,elevation]; relative paths resolve "
+                      "CSV with columns path,object,azimuth[,elevation][,x,y,w,h: the object's "
+                      "box]; relative paths resolve "
                       "against its folder (--layout manifest)");
   command
       ->add_option(

@@ -142,6 +142,7 @@ int RunImport(const ImportOptions& options) {
   std::vector<DatasetImage> images =
       SelectDataset({options.layout, options.data, options.manifest, options.objects, ""}).known;
   if (!options.boxes.empty()) AttachBoxes(images, ReadBoxes(options.boxes), options.box_margin);
+  SetBoxMargin(images, options.box_margin);
   const std::vector<DatasetObject> objects = GroupByObject(images);
   // Every name and every box is checked before anything is computed or written.
   for (const DatasetObject& object : objects) ValidateObjectName(object.name);
@@ -203,7 +204,8 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
                       "objects to import, e.g. 1-20 or 1-5,9 (coil100: object numbers;\n"
                       "manifest: order of first appearance); default: all");
   command->add_option("--manifest", options->manifest,
-                      "CSV with columns path,object,azimuth[,elevation] (--layout manifest)");
+                      "CSV with columns path,object,azimuth[,elevation][,x,y,w,h: the object's "
+                      "box] (--layout manifest)");
   command->add_option("--boxes", options->boxes,
                       "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each\n"
                       "image's object, its box grown by --box-margin, instead of the whole image");

@@ -317,18 +317,43 @@ std::string RowObject(const CsvRow& row, const std::filesystem::path& csv) {
   return object;
 }
 
+// The row's box from its x, y, w and h columns, named "FILE:LINE". Throws "FILE:LINE: <column>
+// must be a whole number of at least N" (0 for x and y, 1 for w and h).
+ImageBox RowBox(const CsvRow& row, const std::filesystem::path& csv) {
+  const auto whole = [&](const std::string& column, int least) {
+    const double value = *RowNumber(row, csv, column, false);
+    if (value != std::floor(value) || value < least || value > 1e9) {
+      throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column +
+                               " must be a whole number of at least " + std::to_string(least));
+    }
+    return static_cast<int>(value);
+  };
+  return {whole("x", 0), whole("y", 0), whole("w", 1), whole("h", 1),
+          csv.string() + ":" + std::to_string(row.line)};
+}
+
 }  // namespace
 
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv) {
   std::vector<DatasetImage> images;
-  for (const CsvRow& row : ReadCsvTable(
-           csv, {"path", "object", "azimuth", "elevation"}, 3, "path,object,azimuth[,elevation]",
-           "path,object,azimuth and optionally elevation", "manifest")) {
+  for (const CsvRow& row :
+       ReadCsvTable(csv, {"path", "object", "azimuth", "elevation", "x", "y", "w", "h"}, 3,
+                    "path,object,azimuth[,elevation][,x,y,w,h]",
+                    "path,object,azimuth and optionally elevation and a box x,y,w,h", "manifest")) {
     DatasetImage image;
     image.path = RowPath(row, csv);
     image.object = RowObject(row, csv);
     image.azimuth = NormaliseAzimuth(*RowNumber(row, csv, "azimuth", false));
     image.elevation = RowNumber(row, csv, "elevation", true);
+    const int box_columns = static_cast<int>(row.field.count("x") + row.field.count("y") +
+                                             row.field.count("w") + row.field.count("h"));
+    if (box_columns == 4) {
+      image.box = RowBox(row, csv);
+      image.box_margin = kDefaultBoxMargin;
+    } else if (box_columns > 0) {
+      throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) +
+                               ": a box needs the four columns x, y, w and h");
+    }
     images.push_back(std::move(image));
   }
   if (images.empty()) throw std::runtime_error(csv.string() + ": no images");
@@ -339,16 +364,7 @@ std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv) {
   std::map<std::string, ImageBox> boxes;
   for (const CsvRow& row : ReadCsvTable(csv, {"path", "x", "y", "w", "h"}, 5, "path,x,y,w,h",
                                         "path,x,y,w,h", "boxes")) {
-    const auto whole = [&](const std::string& column, int least) {
-      const double value = *RowNumber(row, csv, column, false);
-      if (value != std::floor(value) || value < least || value > 1e9) {
-        throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": " + column +
-                                 " must be a whole number of at least " + std::to_string(least));
-      }
-      return static_cast<int>(value);
-    };
-    const ImageBox box{whole("x", 0), whole("y", 0), whole("w", 1), whole("h", 1),
-                       csv.string() + ":" + std::to_string(row.line)};
+    const ImageBox box = RowBox(row, csv);
     if (!boxes.emplace(std::filesystem::path(RowPath(row, csv)).lexically_normal().string(), box)
              .second) {
       throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": path \"" +
@@ -371,8 +387,20 @@ void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, 
   for (DatasetImage& image : images) {
     const auto found = by_path.find(key(image.path));
     if (found == by_path.end()) throw std::invalid_argument("no box for " + image.path);
+    if (image.box) {
+      throw std::invalid_argument(found->second->origin + ": " + image.path +
+                                  " has a box already (" + image.box->origin +
+                                  "): give boxes in the manifest or in a boxes file, not both");
+    }
     image.box = *found->second;
     image.box_margin = margin;
+  }
+}
+
+void SetBoxMargin(std::vector<DatasetImage>& images, double margin) {
+  CheckBoxMargin(margin);
+  for (DatasetImage& image : images) {
+    if (image.box) image.box_margin = margin;
   }
 }
 

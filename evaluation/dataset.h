@@ -67,14 +67,19 @@ std::vector<DatasetImage> ListCoil100(
     const std::optional<std::vector<int>>& objects = std::nullopt);
 
 // Reads a manifest: a CSV file whose first row is a header naming the columns path, object,
-// azimuth and optionally elevation, in any order (no other column is allowed). Fields may be
+// azimuth and optionally elevation and the object's box x, y, w, h (all four or none; whole
+// pixels, as boxes.csv's), in any order (no other column is allowed). An image with a box is
+// described in ObjectRegion(box, kDefaultBoxMargin) unless a command sets another margin
+// (SetBoxMargin). Fields may be
 // quoted with "..." ("" inside quotes is one quote); spaces around unquoted fields are trimmed;
 // blank lines and CRLF line ends are accepted. A relative path resolves against the folder that
 // holds the CSV file; an empty elevation field means "not recorded". Images keep the file's order.
 //
 // Throws std::runtime_error "FILE:LINE: problem" when the file cannot be read, the header is
 // missing, incomplete or has an unknown or repeated column, a row has the wrong number of
-// fields, a path or object is empty, or an azimuth or elevation is not a finite number; and
+// fields, a path or object is empty, an azimuth or elevation is not a finite number, or the
+// header names some of x, y, w and h but not all, or a box's field is not a whole number (x, y
+// at least 0; w, h at least 1); and
 // "FILE: no images" when there are no data rows. Image files are not opened here.
 std::vector<DatasetImage> ReadManifest(const std::filesystem::path& csv);
 
@@ -88,9 +93,14 @@ std::map<std::string, ImageBox> ReadBoxes(const std::filesystem::path& csv);
 // Gives every image its box from `boxes` (ReadBoxes' keys) and the margin grown around it when
 // it is described (ObjectRegion, client/object_region.h: 0.1 adds 10% of the box's width on
 // the left and on the right and of its height above and below). Throws std::invalid_argument
-// naming the first image that has no box, or as CheckBoxMargin for a margin outside 0..1.
+// naming the first image that has no box or that has one from its manifest already, or as
+// CheckBoxMargin for a margin outside 0..1.
 void AttachBoxes(std::vector<DatasetImage>& images, const std::map<std::string, ImageBox>& boxes,
                  double margin);
+
+// Sets the margin of every image that has a box (from its manifest) to `margin`. Throws
+// std::invalid_argument as CheckBoxMargin does.
+void SetBoxMargin(std::vector<DatasetImage>& images, double margin);
 
 // The region of `image`, whose pixels are `size`, that is described: ObjectRegion
 // (client/object_region.h) of its box grown by its margin, named by the box's origin in

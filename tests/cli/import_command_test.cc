@@ -180,6 +180,27 @@ TEST(ImportCommandTest, ImportWithBoxesDescribesEachImagesObjectRegion) {
   expect_region(tight_db, "apple", apple, cv::Rect(32, 32, 192, 191));
   expect_region(tight_db, "car", car, cv::Rect(29, 93, 198, 70));
 
+  // The same boxes as columns of the manifest: the same regions, with the default margin or
+  // --box-margin's.
+  const std::string boxed_manifest =
+      dir.Write("boxed.csv", "path,object,azimuth,x,y,w,h\n" + apple + ",apple,0,32,32,192,191\n" +
+                                 car + ",car,0,29,93,198,70\n")
+          .string();
+  const std::string columns_db = (dir / "columns.db").string();
+  const std::string columns_tight_db = (dir / "columns-tight.db").string();
+  const std::string import_boxed = "import --layout manifest --manifest " + boxed_manifest;
+  ASSERT_EQ(RunOrbit(import_boxed + " --db " + columns_db).exit_code, 0);
+  ASSERT_EQ(RunOrbit(import_boxed + " --db " + columns_tight_db + " --box-margin 0").exit_code, 0);
+  expect_region(columns_db, "apple", apple, cv::Rect(13, 13, 230, 229));
+  expect_region(columns_db, "car", car, cv::Rect(9, 86, 238, 84));
+  expect_region(columns_tight_db, "car", car, cv::Rect(29, 93, 198, 70));
+  // Boxes in the manifest and in a boxes file: which one is meant is not guessed.
+  const auto both = RunOrbit(import_boxed + " --db " + (dir / "both.db").string() + " --boxes " +
+                             eth + "/boxes.csv");
+  EXPECT_EQ(both.exit_code, 1);
+  EXPECT_THAT(both.err, HasSubstr(boxed_manifest + ":2): give boxes in the manifest or in a "
+                                                   "boxes file, not both"));
+
   // The car's box runs off the bottom: refused before the apple is enrolled.
   const std::string bad_db = (dir / "bad.db").string();
   const std::string boxes = dir.Write("boxes.csv", "path,x,y,w,h\n" + apple + ",32,32,192,191\n" +

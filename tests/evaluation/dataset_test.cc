@@ -10,6 +10,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "client/object_region.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -91,6 +92,11 @@ TEST(BoxesTest, ABoxFileIsCheckedLineByLineAndEveryImageNeedsABox) {
               DescribedRegion(images[0], {20, 100});
             }),
             file.string() + ":2: x+w must be at most the image's width 20");
+  // A box given twice (a manifest's and a file's) is refused, naming both places.
+  EXPECT_EQ(ErrorMessageOf([&] { AttachBoxes(images, boxes, 0.1); }),
+            file.string() + ":2: " + (dir / "a.png").string() + " has a box already (" +
+                file.string() + ":2): give boxes in the manifest or in a boxes file, not both");
+  images[0].box.reset();
   images.push_back({(dir / "b.png").string(), "b", 0, {}, {}});
   EXPECT_EQ(ErrorMessageOf([&] { AttachBoxes(images, boxes, 0.1); }),
             "no box for " + (dir / "b.png").string());
@@ -179,6 +185,31 @@ TEST(ReadManifestTest, ElevationColumnIsOptional) {
   ASSERT_EQ(images.size(), 1u);
   EXPECT_EQ(images[0].azimuth, 12.5);
   EXPECT_FALSE(images[0].elevation.has_value());
+}
+
+TEST(ReadManifestTest, BoxColumnsGiveEachImageItsBox) {
+  ScratchDir dir;
+  const auto csv = dir.Write("m.csv", "h,path,w,object,x,azimuth,y\n20,a.png,30,cup,5,90,7\n");
+  const std::vector<DatasetImage> images = ReadManifest(csv);
+  ASSERT_EQ(images.size(), 1u);
+  ASSERT_TRUE(images[0].box.has_value());
+  EXPECT_EQ(*images[0].box, (ImageBox{5, 7, 30, 20, csv.string() + ":2"}));
+  EXPECT_EQ(images[0].box_margin, kDefaultBoxMargin);
+  std::vector<DatasetImage> margined = images;
+  SetBoxMargin(margined, 0.25);
+  EXPECT_EQ(margined[0].box_margin, 0.25);
+  EXPECT_THROW(SetBoxMargin(margined, 1.5), std::invalid_argument);
+
+  const auto error = [&](const std::string& text) {
+    const auto bad = dir.Write("bad.csv", text);
+    return ErrorMessageOf<std::runtime_error>([&] { ReadManifest(bad); });
+  };
+  EXPECT_THAT(error("path,object,azimuth,x,y,w\na.png,cup,0,1,2,3\n"),
+              HasSubstr(":2: a box needs the four columns x, y, w and h"));
+  EXPECT_THAT(error("path,object,azimuth,x,y,w,h\na.png,cup,0,1,2,0,4\n"),
+              HasSubstr(":2: w must be a whole number of at least 1"));
+  EXPECT_THAT(error("path,object,azimuth,x,y,w,h\na.png,cup,0,1.5,2,3,4\n"),
+              HasSubstr(":2: x must be a whole number of at least 0"));
 }
 
 TEST(ReadManifestTest, ErrorsNameTheFileAndLine) {
