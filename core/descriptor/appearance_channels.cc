@@ -126,7 +126,7 @@ void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values) {
     throw std::invalid_argument("appearance channels need a non-empty 8-bit BGR image");
   }
   // Bilinear, shrinking too: the canonical frame is already blurred (a deviation of 2 of its
-  // pixels) and at most about 2.5 times larger, so area averaging, several times slower on a
+  // pixels, docs/design.md#canonical-frame), so area averaging, several times slower on a
   // factor that is not whole, would add little.
   cv::Mat small;
   cv::resize(canonical, small, cv::Size(kAppearanceSide, kAppearanceSide), 0, 0, cv::INTER_LINEAR);
