@@ -5,19 +5,22 @@
 # (24 frames from azimuth 100, 120 degrees), twice: with the object's box tracked from the first
 # frame (--box), and with the true box of every frame given (--boxes). Prints, for each, the
 # share of updates whose first candidate is the right object, of final updates that are right,
-# the views enrolled and the frames the tracker lost.
-#   bench/capture_hit_rate.sh [BUILD_DIR] [COIL_DIR] [FIRST] [LAST]
+# the views enrolled and the frames the tracker lost. VARIANT is the server's descriptor variant
+# (`orbit serve --variant`; the product's by default).
+#   bench/capture_hit_rate.sh [BUILD_DIR] [COIL_DIR] [FIRST] [LAST] [VARIANT]
 set -euo pipefail
 build=${1:-build}
 coil=${2:-../shared/data/coil-100}
 first=${3:-1}
 last=${4:-20}
+variant=()
+[[ -n ${5:-} ]] && variant=(--variant "$5")
 orbit="$build/orbit"
 work=$(mktemp -d)
 trap 'kill "${server_pid:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
 
 for mode in tracked true; do
-  "$orbit" serve --db "$work/$mode.db" --listen 127.0.0.1:0 >"$work/serve.log" 2>&1 &
+  "$orbit" serve --db "$work/$mode.db" --listen 127.0.0.1:0 "${variant[@]}" >"$work/serve.log" 2>&1 &
   server_pid=$!
   address=""
   for _ in $(seq 100); do

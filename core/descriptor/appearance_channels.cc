@@ -11,6 +11,8 @@
 namespace orbit {
 namespace {
 
+constexpr int kDarkBin = 0;  // hue 0, saturation 0, value 0: every dark pixel's bin
+
 // Square roots of `counts`, scaled to Euclidean norm `norm`, rounded and clipped to 0..7, into
 // `out`. All zeros stay zeros.
 void ScaleChannel(std::span<const double> counts, double norm, std::span<std::uint8_t> out) {
@@ -27,20 +29,44 @@ void ScaleChannel(std::span<const double> counts, double norm, std::span<std::ui
   }
 }
 
-std::array<double, kColourChannelSize> ColourHistogram(const cv::Mat& small) {
+using ColourCounts = std::array<double, kColourChannelSize>;
+
+// The colour histogram of a 64x64 frame, of its border ring alone, and each pixel's own bin.
+struct ColourPixels {
+  ColourCounts whole{};
+  ColourCounts border{};
+  std::array<std::uint8_t, kAppearanceSide * kAppearanceSide> bin{};
+};
+
+// Adds to `counts` what a pixel's share `sure` of its hue and the share spread over every hue,
+// `any_hue` per saturation and value bin, make.
+void SpreadOverHues(const std::array<double, kSaturationBins * kValueBins>& any_hue,
+                    ColourCounts& counts) {
+  for (int h = 0; h < kHueBins; ++h) {
+    for (int sv = 0; sv < kSaturationBins * kValueBins; ++sv) {
+      counts[h * kSaturationBins * kValueBins + sv] += any_hue[sv] / kHueBins;
+    }
+  }
+}
+
+ColourPixels ColourHistogram(const cv::Mat& small) {
   cv::Mat hsv;
   cv::cvtColor(small, hsv, cv::COLOR_BGR2HSV);  // hue 0..179, saturation and value 0..255
-  std::array<double, kColourChannelSize> counts{};
+  ColourPixels pixels;
   // Per saturation and value bin, the count spread over every hue (below).
-  std::array<double, kSaturationBins * kValueBins> any_hue{};
+  std::array<double, kSaturationBins * kValueBins> any_hue{}, border_any_hue{};
   for (int y = 0; y < hsv.rows; ++y) {
     const cv::Vec3b* row = hsv.ptr<cv::Vec3b>(y);
+    const bool border_row = y < kBorderRing || y >= hsv.rows - kBorderRing;
     for (int x = 0; x < hsv.cols; ++x) {
+      const bool border = border_row || x < kBorderRing || x >= hsv.cols - kBorderRing;
       const int value = row[x][2] * kValueBins / 256;
       if (value == 0) {
         // Hue and saturation mean nothing for a dark pixel: where sensor noise would scatter
         // dark pixels over every hue and saturation, they are all counted as hue 0, saturation 0.
-        counts[0] += 1;
+        pixels.whole[kDarkBin] += 1;
+        if (border) pixels.border[kDarkBin] += 1;
+        pixels.bin[y * kAppearanceSide + x] = kDarkBin;
         continue;
       }
       const int saturation = row[x][1] * kSaturationBins / 256;
@@ -50,19 +76,57 @@ std::array<double, kColourChannelSize> ColourHistogram(const cv::Mat& small) {
       // over every hue, so that noise, which turns a grey's hue random, moves no bin.
       const double chroma = row[x][1] * row[x][2] / 255.0;
       const double sure = std::min(1.0, chroma / kSureChroma);
-      counts[(hue * kSaturationBins + saturation) * kValueBins + value] += sure;
+      const int bin = (hue * kSaturationBins + saturation) * kValueBins + value;
+      pixels.bin[y * kAppearanceSide + x] = static_cast<std::uint8_t>(bin);
+      pixels.whole[bin] += sure;
       any_hue[saturation * kValueBins + value] += 1 - sure;
+      if (border) {
+        pixels.border[bin] += sure;
+        border_any_hue[saturation * kValueBins + value] += 1 - sure;
+      }
     }
   }
-  for (int h = 0; h < kHueBins; ++h) {
-    for (int sv = 0; sv < kSaturationBins * kValueBins; ++sv) {
-      counts[h * kSaturationBins * kValueBins + sv] += any_hue[sv] / kHueBins;
-    }
-  }
-  return counts;
+  SpreadOverHues(any_hue, pixels.whole);
+  SpreadOverHues(border_any_hue, pixels.border);
+  return pixels;
 }
 
-std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small) {
+// Per colour bin, the share of the frame's count that is the object's
+// (docs/design.md#foreground-estimate): the border ring is background, and the background's share
+// of the frame is the least, over the ring's common colours, of how much of the frame that colour
+// covers against how much of the ring; each bin keeps what the background does not account for,
+// so a colour the object shares with the background is removed only as far as the background
+// covers it. Dark pixels, which carry no colour to tell the two apart, are kept. All ones when
+// nothing would be left (the object has the ring's colours alone).
+ColourCounts ForegroundShares(const ColourPixels& pixels) {
+  ColourCounts shares;
+  shares.fill(1.0);
+  double whole_total = 0, border_total = 0;
+  for (int b = 0; b < kColourChannelSize; ++b) {
+    whole_total += pixels.whole[b];
+    border_total += pixels.border[b];
+  }
+  if (whole_total <= 0 || border_total <= 0) return shares;
+  double background = kMaxBackgroundShare;
+  for (int b = kDarkBin + 1; b < kColourChannelSize; ++b) {
+    const double ring = pixels.border[b] / border_total;
+    if (ring < kCommonBorderColour) continue;
+    background = std::min(background, pixels.whole[b] / whole_total / ring);
+  }
+  double kept = pixels.whole[kDarkBin];
+  for (int b = kDarkBin + 1; b < kColourChannelSize; ++b) {
+    if (pixels.whole[b] <= 0) continue;
+    const double expected = background * whole_total * pixels.border[b] / border_total;
+    shares[b] = std::max(0.0, pixels.whole[b] - expected) / pixels.whole[b];
+    kept += shares[b] * pixels.whole[b];
+  }
+  if (kept <= 0) shares.fill(1.0);
+  return shares;
+}
+
+std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small,
+                                                           const ColourPixels& pixels,
+                                                           const ColourCounts& foreground) {
   cv::Mat grey, dx, dy, magnitude, angle;
   cv::cvtColor(small, grey, cv::COLOR_BGR2GRAY);
   grey.convertTo(grey, CV_32F);
@@ -79,7 +143,9 @@ std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small)
     double* cell_row =
         histogram.data() + (y / cell_side) * kGradientCellsPerSide * kGradientOrientations;
     for (int x = 0; x < kAppearanceSide; ++x) {
-      const float m = magnitudes[x];
+      // The background's gradients count as little as its colour does.
+      const float m =
+          magnitudes[x] * static_cast<float>(foreground[pixels.bin[y * kAppearanceSide + x]]);
       if (m == 0) continue;
       float unsigned_angle = angles[x] >= 180.0f ? angles[x] - 180.0f : angles[x];
       if (unsigned_angle >= 180.0f) unsigned_angle -= 180.0f;
@@ -130,8 +196,11 @@ void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values) {
   // factor that is not whole, would add little.
   cv::Mat small;
   cv::resize(canonical, small, cv::Size(kAppearanceSide, kAppearanceSide), 0, 0, cv::INTER_LINEAR);
-  const auto colour = ColourHistogram(small);
-  const auto gradient = GradientHistogram(small);
+  const ColourPixels pixels = ColourHistogram(small);
+  const ColourCounts foreground = ForegroundShares(pixels);
+  ColourCounts colour;
+  for (int b = 0; b < kColourChannelSize; ++b) colour[b] = pixels.whole[b] * foreground[b];
+  const auto gradient = GradientHistogram(small, pixels, foreground);
   ScaleChannel(colour, kColourNorm,
                std::span<std::uint8_t>(values.data() + kColourChannelOffset, kColourChannelSize));
   ScaleChannel(

@@ -9,12 +9,14 @@
 //   colour    a hue x saturation x value histogram, 12 x 4 x 4 = 192 bins (bin =
 //             hue_bin * 16 + saturation_bin * 4 + value_bin, OpenCV's 8-bit HSV; a dark pixel,
 //             value bin 0, counts as hue 0 and saturation 0; a pixel of little chroma counts
-//             only kSureChroma's share of its hue, the rest spread over every hue);
+//             only kSureChroma's share of its hue, the rest spread over every hue), less
+//             the background's expected counts: the foreground estimate below;
 //   gradient  unsigned gradient orientations, 9 bins over 0..180 degrees, in 4 x 4 cells of
 //             16 x 16 pixels = 144 values (value = cell * 9 + orientation bin, cells row-major),
 //             each pixel's magnitude split between its two nearest bins; each cell's histogram
 //             is normalised as HOG's L2-Hys (L2, clipped at 0.2, L2 again), with a floor of
-//             kFlatCellShare of the mean cell's norm added to each cell's.
+//             kFlatCellShare of the mean cell's norm added to each cell's; each pixel's
+//             magnitude weighed by the object's share of its colour bin.
 // Each channel's square roots (a Hellinger-like scale: a bin's weight grows more slowly than its
 // count) are scaled to the channel's energy (kColourNorm, kGradientNorm: its Euclidean norm) and
 // rounded to 0..7, the range every descriptor value has. The channels' norms against CEDD's are
@@ -55,6 +57,14 @@ inline constexpr double kSureChroma = 16.0;
 // A gradient cell's normalisation adds this share of the mean cell's norm to its own
 // (docs/design.md#appearance-channels), so that a flat cell stays small.
 inline constexpr double kFlatCellShare = 0.5;
+
+// The foreground estimate (docs/design.md#foreground-estimate): the ring of this many pixels
+// along the 64x64 frame's edge is taken as background (it lies inside the margin a box is grown
+// by); a colour is the ring's when it covers at least kCommonBorderColour of the ring; the
+// background is taken to cover at most kMaxBackgroundShare of the frame.
+inline constexpr int kBorderRing = 4;
+inline constexpr double kCommonBorderColour = 0.02;
+inline constexpr double kMaxBackgroundShare = 0.8;
 
 // Writes the colour and gradient channels of `canonical` (8-bit BGR, not empty: a
 // CanonicalFrame) into values[kColourChannelOffset, kDescriptorSize). Values before are left

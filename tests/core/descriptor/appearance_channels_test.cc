@@ -82,6 +82,48 @@ TEST(AppearanceChannelsTest, StripesFillTheirOrientationsBins) {
                          h.begin() + kColourChannelOffset));
 }
 
+// A 128x128 frame of `background` with a 64x64 square of `object` in its centre.
+cv::Mat SquareOn(const cv::Scalar& object, const cv::Scalar& background) {
+  cv::Mat frame(128, 128, CV_8UC3, background);
+  frame(cv::Rect(32, 32, 64, 64)).setTo(object);
+  return frame;
+}
+
+TEST(AppearanceChannelsTest, TheBackgroundAroundTheObjectIsNotCounted) {
+  // A red square on green and on blue. The canonical frame scales every channel by 200 / 255;
+  // red is then bin 15, green bin 79 and blue bin 143 ((8 * 4 + 3) * 4 + 3). The border ring is
+  // background alone, green or blue; its colour covers about three quarters of the frame, all of
+  // it the background's, so its bin is emptied (counted, it would hold the channel's largest
+  // value, 7), and the square's gradients are counted only on its own side of the outline.
+  const cv::Scalar red(0, 0, 255), green(0, 255, 0), blue(255, 0, 0);
+  const DescriptorValues on_green = Channels(SquareOn(red, green));
+  const DescriptorValues on_blue = Channels(SquareOn(red, blue));
+  EXPECT_EQ(on_green[kColourChannelOffset + 15], 7);
+  EXPECT_EQ(on_green[kColourChannelOffset + 79], 0);
+  EXPECT_EQ(on_blue[kColourChannelOffset + 15], 7);
+  EXPECT_EQ(on_blue[kColourChannelOffset + 143], 0);
+  EXPECT_GT(Sum(on_green, kGradientChannelOffset, kGradientChannelSize), 0) << "the outline stays";
+  // The rest of the channel is the square and its outline, where the blur mixes red with the
+  // background: a red square on blue differs from one on green there alone.
+  int same = 0;
+  for (int i = 0; i < kColourChannelSize; ++i) {
+    same += on_green[kColourChannelOffset + i] > 0 && on_blue[kColourChannelOffset + i] > 0;
+  }
+  EXPECT_EQ(same, 1) << "red's bin alone is in both";
+}
+
+TEST(AppearanceChannelsTest, DarkPixelsAndAnObjectOfTheRingsColoursAreKept) {
+  // Dark pixels carry no colour to tell an object from its background: a red square on black
+  // keeps black's bin 0 beside red's.
+  const DescriptorValues on_black = Channels(SquareOn(cv::Scalar(0, 0, 255), cv::Scalar(0, 0, 0)));
+  EXPECT_GT(on_black[kColourChannelOffset + 0], 0);
+  EXPECT_EQ(on_black[kColourChannelOffset + 15], 7);
+  // A frame of one colour, ring and all: the background is taken to cover at most
+  // kMaxBackgroundShare of the frame, so the colour is kept, not emptied.
+  const DescriptorValues flat = Channels(cv::Mat(96, 96, CV_8UC3, cv::Scalar(0, 255, 0)));
+  EXPECT_EQ(flat[kColourChannelOffset + 79], 7);
+}
+
 TEST(AppearanceChannelsTest, RefusesAnImageThatIsNotBgr) {
   DescriptorValues values{};
   EXPECT_THROW(AddAppearanceChannels(cv::Mat(), values), std::invalid_argument);
