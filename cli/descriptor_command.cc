@@ -59,9 +59,9 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
       ->add_option("--variant", options->variant,
                    "cedd-lire: bit-exact with LIRE (reads only LIRE's block grid);\n"
                    "cedd-full: a 40x40 grid covering every pixel;\n"
-                   "cedd-robust: cedd-full of the canonical frame (the product's variant);\n"
+                   "cedd-robust: cedd-full of the canonical frame;\n"
                    "cedd-hsv-hog: cedd-robust, then a colour histogram and gradient cells of the\n"
-                   "same frame (for real objects that look alike: orbit serve --variant)")
+                   "same frame, its background's colours taken off (the product's variant)")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();

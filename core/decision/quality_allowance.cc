@@ -4,13 +4,17 @@
 
 namespace orbit {
 
-double NoiseAllowance(double noise_sigma) {
-  return kNoiseAllowancePerGreyLevel *
+const AllowanceSlopes& AllowanceSlopesFor(DescriptorVariant variant) {
+  return variant == DescriptorVariant::kCeddHsvHog ? kHsvHogAllowanceSlopes : kCeddAllowanceSlopes;
+}
+
+double NoiseAllowance(double noise_sigma, const AllowanceSlopes& slopes) {
+  return slopes.per_grey_level *
          std::clamp(noise_sigma - kCleanNoiseSigma, 0.0, kNoiseAllowanceSpan);
 }
 
-double BlurAllowance(double blur) {
-  return kBlurAllowancePerUnit * std::max(0.0, blur - kSharpFrameBlur);
+double BlurAllowance(double blur, const AllowanceSlopes& slopes) {
+  return slopes.per_blur_unit * std::max(0.0, blur - kSharpFrameBlur);
 }
 
 std::optional<double> MeanReading(std::span<const std::optional<double>> readings) {

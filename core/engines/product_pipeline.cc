@@ -2,6 +2,7 @@
 
 #include <sstream>
 
+#include "core/descriptor/appearance_channels.h"
 #include "core/descriptor/canonical_frame.h"
 
 namespace orbit {
@@ -21,7 +22,15 @@ std::string DescribeProduct() {
        << " (CEDD of a canonical frame: resampled to " << kCanonicalArea
        << " pixels, Gaussian blur of " << kCanonicalBlurSigma
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
-       << "th percentile of the brightest channel is " << kBrightnessTarget << ")";
+       << "th percentile of the brightest channel is " << kBrightnessTarget;
+  if (p.variant == DescriptorVariant::kCeddHsvHog) {
+    text << "; then a " << kHueBins << " x " << kSaturationBins << " x " << kValueBins
+         << " hue-saturation-value histogram of the object's colours, its background's taken off, "
+            "and "
+         << kGradientCellsPerSide << " x " << kGradientCellsPerSide << " cells of "
+         << kGradientOrientations << " gradient orientations";
+  }
+  text << ")";
   return text.str();
 }
 

@@ -4,7 +4,8 @@
 // from here, the client library describes frames in its server's variant, and `orbit eval --methods
 // product` evaluates exactly this, so the three cannot drift apart.
 //
-// Why these choices: docs/results/robustness.md (the tables, the ablation, the commands).
+// Why these choices: docs/results/robustness.md (the tables, the ablation, the commands) and
+// docs/results/real-objects.md (the variant).
 #pragma once
 
 #include <string>
@@ -19,7 +20,7 @@ namespace orbit {
 inline constexpr std::string_view kProductMethod = "product";
 
 struct ProductPipeline {
-  DescriptorVariant variant = DescriptorVariant::kCeddRobust;
+  DescriptorVariant variant = DescriptorVariant::kCeddHsvHog;
   std::string_view engine = "hmm";  // one of EngineNames()
   // The engine's options: EngineOptions' defaults but for the HMM's sharpened emissions
   // (hmm_sharpness 5: emissions to the 32nd power), with which using the measured turns no
@@ -42,7 +43,8 @@ struct ProductPipeline {
 const ProductPipeline& Product();
 
 // One line saying what the product pipeline is, for reports and --help, e.g.
-// "hmm (8 states, window 8) on cedd-robust (canonical 128x128 frame, blur 2 px, brightness ...)".
+// "hmm (8 states, window 8, ...) on cedd-hsv-hog (CEDD of a canonical frame: ...; then a
+// 12 x 4 x 4 hue-saturation-value histogram ...)".
 std::string DescribeProduct();
 
 }  // namespace orbit

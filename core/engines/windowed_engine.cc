@@ -166,8 +166,10 @@ Decision WindowedEngine::Decide(const Assessment& winner, FrameUpdate& update) c
   if (calibration_ != nullptr && calibration_->calibrated()) {
     // The calibrated rule judges U less what the window's noise and blur alone add to it.
     const int frames = static_cast<int>(window_.size());
-    const double allowance = (update.noise_sigma ? NoiseAllowance(*update.noise_sigma) : 0.0) +
-                             (update.blur ? BlurAllowance(*update.blur) : 0.0);
+    const AllowanceSlopes& slopes = AllowanceSlopesFor(index_->variant());
+    const double allowance =
+        (update.noise_sigma ? NoiseAllowance(*update.noise_sigma, slopes) : 0.0) +
+        (update.blur ? BlurAllowance(*update.blur, slopes) : 0.0);
     const double judged = update.unknown_statistic - allowance;
     update.unknown_p_value = calibration_->FalseAcceptRate(judged, frames);
     if (o.rejection == RejectionRule::kCalibrated) {

@@ -196,7 +196,7 @@ TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("### Sweep: JPEG quality (hit rate %, top-1)"));
   EXPECT_THAT(r.out, HasSubstr("| method | n | 20 | 40 | 60 | worst |"));
-  EXPECT_THAT(r.out, HasSubstr("| product (cedd-robust) | 1 |"));
+  EXPECT_THAT(r.out, HasSubstr("| product (cedd-hsv-hog) | 1 |"));
   EXPECT_THAT(r.out, Not(HasSubstr("| DF |")));
   const auto [header, rows] = ReadCsv(csv);
   EXPECT_EQ(header, "axis,strength,distortion,method,variant,n,trials,hits,hit_rate");

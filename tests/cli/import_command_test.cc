@@ -16,6 +16,7 @@
 #include "client/image_file.h"
 #include "client/models_client.h"
 #include "core/descriptor/view_description.h"
+#include "core/engines/product_pipeline.h"
 #include "storage/sqlite_model_store.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
@@ -63,7 +64,7 @@ TEST(ImportCommandTest, AnExistingStoreKeepsItsVariantAndANewOneGetsTheProducts)
   }
   const std::string new_db = (dir / "new.db").string();
   ASSERT_EQ(RunOrbit("import --db " + new_db + coil + " --objects 4").exit_code, 0);
-  EXPECT_THAT(RunOrbit("list --db " + new_db).out, ::testing::StartsWith("1 obj4 cedd-robust 72"));
+  EXPECT_THAT(RunOrbit("list --db " + new_db).out, ::testing::StartsWith("1 obj4 cedd-hsv-hog 72"));
 }
 
 TEST(ImportCommandTest, ImportStoresLireDescriptorsAndTypicalDistances) {
@@ -170,8 +171,7 @@ TEST(ImportCommandTest, ImportWithBoxesDescribesEachImagesObjectRegion) {
     SqliteModelStore store(db);
     const std::optional<StoredObject> stored = store.Get(store.Find(object)->id);
     ASSERT_EQ(stored->views.size(), 1u);
-    const ViewDescription expected =
-        DescribeView(ReadImageFile(image)(region), DescriptorVariant::kCeddRobust);
+    const ViewDescription expected = DescribeView(ReadImageFile(image)(region), Product().variant);
     EXPECT_EQ(stored->views[0].descriptor, expected.descriptor) << db << " " << object;
     EXPECT_EQ(stored->views[0].typical_distance, expected.typical_distance) << db << " " << object;
   };
@@ -265,7 +265,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto listed_local = RunCommand(orbit + "list --db " + db);
   ASSERT_EQ(listed_remote.exit_code, 0) << listed_remote.err;
   EXPECT_EQ(WithoutTimestamps(listed_remote.out), WithoutTimestamps(listed_local.out));
-  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-robust 72");
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-hsv-hog 72");
   const auto json = RunCommand(orbit + "list --json" + at);
   ASSERT_EQ(OutputLines(json.out).size(), 3u);
   EXPECT_EQ(nlohmann::json::parse(OutputLines(json.out)[0])["name"], "obj1");
@@ -289,7 +289,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto variant =
       RunCommand(orbit + "import" + at + coil + " --objects 4 --variant cedd-full");
   EXPECT_EQ(variant.exit_code, 1);
-  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-robust)"),
+  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-hsv-hog)"),
             std::string::npos)
       << variant.err;
 }

@@ -30,7 +30,7 @@ TEST(ModelsClientTest, EnrollsListsGetsAndDeletesObjects) {
   const v1::ServerInfoResponse info = models.ServerInfo();
   EXPECT_EQ(info.object_count(), 3);
   EXPECT_EQ(info.view_count(), 3 * 36);
-  EXPECT_EQ(info.variant(), v1::CEDD_ROBUST);  // the product's, for a new store
+  EXPECT_EQ(info.variant(), v1::CEDD_HSV_HOG);  // the product's, for a new store
 
   // Paged listing: two pages of two and one, in id order.
   const v1::ListObjectsResponse first = models.ListObjects(2);

@@ -4,7 +4,7 @@
 Starts a real `orbit serve` on a free loopback port with a fresh SQLite file, enrolls two
 COIL-100 objects with the C++ command line (`orbit enroll`), then, from Python only, asks the
 server what it holds and streams a recognition session over object 2 - half the frames as
-144-byte CEDD descriptors (from `orbit descriptor`), half as encoded PNG images for the server to
+descriptors in the server's variant (from `orbit descriptor`), half as encoded PNG images for the server to
 describe - and checks that every frame got exactly one update, in order, and that object 2 ends
 on top. Exit status 0 on success; each failed check is printed.
 
@@ -71,7 +71,7 @@ def main():
     args = parse_args()
     sys.path.insert(0, args.stubs)
     import grpc
-    from orbit.v1 import models_pb2, models_pb2_grpc, recognition_pb2, recognition_pb2_grpc
+    from orbit.v1 import models_pb2, models_pb2_grpc, recognition_pb2, recognition_pb2_grpc, types_pb2
 
     failures = []
 
@@ -99,15 +99,19 @@ def main():
 
             # Frames: even ones as descriptors computed by `orbit descriptor`, odd ones as PNGs.
             files = [coil(args.data, 2, a) for a in QUERY_AZIMUTHS]
-            described = subprocess.run([args.orbit, "descriptor", "--variant", "cedd-lire"] + files,
+            # In the server's variant (CEDD_HSV_HOG -> cedd-hsv-hog): its first 144 values are
+            # the frame's cedd field, any others its appearance field.
+            variant = types_pb2.DescriptorVariant.Name(info.variant).lower().replace("_", "-")
+            described = subprocess.run([args.orbit, "descriptor", "--variant", variant] + files,
                                        check=True, capture_output=True, text=True).stdout
-            cedds = [bytes(int(v) for v in line.split()[1:]) for line in described.splitlines()]
+            values = [bytes(int(v) for v in line.split()[1:]) for line in described.splitlines()]
             requests = [recognition_pb2.SessionRequest(
                 open=recognition_pb2.SessionOptions(engine=recognition_pb2.ENGINE_VCI, top_k=2))]
             for k, azimuth in enumerate(QUERY_AZIMUTHS):
                 frame = recognition_pb2.Frame(azimuth_deg=azimuth + COMPASS_OFFSET, timestamp_us=k)
                 if k % 2 == 0:
-                    frame.cedd = cedds[k]
+                    frame.cedd = values[k][:144]
+                    frame.appearance = values[k][144:]
                 else:
                     with open(files[k], "rb") as png:
                         frame.image = png.read()

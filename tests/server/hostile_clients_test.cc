@@ -27,6 +27,7 @@
 #include "tests/support/http_client.h"
 #include "tests/support/metric_sample.h"
 #include "tests/support/server_process.h"
+#include "tests/support/synthetic_descriptor.h"
 #include "tests/support/test_data.h"
 #include "tests/support/well_behaved_session.h"
 
@@ -157,7 +158,7 @@ grpc::Status EnrollOne(v1::Models::Stub& models, const std::string& name,
   writer->Write(header);
   for (int v = 0; v < 4; ++v) {
     v1::EnrollRequest view;
-    view.mutable_view()->set_cedd(testing::SyntheticCedd(v));
+    testing::SetDescriptor(*view.mutable_view(), testing::SyntheticDescriptor(v));
     view.mutable_view()->set_azimuth_deg(v * 90.0);
     writer->Write(view);
   }
@@ -348,7 +349,7 @@ TEST(HostileClients, OneTokenCannotFillTheCallQueue) {
   // progress.
   PendingCalls fair(channel);
   v1::RecognizeRequest one;
-  one.add_frames()->set_cedd(testing::SyntheticCedd(1));
+  testing::SetDescriptor(*one.add_frames(), testing::SyntheticDescriptor(1));
   fair.Send(one, std::chrono::seconds(20), device);
   const std::vector<grpc::Status> answered = fair.Wait();
   EXPECT_TRUE(answered[0].ok()) << answered[0].error_message();

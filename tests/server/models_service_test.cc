@@ -22,6 +22,7 @@
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 #include "tests/support/storage_test_support.h"
+#include "tests/support/synthetic_descriptor.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -158,7 +159,7 @@ TEST(ModelsServiceTest, AnObjectLargerThanOneResponseComesInPages) {
     ASSERT_TRUE(writer->Write(header));
     for (int i = 0; i < kViews; ++i) {
       v1::EnrollRequest view;
-      view.mutable_view()->set_cedd(std::string(kCeddSize, static_cast<char>(i % 8)));
+      testing::SetDescriptor(*view.mutable_view(), testing::UniformDescriptor(i % 8));
       view.mutable_view()->set_azimuth_deg(i * 3.6);
       view.mutable_view()->set_thumbnail(std::string(60000, static_cast<char>('a' + i % 26)));
       ASSERT_TRUE(writer->Write(view));

@@ -248,7 +248,7 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
     ASSERT_TRUE(client.Enroll("obj" + std::to_string(object), object, &info, azimuths).ok());
     EXPECT_EQ(info.name(), "obj" + std::to_string(object));
     EXPECT_EQ(info.view_count(), static_cast<int>(object == 3 ? azimuths.size() : 72));
-    EXPECT_EQ(info.variant(), v1::CEDD_ROBUST);
+    EXPECT_EQ(info.variant(), v1::CEDD_HSV_HOG);
   }
   v1::ListObjectsResponse page1, page2;
   ASSERT_TRUE(client.List(&page1, 3).ok());

@@ -19,6 +19,7 @@
 #include "tests/support/http_client.h"
 #include "tests/support/metric_sample.h"
 #include "tests/support/server_process.h"
+#include "tests/support/synthetic_descriptor.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::server {
@@ -102,11 +103,7 @@ TEST(ServerMetricsTest, RefuseCountsByCodeAndReasonAndPassesTheStatusOn) {
 
 // ---- a real server, scraped ----
 
-std::string Descriptor(int seed) {
-  std::string cedd(kCeddSize, '\0');
-  for (int i = 0; i < kCeddSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
-  return cedd;
-}
+DescriptorValues Descriptor(int seed) { return testing::SyntheticDescriptor(seed); }
 
 std::string Scrape(const std::string& address) {
   const testing::HttpResponse response = HttpRequest(address, "GET", "/metrics");
@@ -137,7 +134,7 @@ grpc::Status Enroll(v1::Models::Stub& models, const std::string& name, int views
   writer->Write(header);
   for (int v = 0; v < views; ++v) {
     v1::EnrollRequest view;
-    view.mutable_view()->set_cedd(Descriptor(v));
+    testing::SetDescriptor(*view.mutable_view(), Descriptor(v));
     view.mutable_view()->set_azimuth_deg(v * 30.0);
     writer->Write(view);
   }
@@ -145,9 +142,9 @@ grpc::Status Enroll(v1::Models::Stub& models, const std::string& name, int views
   return writer->Finish();
 }
 
-v1::SessionRequest Frame(std::string cedd, double azimuth) {
+v1::SessionRequest Frame(const DescriptorValues& descriptor, double azimuth) {
   v1::SessionRequest request;
-  request.mutable_frame()->set_cedd(std::move(cedd));
+  testing::SetDescriptor(*request.mutable_frame(), descriptor);
   request.mutable_frame()->set_azimuth_deg(azimuth);
   return request;
 }
@@ -196,7 +193,7 @@ TEST(ServerMetricsTest, ARealServerCountsWhatItDid) {
     v1::SessionRequest open;
     open.mutable_open();
     stream->Write(open);
-    std::string bad = Descriptor(0);
+    DescriptorValues bad = Descriptor(0);
     bad[17] = 9;
     stream->Write(Frame(bad, 0));
     stream->WritesDone();

@@ -14,6 +14,7 @@
 
 #include "orbit/v1/recognition.grpc.pb.h"
 #include "tests/support/server_process.h"
+#include "tests/support/synthetic_descriptor.h"
 
 namespace orbit {
 namespace {
@@ -22,7 +23,7 @@ using testing::ServerProcess;
 
 v1::SessionRequest Frame(std::int64_t k) {
   v1::SessionRequest request;
-  request.mutable_frame()->set_cedd(std::string(kCeddSize, '\1'));
+  testing::SetDescriptor(*request.mutable_frame(), testing::UniformDescriptor(1));
   request.mutable_frame()->set_azimuth_deg(static_cast<double>(k % 360));
   return request;
 }

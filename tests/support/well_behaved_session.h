@@ -14,17 +14,10 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include "core/descriptor/descriptor.h"
 #include "orbit/v1/recognition.grpc.pb.h"
+#include "tests/support/synthetic_descriptor.h"
 
 namespace orbit::testing {
-
-// 144 CEDD values in 0..7 that differ with `seed`: a frame or view the server takes.
-inline std::string SyntheticCedd(int seed) {
-  std::string cedd(kCeddSize, '\0');
-  for (int i = 0; i < kCeddSize; ++i) cedd[i] = static_cast<char>((i * 7 + seed * 3) % 8);
-  return cedd;
-}
 
 class WellBehavedSession {
  public:
@@ -45,7 +38,7 @@ class WellBehavedSession {
     std::vector<Clock::duration> times;
     for (int i = 0; i < frames; ++i) {
       v1::SessionRequest request;
-      request.mutable_frame()->set_cedd(SyntheticCedd(i));
+      SetDescriptor(*request.mutable_frame(), SyntheticDescriptor(i));
       request.mutable_frame()->set_azimuth_deg((i * 5) % 360);
       const auto start = Clock::now();
       v1::SessionUpdate update;

@@ -20,17 +20,20 @@ namespace {
 
 using ::testing::HasSubstr;
 
-TEST(ProductPipelineTest, IsTheRobustVariantWithTheHmmAndSaysSo) {
-  EXPECT_EQ(Product().variant, DescriptorVariant::kCeddRobust);
+TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
+  EXPECT_EQ(Product().variant, DescriptorVariant::kCeddHsvHog);
   EXPECT_EQ(Product().engine, "hmm");
   const auto names = EngineNames();
   EXPECT_NE(std::find(names.begin(), names.end(), Product().engine), names.end());
   const std::string text = DescribeProduct();
   EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32, score 0.5 path "
-                              "+ 0.5 nearest views) on cedd-robust"));
+                              "+ 0.5 nearest views) on cedd-hsv-hog"));
   EXPECT_EQ(Product().options.hmm_sharpness, 5);
   EXPECT_EQ(Product().options.nearest_view_weight, 0.5);
   EXPECT_THAT(text, HasSubstr("Gaussian blur of 2 px"));
+  EXPECT_THAT(text, HasSubstr("then a 12 x 4 x 4 hue-saturation-value histogram of the object's "
+                              "colours, its background's taken off, and 4 x 4 cells of 9 "
+                              "gradient orientations)"));
 }
 
 // Objects 41-48, 3 trials per object and n, n = 1 and 4: 24 queries per cell, so one query is
