@@ -69,7 +69,8 @@ int RunEnroll(const EnrollOptions& options) {
   if (options.images.empty()) throw std::invalid_argument("give --image F --azimuth A, or --video");
   // Every image is read and every box checked before the server is called: a bad one enrolls
   // nothing.
-  const std::vector<cv::Mat> pixels = ReadImageArguments(options.images, options.azimuths);
+  const std::vector<cv::Mat> pixels =
+      ReadImageArguments(options.images, options.azimuths, AzimuthArguments::kOnePerImage);
   const std::vector<std::optional<cv::Rect>> regions =
       ImageRegions(options.boxes, options.images, pixels);
   std::vector<EnrollmentImage> images;

@@ -40,7 +40,8 @@ TEST(NetworkOptionsTest, ReportsUnreachableServersAndBadArguments) {
   const auto unpaired = RunCommand(orbit + "recognize --server " + address + " --image " +
                                    CoilFile(1, 0) + " --azimuth 0 --azimuth 5");
   EXPECT_EQ(unpaired.exit_code, 1);
-  EXPECT_NE(unpaired.err.find("one --azimuth per --image (1 images, 2 azimuths)"),
+  EXPECT_NE(unpaired.err.find("1 image and 2 azimuths: give one --azimuth per --image, or no "
+                              "--azimuth at all"),
             std::string::npos)
       << unpaired.err;
 }
