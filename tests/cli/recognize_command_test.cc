@@ -24,6 +24,7 @@
 namespace orbit {
 namespace {
 
+using testing::CoilFile;
 using testing::CoilImageArguments;
 using testing::EveryTwentyDegrees;
 using testing::OrbitBinary;
@@ -203,6 +204,13 @@ TEST(RecognizeCommandTest, EnrollsFromWalksAndRecognisesEachFromASecondWalk) {
                                      "timestamp_ms 0 to 1000"),
             std::string::npos)
       << short_log.err;
+  // A still image is no video, though a video reader would take it for one frame.
+  const auto still =
+      RunCommand(orbit + "recognize" + at + " --video " + CoilFile(3, 0) + " --orientation " + log);
+  EXPECT_EQ(still.exit_code, 1);
+  EXPECT_NE(still.err.find("orbit: video " + CoilFile(3, 0) + " is a still image: "),
+            std::string::npos)
+      << still.err;
   const auto no_log = RunCommand(orbit + "recognize" + at + " --video " + dir + "/query3.avi");
   EXPECT_EQ(no_log.exit_code, 2) << no_log.err;
   const auto both =
