@@ -153,7 +153,9 @@ std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images
 // Objects are numbered from 1: in a coil100 folder by the N of objN; in a manifest by order of
 // first appearance.
 struct DatasetSelection {
-  std::string layout = "coil100";  // "coil100": the folder `data`; "manifest": the file `manifest`
+  // "coil100": the folder `data`; "manifest": the file `manifest`; "": the layout of whichever
+  // of the two is given (coil100 when neither is)
+  std::string layout = "coil100";
   std::filesystem::path data;      // the COIL-100 folder (coil100)
   std::filesystem::path manifest;  // the manifest CSV file (manifest)
   std::string objects;             // the known objects (ParseObjectRange); "": all not unknown
@@ -171,7 +173,9 @@ struct SelectedImages {
 //
 // Throws std::invalid_argument as ParseObjectRange does, and
 //   "object N is in both --objects and --unknown-objects",
-//   "--layout coil100 needs --data DIR", "--layout manifest needs --manifest FILE",
+//   "--layout coil100 needs --data DIR" (saying that a --manifest goes with --layout manifest
+//   when one was given), "--layout manifest needs --manifest FILE", "give --data DIR ... or
+//   --manifest FILE ..., not both" (no layout named),
 //   "object N selected, but the manifest has M objects" (N the largest number selected),
 //   "unknown layout \"L\"";
 // std::runtime_error as ListCoil100 (a selected object without images) and ReadManifest do.

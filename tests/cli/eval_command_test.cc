@@ -168,9 +168,30 @@ TEST_F(EvalCommandTest, ExplainsBadOptions) {
   EXPECT_THAT(r.err, HasSubstr("no image of object 101"));
   r = testing::RunCommand(eval + "--data " + coil_ + " --n 0");
   EXPECT_NE(r.exit_code, 0);
+  r = testing::RunCommand(eval + "--layout coil100 --manifest " + (dir_ / "m.csv").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--layout coil100 needs --data DIR; a --manifest FILE goes with "
+                               "--layout manifest"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --manifest " + (dir_ / "m.csv").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("give --data DIR (a COIL-100 folder) or --manifest FILE (a CSV "
+                               "file), not both"));
   r = testing::RunCommand(eval + "--data " + coil_ + " --distortions df,mb:len=0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("distortion 'mb:len=0': len must be in [1, 100]"));
+}
+
+TEST_F(EvalCommandTest, HelpSaysWhereTheCsvFilesPathsAreReadFrom) {
+  const testing::CommandResult r = testing::RunCommand(testing::OrbitBinary() + " eval --help");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // --manifest, --boxes and --queries.
+  const std::string said =
+      "a relative path in it is read from the CSV file's own folder, not the working directory";
+  int times = 0;
+  for (std::size_t at = r.out.find(said); at != std::string::npos; at = r.out.find(said, at + 1))
+    ++times;
+  EXPECT_EQ(times, 3) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("default: manifest when --manifest is given, else coil100"));
 }
 
 // Parameterised distortions reach the report under their canonical names, next to the

@@ -300,6 +300,13 @@ TEST(SelectDatasetTest, RefusesMissingPathsOverlapsAndNumbersBeyondTheManifest) 
   EXPECT_EQ(error({"manifest", "", csv, "", "2-4"}),
             "object 4 selected, but the manifest has 2 objects");
   EXPECT_EQ(error({"folder", dir.path(), "", "", ""}), "unknown layout \"folder\"");
+  EXPECT_EQ(error({"coil100", "", csv, "", ""}),
+            "--layout coil100 needs --data DIR; a --manifest FILE goes with --layout manifest");
+  // No layout named: the one of the file or folder given, not two of them.
+  EXPECT_EQ(SelectDataset({"", "", csv, "", ""}).known.size(), 2u);
+  EXPECT_EQ(error({"", "", "", "", ""}), "--layout coil100 needs --data DIR");
+  EXPECT_EQ(error({"", dir.path(), csv, "", ""}),
+            "give --data DIR (a COIL-100 folder) or --manifest FILE (a CSV file), not both");
   EXPECT_THAT(error({"manifest", "", csv, "1-x", ""}), HasSubstr("\"1-x\""));
 }
 
