@@ -436,6 +436,7 @@ std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
       throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": empty sequence");
     }
     frame.azimuth = RowNumber(row, csv, "azimuth", true);
+    frame.origin = csv.string() + ":" + std::to_string(row.line);
     frames.push_back(std::move(frame));
   }
   if (frames.empty()) throw std::runtime_error(csv.string() + ": no frames");

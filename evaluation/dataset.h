@@ -127,14 +127,16 @@ struct CaptureFrame {
   std::string object;             // the object it shows; a name absent from the model set: unknown
   std::optional<double> azimuth;  // degrees as the device read them; empty: no sensor
   std::string sequence;           // the query it belongs to
+  std::string origin;             // where it was given, "FILE:LINE", which messages about it name
 
   friend bool operator==(const CaptureFrame&, const CaptureFrame&) = default;
 };
 
 // Reads query captures: a CSV file whose header names path, object, sequence and optionally
 // azimuth, in any order, with the manifest's rules otherwise (ReadManifest); an empty azimuth
-// field means "no reading". Throws std::runtime_error as ReadManifest does ("FILE:LINE:
-// problem", "empty sequence" too), and "FILE: no frames" when there are no data rows.
+// field means "no reading". Each frame's origin is its row, "FILE:LINE". Throws
+// std::runtime_error as ReadManifest does ("FILE:LINE: problem", "empty sequence" too), and
+// "FILE: no frames" when there are no data rows.
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv);
 
 // One object of a dataset: the images sharing a name.

@@ -249,8 +249,10 @@ TEST(ReadQueryCapturesTest, ReadsSequencesWithOrWithoutAzimuths) {
                              "\"walk, 2\",f2.png,cup,-30\n");
   const std::vector<CaptureFrame> frames = ReadQueryCaptures(csv);
   ASSERT_EQ(frames.size(), 3u);
-  EXPECT_EQ(frames[0], (CaptureFrame{(dir.path() / "f0.png").string(), "mug", 12.5, "walk1"}));
-  EXPECT_EQ(frames[1], (CaptureFrame{"/abs/f1.png", "mug", std::nullopt, "walk1"}));
+  EXPECT_EQ(frames[0], (CaptureFrame{(dir.path() / "f0.png").string(), "mug", 12.5, "walk1",
+                                     csv.string() + ":2"}));
+  EXPECT_EQ(frames[1],
+            (CaptureFrame{"/abs/f1.png", "mug", std::nullopt, "walk1", csv.string() + ":3"}));
   EXPECT_EQ(frames[2].sequence, "walk, 2");
   EXPECT_EQ(frames[2].azimuth, -30);  // as the device read it: only differences matter
   // No azimuth column at all: a device without an orientation sensor.
