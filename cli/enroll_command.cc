@@ -4,12 +4,12 @@
 #include <iostream>
 #include <memory>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include "cli/box_arguments.h"
 #include "cli/capture_arguments.h"
+#include "cli/capture_selection_text.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"
 #include "cli/image_arguments.h"
@@ -34,16 +34,6 @@ struct EnrollOptions {
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
-// "  capture: 72 frames, 0 lost, 8 too blurred or noisy; views in 51 of 72 steps of 5 degrees"
-std::string CaptureCoverageText(const CaptureViewSelection& selection, double step) {
-  std::ostringstream text;
-  text << "  capture: " << selection.frames_read << " frames, " << selection.frames_lost
-       << " lost, " << selection.frames_unusable << " too blurred or noisy; views in "
-       << selection.views.size() << " of " << selection.steps_total << " steps of " << step
-       << " degrees\n";
-  return text.str();
-}
-
 int RunEnrollFromVideo(const EnrollOptions& options) {
   const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture, options.boxes);
   const Connection connection(ToConnectionOptions(options.network));
@@ -54,7 +44,7 @@ int RunEnrollFromVideo(const EnrollOptions& options) {
   const v1::ObjectInfo& object = enrolled.object;
   std::cout << "enrolled " << object.name() << " (id " << object.id() << ", " << object.view_count()
             << " views)\n"
-            << CaptureCoverageText(enrolled.selection, options.step)
+            << CaptureSelectionText(enrolled.selection, options.step)
             << EnrollmentReportText(object.report());
   return 0;
 }
@@ -69,7 +59,8 @@ int RunEnroll(const EnrollOptions& options) {
   if (options.images.empty()) throw std::invalid_argument("give --image F --azimuth A, or --video");
   // Every image is read and every box checked before the server is called: a bad one enrolls
   // nothing.
-  const std::vector<cv::Mat> pixels = ReadImageArguments(options.images, options.azimuths);
+  const std::vector<cv::Mat> pixels =
+      ReadImageArguments(options.images, options.azimuths, AzimuthArguments::kOnePerImage);
   const std::vector<std::optional<cv::Rect>> regions =
       ImageRegions(options.boxes, options.images, pixels);
   std::vector<EnrollmentImage> images;
@@ -107,7 +98,9 @@ void AddEnrollCommand(CLI::App& app, int& exit_code) {
   AddBoxOptions(*command, options->boxes);
   command
       ->add_option("--step", options->step,
-                   "with --video: one view per this many degrees of azimuth")
+                   "with --video: one view per this many degrees of azimuth; the frame kept "
+                   "in each step, or why none was, and the arcs between views wider than a "
+                   "step are printed")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 180.0));
   command->add_option("--metadata", options->metadata, "a JSON object stored with the object")

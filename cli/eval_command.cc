@@ -32,10 +32,14 @@ std::vector<std::string> Names(const std::vector<T>& values, NameOf name_of) {
   return names;
 }
 
+// How every CSV file of the command names its images (evaluation/dataset.h, ReadManifest).
+constexpr std::string_view kRelativePathsHelp =
+    "a relative path in it is read from the CSV file's own folder, not the working directory";
+
 // The command's options; every default is the harness's own (EvaluationOptions,
 // ViewIndexOptions, EngineOptions), never typed again here.
 struct EvalOptions {
-  std::string layout = "coil100";
+  std::string layout;  // "": manifest when --manifest is given, else coil100 (SelectDataset)
   std::string data;
   std::string manifest;
   std::string boxes;                      // boxes.csv: describe each image's object region
@@ -200,14 +204,15 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       "motion-blurred (mb) or noisy (gn), with noisy azimuths; prints the top-1 hit rate per\n"
       "method x distortion x n as Markdown, plus time per query and model memory.");
   command
-      ->add_option("--layout", o->layout, "coil100: a folder of objN__A.png; manifest: a CSV file")
-      ->check(CLI::IsMember({"coil100", "manifest"}))
-      ->capture_default_str();
+      ->add_option("--layout", o->layout,
+                   "coil100: a folder of objN__A.png (--data); manifest: a CSV file "
+                   "(--manifest); default: manifest when --manifest is given, else coil100")
+      ->check(CLI::IsMember({"coil100", "manifest"}));
   command->add_option("--data", o->data, "the COIL-100 folder (--layout coil100)");
   command->add_option("--manifest", o->manifest,
                       "CSV with columns path,object,azimuth[,elevation][,x,y,w,h: the object's "
-                      "box]; relative paths resolve "
-                      "against its folder (--layout manifest)");
+                      "box] (--layout manifest, implied); " +
+                          std::string(kRelativePathsHelp));
   command
       ->add_option(
           "--methods", o->methods,
@@ -287,7 +292,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--boxes", o->boxes,
                       "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each "
-                      "image's box, grown by --box-margin, instead of the whole image");
+                      "image's box, grown by --box-margin, instead of the whole image; " +
+                          std::string(kRelativePathsHelp));
   AddBoxMarginOption(*command, o->box_margin);
   command->add_option("--objects", o->objects,
                       "objects in the model set, e.g. 1-20 or 1-5,9 (coil100: object numbers; "
@@ -380,7 +386,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                    "each sequence is one query, recognised with its first n frames against "
                    "the model set of --data/--manifest (all of its images); an object not in "
                    "the model set is an unknown query; --distortions defaults to df (as "
-                   "captured)")
+                   "captured); " +
+                       std::string(kRelativePathsHelp))
       ->check(CLI::ExistingFile);
   command->callback([o, distortions, &exit_code] {
     if (!o->queries.empty() && distortions->count() == 0) o->distortions = {"df"};

@@ -73,8 +73,8 @@ int RunRecognize(const RecognizeOptions& options) {
   // Every image is read before the session opens: a bad file fails the command at once. No
   // --azimuth at all: frames without azimuth, as from a device without an orientation sensor.
   const bool azimuths = !options.azimuths.empty();
-  const std::vector<cv::Mat> frames = ReadImageArguments(
-      options.images, azimuths ? options.azimuths : std::vector<double>(options.images.size()));
+  const std::vector<cv::Mat> frames =
+      ReadImageArguments(options.images, options.azimuths, AzimuthArguments::kOnePerImageOrNone);
   const std::vector<std::optional<cv::Rect>> regions =
       ImageRegions(options.boxes, options.images, frames);
 

@@ -7,6 +7,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include <opencv2/imgcodecs.hpp>
+
 namespace orbit {
 namespace {
 
@@ -85,6 +87,14 @@ CaptureReader::CaptureReader(const std::string& video_path, OrientationLog log,
   }
   if (!std::filesystem::is_regular_file(video_path)) {
     throw std::runtime_error("cannot read video " + video_path + ": no such file");
+  }
+  // A video reader opens a still image too, as one frame at a rate the reader makes up: the
+  // image states no frame rate, so it is refused as such a video is (docs/capture.md, "The
+  // format"). Still images are told by their content, not their name.
+  if (cv::haveImageReader(video_path)) {
+    throw std::runtime_error("video " + video_path +
+                             " is a still image: it states no frame rate, so no frame time can be "
+                             "aligned to the orientation log; give the video of the walk");
   }
   if (!video_.open(video_path) || !video_.isOpened()) {
     throw std::runtime_error(

@@ -9,7 +9,8 @@
 // none of them (the box would hold background).
 //
 // Frame times are index / fps (the container's frame rate), from 0 at the first frame.
-// Errors: std::runtime_error naming the video when it cannot be opened or read;
+// Errors: std::runtime_error naming the video when it cannot be opened or read, states no frame
+// rate or is a still image (PNG, JPEG, ...: an image states no frame rate);
 // std::invalid_argument (naming the file) when the log does not cover the video (checked
 // at once when the container states its frame count, else frame by frame), when the boxes do
 // not match the frames, or as ObjectTracker for a bad first box.

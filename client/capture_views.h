@@ -11,11 +11,13 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <vector>
 
 #include "client/capture_reader.h"
 #include "client/enrollment_image.h"
 #include "client/frame_quality.h"
+#include "core/decision/enrollment_feedback.h"
 
 namespace orbit {
 
@@ -37,6 +39,20 @@ struct CaptureView {
   EnrollmentImage image;  // the region's pixels (a copy), the frame's azimuth and elevation
 };
 
+// What one step of the circle got from the capture: the frame kept, or why none was. The
+// frames are counted by the azimuth the log gives them, tracked or not.
+struct CaptureStep {
+  double from_deg = 0;  // the step holds azimuths [from_deg, to_deg)
+  double to_deg = 0;
+  long frames = 0;  // frames whose azimuth fell in the step
+  long lost = 0;    // ... whose object the tracker had lost
+  long noisy = 0;   // ... too noisy
+  // The view kept: its position in CaptureViewSelection::views. None when the step had no
+  // frame, when every frame was lost or too noisy, or else when its sharpest other frame was
+  // too blurred (below the capture's usable sharpness: so were all of them).
+  std::optional<std::size_t> view;
+};
+
 struct CaptureViewSelection {
   std::vector<CaptureView> views;  // in frame order
   long frames_read = 0;
@@ -44,6 +60,11 @@ struct CaptureViewSelection {
   long frames_unusable = 0;  // too noisy, or too blurred (only those that would have been chosen
                              // count as blurred: a step's sharper frame may have replaced them)
   int steps_total = 0;       // 360 / step, rounded up
+  std::vector<CaptureStep> steps;  // steps_total of them, from azimuth 0 up
+  // The arcs between the views kept (their azimuths, circularly) wider than the step: a view
+  // may lie anywhere in its step, so views in neighbouring steps can be up to two steps apart,
+  // and an empty step widens the arc further (core/decision/enrollment_feedback.h, AzimuthGaps).
+  std::vector<AzimuthGap> gaps;
 };
 
 // Reads `capture` to its end and chooses the views. Throws std::invalid_argument for a step

@@ -436,6 +436,7 @@ std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
       throw std::runtime_error(csv.string() + ":" + std::to_string(row.line) + ": empty sequence");
     }
     frame.azimuth = RowNumber(row, csv, "azimuth", true);
+    frame.origin = csv.string() + ":" + std::to_string(row.line);
     frames.push_back(std::move(frame));
   }
   if (frames.empty()) throw std::runtime_error(csv.string() + ": no frames");
@@ -453,6 +454,20 @@ std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images
   return objects;
 }
 
+namespace {
+
+// The selection's layout: as named, or when it names none, the one of the file or folder given.
+std::string LayoutOf(const DatasetSelection& selection) {
+  if (!selection.layout.empty()) return selection.layout;
+  if (!selection.data.empty() && !selection.manifest.empty()) {
+    throw std::invalid_argument(
+        "give --data DIR (a COIL-100 folder) or --manifest FILE (a CSV file), not both");
+  }
+  return selection.manifest.empty() ? "coil100" : "manifest";
+}
+
+}  // namespace
+
 SelectedImages SelectDataset(const DatasetSelection& selection) {
   const std::optional<std::vector<int>> objects = ParseOptionalRange(selection.objects);
   const std::optional<std::vector<int>> unknown = ParseOptionalRange(selection.unknown_objects);
@@ -466,8 +481,14 @@ SelectedImages SelectDataset(const DatasetSelection& selection) {
     }
   }
   SelectedImages selected;
-  if (selection.layout == "coil100") {
-    if (selection.data.empty()) throw std::invalid_argument("--layout coil100 needs --data DIR");
+  const std::string layout = LayoutOf(selection);
+  if (layout == "coil100") {
+    if (selection.data.empty()) {
+      throw std::invalid_argument(
+          selection.manifest.empty()
+              ? "--layout coil100 needs --data DIR"
+              : "--layout coil100 needs --data DIR; a --manifest FILE goes with --layout manifest");
+    }
     selected.known = ListCoil100(selection.data, objects);
     if (unknown) {
       selected.unknown = ListCoil100(selection.data, unknown);
@@ -476,7 +497,7 @@ SelectedImages SelectDataset(const DatasetSelection& selection) {
       std::erase_if(selected.known,
                     [&](const DatasetImage& image) { return names.contains(image.object); });
     }
-  } else if (selection.layout == "manifest") {
+  } else if (layout == "manifest") {
     if (selection.manifest.empty()) {
       throw std::invalid_argument("--layout manifest needs --manifest FILE");
     }

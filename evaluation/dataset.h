@@ -127,14 +127,16 @@ struct CaptureFrame {
   std::string object;             // the object it shows; a name absent from the model set: unknown
   std::optional<double> azimuth;  // degrees as the device read them; empty: no sensor
   std::string sequence;           // the query it belongs to
+  std::string origin;             // where it was given, "FILE:LINE", which messages about it name
 
   friend bool operator==(const CaptureFrame&, const CaptureFrame&) = default;
 };
 
 // Reads query captures: a CSV file whose header names path, object, sequence and optionally
 // azimuth, in any order, with the manifest's rules otherwise (ReadManifest); an empty azimuth
-// field means "no reading". Throws std::runtime_error as ReadManifest does ("FILE:LINE:
-// problem", "empty sequence" too), and "FILE: no frames" when there are no data rows.
+// field means "no reading". Each frame's origin is its row, "FILE:LINE". Throws
+// std::runtime_error as ReadManifest does ("FILE:LINE: problem", "empty sequence" too), and
+// "FILE: no frames" when there are no data rows.
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv);
 
 // One object of a dataset: the images sharing a name.
@@ -153,7 +155,9 @@ std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images
 // Objects are numbered from 1: in a coil100 folder by the N of objN; in a manifest by order of
 // first appearance.
 struct DatasetSelection {
-  std::string layout = "coil100";  // "coil100": the folder `data`; "manifest": the file `manifest`
+  // "coil100": the folder `data`; "manifest": the file `manifest`; "": the layout of whichever
+  // of the two is given (coil100 when neither is)
+  std::string layout = "coil100";
   std::filesystem::path data;      // the COIL-100 folder (coil100)
   std::filesystem::path manifest;  // the manifest CSV file (manifest)
   std::string objects;             // the known objects (ParseObjectRange); "": all not unknown
@@ -171,7 +175,9 @@ struct SelectedImages {
 //
 // Throws std::invalid_argument as ParseObjectRange does, and
 //   "object N is in both --objects and --unknown-objects",
-//   "--layout coil100 needs --data DIR", "--layout manifest needs --manifest FILE",
+//   "--layout coil100 needs --data DIR" (saying that a --manifest goes with --layout manifest
+//   when one was given), "--layout manifest needs --manifest FILE", "give --data DIR ... or
+//   --manifest FILE ..., not both" (no layout named),
 //   "object N selected, but the manifest has M objects" (N the largest number selected),
 //   "unknown layout \"L\"";
 // std::runtime_error as ListCoil100 (a selected object without images) and ReadManifest do.

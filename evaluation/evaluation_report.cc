@@ -20,6 +20,12 @@ std::string Format(const char* format, double value) {
 
 std::string Mebibytes(std::size_t bytes) { return Format("%.2f MiB", bytes / 1048576.0); }
 
+// A cell of the tables: `value` formatted, or "-" when the cell counted no query (an n longer
+// than every captured sequence), as the recognition tables write a share of nothing.
+std::string CellText(const char* format, double value, int queries) {
+  return queries > 0 ? Format(format, value) : "-";
+}
+
 // The report's cells of one variant, in the report's order (distortion, method, n).
 std::vector<const EvaluationCell*> CellsOf(const EvaluationReport& report,
                                            DescriptorVariant variant) {
@@ -72,41 +78,53 @@ std::string MarkdownReport(const EvaluationReport& report) {
   if (report.query_sequences > 0) {
     out << "Queries: " << report.query_sequences << " captured sequences, " << report.query_frames
         << " frames (`--queries`), against every image of the model set; "
-           "a sequence shorter than n is not counted at n.\n\n";
+           "a sequence shorter than n is not counted at n (\"-\": none is that long).\n\n";
   }
+  // The engines' options, orientation, active vision and index: one line, each part only when
+  // something it describes ran. The product runs its own options (DescribeProduct below), so
+  // the thesis' engine options are stated only when one of those engines ran.
+  std::ostringstream setup;
+  const bool thesis_engines =
+      std::any_of(report.cells.begin(), report.cells.end(),
+                  [](const EvaluationCell& cell) { return cell.method != kProductMethod; });
   const EngineOptions& e = report.engine;
-  out << "Engines: window " << e.window << ", N_L " << e.list_length << ", w "
-      << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "
-      << Format("%g", e.threshold) << ".";
+  if (thesis_engines) {
+    setup << " Engines: window " << e.window << ", N_L " << e.list_length << ", w "
+          << Format("%g", e.orientation_weight) << ", HMM states " << e.hmm_states << ", Th "
+          << Format("%g", e.threshold) << ".";
+  }
   if (!report.use_orientation) {
-    out << " Orientation ignored: the query frames carry no azimuth (`--orientation ignore`).";
+    setup << " Orientation ignored: the query frames carry no azimuth (`--orientation ignore`).";
   }
   if (report.active_step > 0) {
-    out << " Active vision (`--active`): after the first two views, each next view "
-        << Format("%g", report.active_step) << [&] {
-             switch (report.active_policy) {
-               case ActivePolicy::kFollowMoves:
-                 return " degrees from the latest in the direction the method suggested.";
-               case ActivePolicy::kOneWay:
-                 return " degrees on from the latest, always the same way (the suggestion "
-                        "ignored).";
-               case ActivePolicy::kBestOfBoth:
-                 return " degrees from the latest, both ways at every step, keeping the path "
-                        "best for the truth (the bound of any left / right suggestion).";
-             }
-             return "";
-           }();
+    setup << " Active vision (`--active`): after the first two views, each next view "
+          << Format("%g", report.active_step) << [&] {
+               switch (report.active_policy) {
+                 case ActivePolicy::kFollowMoves:
+                   return " degrees from the latest in the direction the method suggested.";
+                 case ActivePolicy::kOneWay:
+                   return " degrees on from the latest, always the same way (the suggestion "
+                          "ignored).";
+                 case ActivePolicy::kBestOfBoth:
+                   return " degrees from the latest, both ways at every step, keeping the path "
+                          "best for the truth (the bound of any left / right suggestion).";
+               }
+               return "";
+             }();
   }
   if (report.search == SearchMode::kKdTree) {
-    out << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
-        << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
+    setup << " kd-tree: " << report.index.kd_trees << " trees, " << report.index.kd_checks
+          << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
   }
-  out << "\n\n";
+  if (!setup.str().empty()) out << setup.str().substr(1) << "\n\n";
   if (std::any_of(report.cells.begin(), report.cells.end(),
                   [](const EvaluationCell& cell) { return cell.method == kProductMethod; })) {
     out << "product: what `orbit serve` runs by default, " << DescribeProduct() << ".\n\n";
   }
+  // Only the variants some method ran on: the runner also describes and indexes a variant
+  // that is listed but evaluated by no method (a --variant beside --methods product alone).
   for (const ModelMemory& memory : report.memory) {
+    if (CellsOf(report, memory.variant).empty()) continue;
     out << "Model memory (" << VariantName(memory.variant) << "): " << memory.objects
         << " objects, " << memory.views << " views, descriptors "
         << Mebibytes(memory.descriptor_bytes) << ", index " << Mebibytes(memory.index_bytes)
@@ -127,8 +145,10 @@ std::string MarkdownReport(const EvaluationReport& report) {
       out << "| " << DistortionLabel(row.front()->distortion) << " | " << row.front()->method
           << " |";
       for (const EvaluationCell* cell : row)
-        out << " " << Format("%.1f", 100 * cell->hit_rate()) << " |";
-      out << " " << Format("%.3f", row.back()->ms_per_query()) << " |\n";
+        out << " " << CellText("%.1f", 100 * cell->hit_rate(), cell->trials) << " |";
+      const EvaluationCell& last = *row.back();
+      out << " " << CellText("%.3f", last.ms_per_query(), last.trials + last.unknown_trials)
+          << " |\n";
     });
 
     if (!recognition) continue;
@@ -143,8 +163,8 @@ std::string MarkdownReport(const EvaluationReport& report) {
       out << "| " << DistortionLabel(row.front()->distortion) << " | " << row.front()->method
           << " |";
       for (const EvaluationCell* cell : row) {
-        out << " " << Format("%.1f", 100 * cell->accept_rate()) << " / "
-            << Format("%.1f", 100 * cell->reject_rate()) << " |";
+        out << " " << CellText("%.1f", 100 * cell->accept_rate(), cell->trials) << " / "
+            << CellText("%.1f", 100 * cell->reject_rate(), cell->unknown_trials) << " |";
       }
       out << "\n";
     });

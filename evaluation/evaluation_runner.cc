@@ -764,6 +764,17 @@ std::vector<CapturedSequence> GroupSequences(const std::vector<CaptureFrame>& ca
   return sequences;
 }
 
+// The frame's image; an image that cannot be read is reported with the row that names it, as
+// the file may be named relative to the CSV's folder (evaluation/dataset.h).
+cv::Mat ReadCapturedFrame(const CaptureFrame& frame) {
+  try {
+    return ReadImageFile(frame.path);
+  } catch (const std::runtime_error& e) {
+    if (frame.origin.empty()) throw;
+    throw std::runtime_error(frame.origin + ": " + e.what());
+  }
+}
+
 }  // namespace
 
 EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
@@ -803,7 +814,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                described[i] = DescribeImage(known[i], i, options.variants, {}, options.seed);
                return;
              }
-             const cv::Mat image = ReadImageFile(captures[i - known.size()].path);
+             const cv::Mat image = ReadCapturedFrame(captures[i - known.size()]);
              auto& frame = queries[i - known.size()];
              frame.assign(options.variants.size(), {});
              for (const DistortionSpec& distortion : options.distortions) {

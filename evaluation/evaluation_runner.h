@@ -228,7 +228,8 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
 // `trials` is not used. Cells as RunEvaluation's.
 //
 // Throws std::invalid_argument as RunEvaluation does for the options and `known`, and when a
-// sequence shows more than one object; std::runtime_error naming an image that cannot be read.
+// sequence shows more than one object; std::runtime_error naming an image that cannot be read,
+// after the frame's origin ("FILE:LINE: ") when it has one.
 EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                                       const std::vector<CaptureFrame>& captures,
                                       const EvaluationOptions& options);

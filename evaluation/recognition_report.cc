@@ -60,6 +60,14 @@ std::string RecognitionMarkdown(const EvaluationReport& report) {
         << Degrees(Quantile(pose_errors, 0.5)) << " | " << Degrees(Quantile(pose_errors, 0.9))
         << " |\n";
   }
+  if (report.query_sequences > 0) {
+    // A captured frame's azimuth is its device's reading: only differences between frames
+    // matter (docs/capture.md), so it does not say from which side of the model the camera saw
+    // the object, and there is no truth to measure the pose against.
+    out << "\nPose error: not measured for captured queries (`--queries`): their azimuths are the "
+           "device's readings, which give the turns between frames, not the side of the model "
+           "each frame shows.\n";
+  }
   return out.str();
 }
 

@@ -4,7 +4,8 @@
 //
 //   known queries:   right and accepted / rejected / accepted but wrong (top-1 wrong)
 //   unknown queries: rejected / accepted
-//   pose: median and 90th percentile of the error of known hits, degrees
+//   pose: median and 90th percentile of the error of known hits, degrees (the protocol's
+//         queries only: a captured query's azimuths do not say which side of the model it shows)
 //   reliability: confidence in bins of 0.1 against the share of those updates that were right
 //                (a right update: a known query whose top-1 object is right)
 //

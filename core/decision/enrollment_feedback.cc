@@ -19,18 +19,21 @@ std::vector<std::size_t> ByAzimuth(const ObjectModel& object) {
   return order;
 }
 
-std::vector<AzimuthGap> Gaps(const ObjectModel& object, const std::vector<std::size_t>& order) {
+}  // namespace
+
+std::vector<AzimuthGap> AzimuthGaps(std::vector<double> azimuths, double wider_than) {
+  for (double& azimuth : azimuths) azimuth = NormaliseAzimuth(azimuth);
+  std::sort(azimuths.begin(), azimuths.end());
+  // Views at one azimuth leave no arc between them.
+  azimuths.erase(std::unique(azimuths.begin(), azimuths.end()), azimuths.end());
   std::vector<AzimuthGap> gaps;
-  for (std::size_t k = 0; k < order.size(); ++k) {
-    const AzimuthGap gap{NormaliseAzimuth(object.views[order[k]].azimuth),
-                         NormaliseAzimuth(object.views[order[(k + 1) % order.size()]].azimuth)};
-    // One view alone leaves the whole circle open.
-    if (order.size() == 1 || gap.width() > kCoverageGapDegrees) gaps.push_back(gap);
+  for (std::size_t k = 0; k < azimuths.size(); ++k) {
+    const AzimuthGap gap{azimuths[k], azimuths[(k + 1) % azimuths.size()]};
+    // One azimuth alone leaves the whole circle open.
+    if (azimuths.size() == 1 || gap.width() > wider_than) gaps.push_back(gap);
   }
   return gaps;
 }
-
-}  // namespace
 
 double AzimuthGap::width() const {
   const double width = NormaliseAzimuth(to - from);
@@ -42,7 +45,9 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
     throw std::invalid_argument("AssessEnrollment: the object has no views");
   EnrollmentFeedback feedback;
   const std::vector<std::size_t> order = ByAzimuth(object);
-  feedback.gaps = Gaps(object, order);
+  std::vector<double> azimuths;
+  for (const ModelView& view : object.views) azimuths.push_back(view.azimuth);
+  feedback.gaps = AzimuthGaps(std::move(azimuths), kCoverageGapDegrees);
 
   // Each view's best TC with the object's other views (for closer_views), and the repeats.
   std::vector<double> own_best(object.views.size(), 0);

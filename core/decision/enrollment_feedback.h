@@ -35,6 +35,12 @@ struct AzimuthGap {
   double width() const;
 };
 
+// The arcs with no azimuth of `azimuths` (degrees, any finite values) wider than `wider_than`
+// degrees, between neighbours in azimuth order and across 360, in azimuth order. Azimuths that
+// are equal count once; one azimuth alone leaves the whole circle open: one gap of 360 from it
+// to itself. None for no azimuths.
+std::vector<AzimuthGap> AzimuthGaps(std::vector<double> azimuths, double wider_than);
+
 struct Confusion {
   ObjectId object = 0;
   double similarity = 0;  // mean over this object's views of the best TC with that object's

@@ -6,6 +6,7 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -168,9 +169,123 @@ TEST_F(EvalCommandTest, ExplainsBadOptions) {
   EXPECT_THAT(r.err, HasSubstr("no image of object 101"));
   r = testing::RunCommand(eval + "--data " + coil_ + " --n 0");
   EXPECT_NE(r.exit_code, 0);
+  r = testing::RunCommand(eval + "--layout coil100 --manifest " + (dir_ / "m.csv").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--layout coil100 needs --data DIR; a --manifest FILE goes with "
+                               "--layout manifest"));
+  r = testing::RunCommand(eval + "--data " + coil_ + " --manifest " + (dir_ / "m.csv").string());
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("give --data DIR (a COIL-100 folder) or --manifest FILE (a CSV "
+                               "file), not both"));
   r = testing::RunCommand(eval + "--data " + coil_ + " --distortions df,mb:len=0");
   EXPECT_EQ(r.exit_code, 2);
   EXPECT_THAT(r.err, HasSubstr("distortion 'mb:len=0': len must be in [1, 100]"));
+}
+
+// The lines of `text` that start with `prefix`.
+std::vector<std::string> LinesStartingWith(const std::string& text, const std::string& prefix) {
+  std::vector<std::string> lines;
+  std::stringstream in(text);
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind(prefix, 0) == 0) lines.push_back(line);
+  }
+  return lines;
+}
+
+// A user's own captures (--queries) against a manifest's model set: objects 1-3 of COIL-100
+// every 10 degrees; the queries are views in between, copied beside the queries file and named
+// relative to it: a sequence of four frames of object 1 with the device's azimuths, and two
+// frames of object 9, which is not in the model set. Only the product runs.
+class CapturedQueriesTest : public EvalCommandTest {
+ protected:
+  void SetUp() override {
+    EvalCommandTest::SetUp();
+    std::ofstream manifest(dir_ / "set.csv");
+    manifest << "path,object,azimuth\n";
+    for (int object : {1, 2, 3}) {
+      for (int azimuth = 0; azimuth < 360; azimuth += 10) {
+        manifest << coil_ << "/obj" << object << "__" << azimuth << ".png,obj" << object << ","
+                 << azimuth << "\n";
+      }
+    }
+    std::filesystem::create_directories(dir_ / "walks" / "frames");
+    queries_ = dir_ / "walks" / "queries.csv";
+    std::ofstream queries(queries_);
+    queries << "path,object,sequence,azimuth\n";
+    for (const auto& [object, azimuth, sequence] : std::vector<std::tuple<int, int, std::string>>{
+             {1, 5, "a"}, {1, 15, "a"}, {1, 25, "a"}, {1, 35, "a"}, {9, 5, "c"}, {9, 15, "c"}}) {
+      const std::string name = "obj" + std::to_string(object) + "__" + std::to_string(azimuth);
+      std::filesystem::copy_file(coil_ + "/" + name + ".png",
+                                 dir_ / "walks" / "frames" / (name + ".png"));
+      queries << "frames/" << name << ".png,obj" << object << "," << sequence << "," << azimuth + 40
+              << "\n";
+    }
+  }
+
+  // `orbit eval` of these captures with --manifest alone (the layout implied) and `extra`.
+  testing::CommandResult Eval(const std::string& extra) const {
+    return testing::RunCommand(testing::OrbitBinary() + " eval --manifest " +
+                               (dir_ / "set.csv").string() + " --queries " + queries_.string() +
+                               " --methods product --no-progress" + extra);
+  }
+
+  std::filesystem::path queries_;
+};
+
+TEST_F(CapturedQueriesTest, AnNLongerThanEverySequenceReadsAsNothingCounted) {
+  const testing::CommandResult r = Eval(" --n 1,4,6");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("| distortion | method | n=1 | n=4 | n=6 | ms/query (n=6) |"));
+  // The hit-rate table, then the recognition table: at n=6 no sequence was asked, so neither
+  // a rate nor a time is printed.
+  const std::vector<std::string> rows = LinesStartingWith(r.out, "| DF | product |");
+  ASSERT_EQ(rows.size(), 2u) << r.out;
+  EXPECT_THAT(rows[0], ::testing::EndsWith(" | - | - |"));
+  EXPECT_THAT(rows[0], Not(HasSubstr("| - | - | - |")));  // n=1 and n=4 were counted
+  EXPECT_THAT(rows[1], ::testing::EndsWith(" | - / - |"));
+  EXPECT_THAT(rows[1], HasSubstr("| 100.0 / 100.0 |"));  // n=1: object 1 found, object 9 rejected
+  EXPECT_THAT(r.out, HasSubstr("| product | cedd-robust | DF | 6 | - | - | - | - | - | - | - |"));
+}
+
+TEST_F(CapturedQueriesTest, TheReportNamesOnlyWhatRanAndSaysWhyPoseIsNotMeasured) {
+  const testing::CommandResult r = Eval(" --n 2");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("Model memory (cedd-robust): 3 objects, 108 views"));
+  // The default --variant cedd-lire is listed but no method ran on it; the thesis' engine
+  // options (window, N_L, Th, ...) are not the product's.
+  EXPECT_THAT(r.out, Not(HasSubstr("cedd-lire")));
+  EXPECT_THAT(r.out, Not(HasSubstr("Engines:")));
+  EXPECT_THAT(r.out, Not(HasSubstr("Th ")));
+  EXPECT_THAT(r.out, HasSubstr("product: what `orbit serve` runs by default"));
+  // The queries carry azimuths, but a device's azimuths do not say which side of the model a
+  // frame shows: the pose columns stay empty, and the report says why.
+  EXPECT_THAT(r.out, HasSubstr("| pose median | pose p90 |"));
+  EXPECT_THAT(r.out, HasSubstr("Pose error: not measured for captured queries (`--queries`): "
+                               "their azimuths are the device's readings"));
+}
+
+TEST_F(CapturedQueriesTest, AMissingFrameIsNamedWithTheLineOfTheQueriesFile) {
+  std::filesystem::remove(dir_ / "walks" / "frames" / "obj1__15.png");
+  const testing::CommandResult r = Eval(" --n 1");
+  EXPECT_EQ(r.exit_code, 1);
+  // Line 3 of the file: the header, then obj1__5, then obj1__15.
+  EXPECT_THAT(r.err, HasSubstr("orbit eval: " + queries_.string() +
+                               ":3: " + (dir_ / "walks" / "frames" / "obj1__15.png").string() +
+                               ": no such file"));
+}
+
+TEST_F(EvalCommandTest, HelpSaysWhereTheCsvFilesPathsAreReadFrom) {
+  const testing::CommandResult r = testing::RunCommand(testing::OrbitBinary() + " eval --help");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  // --manifest, --boxes and --queries.
+  const std::string said =
+      "a relative path in it is read from the CSV file's own folder, not the working directory";
+  int times = 0;
+  for (std::size_t at = r.out.find(said); at != std::string::npos; at = r.out.find(said, at + 1))
+    ++times;
+  EXPECT_EQ(times, 3) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("default: manifest when --manifest is given, else coil100"));
 }
 
 // Parameterised distortions reach the report under their canonical names, next to the

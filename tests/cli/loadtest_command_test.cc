@@ -192,7 +192,7 @@ TEST(LoadtestCommandTest, BadFlagsExitWithStatusTwoAndSayWhy) {
   // A server that is not there is not a bad flag: the command ran and failed.
   const testing::CommandResult unreachable = RunOrbit(at + "--rate 5 --timeout 1");
   EXPECT_EQ(unreachable.exit_code, 1);
-  EXPECT_THAT(unreachable.err, HasSubstr("UNAVAILABLE"));
+  EXPECT_THAT(unreachable.err, HasSubstr("orbit loadtest: cannot reach a server at "));
 
   const testing::CommandResult help = RunOrbit("loadtest --help");
   EXPECT_EQ(help.exit_code, 0);

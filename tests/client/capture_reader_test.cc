@@ -4,6 +4,7 @@
 #include "client/capture_reader.h"
 
 #include <cmath>
+#include <filesystem>
 
 #include <gtest/gtest.h>
 
@@ -70,6 +71,23 @@ TEST(CaptureReaderTest, RefusesALogThatEndsBeforeTheVideoAndAMissingVideo) {
                 [&] { CaptureReader(text, OrientationLog::ReadFile(log)); }),
             "cannot read video " + text +
                 ": no OpenCV reader opens it (not a video, or a format this OpenCV cannot decode)");
+}
+
+TEST(CaptureReaderTest, RefusesAStillImageGivenAsTheVideo) {
+  const ScratchDir dir;
+  const std::string log = dir.Write("walk.csv", "timestamp_ms,azimuth_deg\n0,0\n1000,90\n");
+  // A PNG and a JPEG of the shared data, and the PNG under a video's name: an image states no
+  // frame rate, whatever its file is called, so none is read as a one-frame video.
+  const std::string png = testing::CoilDir() + "/obj1__0.png";
+  const std::string jpeg = (testing::DataDir() / "epfl-cars/images/car01_001.jpg").string();
+  std::filesystem::copy_file(png, dir / "walk.avi");
+  for (const std::string& image : {png, jpeg, (dir / "walk.avi").string()}) {
+    EXPECT_EQ(ErrorMessageOf<std::runtime_error>(
+                  [&] { CaptureReader(image, OrientationLog::ReadFile(log)); }),
+              "video " + image +
+                  " is a still image: it states no frame rate, so no frame time can be aligned "
+                  "to the orientation log; give the video of the walk");
+  }
 }
 
 TEST(CaptureReaderTest, ParsesBoxes) {

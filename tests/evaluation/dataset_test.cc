@@ -249,8 +249,10 @@ TEST(ReadQueryCapturesTest, ReadsSequencesWithOrWithoutAzimuths) {
                              "\"walk, 2\",f2.png,cup,-30\n");
   const std::vector<CaptureFrame> frames = ReadQueryCaptures(csv);
   ASSERT_EQ(frames.size(), 3u);
-  EXPECT_EQ(frames[0], (CaptureFrame{(dir.path() / "f0.png").string(), "mug", 12.5, "walk1"}));
-  EXPECT_EQ(frames[1], (CaptureFrame{"/abs/f1.png", "mug", std::nullopt, "walk1"}));
+  EXPECT_EQ(frames[0], (CaptureFrame{(dir.path() / "f0.png").string(), "mug", 12.5, "walk1",
+                                     csv.string() + ":2"}));
+  EXPECT_EQ(frames[1],
+            (CaptureFrame{"/abs/f1.png", "mug", std::nullopt, "walk1", csv.string() + ":3"}));
   EXPECT_EQ(frames[2].sequence, "walk, 2");
   EXPECT_EQ(frames[2].azimuth, -30);  // as the device read it: only differences matter
   // No azimuth column at all: a device without an orientation sensor.
@@ -300,6 +302,13 @@ TEST(SelectDatasetTest, RefusesMissingPathsOverlapsAndNumbersBeyondTheManifest) 
   EXPECT_EQ(error({"manifest", "", csv, "", "2-4"}),
             "object 4 selected, but the manifest has 2 objects");
   EXPECT_EQ(error({"folder", dir.path(), "", "", ""}), "unknown layout \"folder\"");
+  EXPECT_EQ(error({"coil100", "", csv, "", ""}),
+            "--layout coil100 needs --data DIR; a --manifest FILE goes with --layout manifest");
+  // No layout named: the one of the file or folder given, not two of them.
+  EXPECT_EQ(SelectDataset({"", "", csv, "", ""}).known.size(), 2u);
+  EXPECT_EQ(error({"", "", "", "", ""}), "--layout coil100 needs --data DIR");
+  EXPECT_EQ(error({"", dir.path(), csv, "", ""}),
+            "give --data DIR (a COIL-100 folder) or --manifest FILE (a CSV file), not both");
   EXPECT_THAT(error({"manifest", "", csv, "1-x", ""}), HasSubstr("\"1-x\""));
 }
 
