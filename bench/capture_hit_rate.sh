@@ -17,17 +17,12 @@ variant=()
 [[ -n ${5:-} ]] && variant=(--variant "$5")
 orbit="$build/orbit"
 work=$(mktemp -d)
+# shellcheck source=bench/serve_in_background.sh
+source "$(dirname "$0")/serve_in_background.sh"
 trap 'kill "${server_pid:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
 
 for mode in tracked true; do
-  "$orbit" serve --db "$work/$mode.db" --listen 127.0.0.1:0 "${variant[@]}" >"$work/serve.log" 2>&1 &
-  server_pid=$!
-  address=""
-  for _ in $(seq 100); do
-    address=$(sed -n 's/.*listening on \(127\.0\.0\.1:[0-9]*\).*/\1/p' "$work/serve.log" | head -1)
-    [[ -n "$address" ]] && break
-    sleep 0.1
-  done
+  serve_in_background "$orbit" "$work/serve.log" --db "$work/$mode.db" "${variant[@]}"
   views=0 lost=0 right=0 updates=0 final_right=0 objects=0
   for object in $(seq "$first" "$last"); do
     for walk in enroll query; do

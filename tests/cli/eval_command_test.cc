@@ -245,13 +245,13 @@ TEST_F(CapturedQueriesTest, AnNLongerThanEverySequenceReadsAsNothingCounted) {
   EXPECT_THAT(rows[0], Not(HasSubstr("| - | - | - |")));  // n=1 and n=4 were counted
   EXPECT_THAT(rows[1], ::testing::EndsWith(" | - / - |"));
   EXPECT_THAT(rows[1], HasSubstr("| 100.0 / 100.0 |"));  // n=1: object 1 found, object 9 rejected
-  EXPECT_THAT(r.out, HasSubstr("| product | cedd-robust | DF | 6 | - | - | - | - | - | - | - |"));
+  EXPECT_THAT(r.out, HasSubstr("| product | cedd-hsv-hog | DF | 6 | - | - | - | - | - | - | - |"));
 }
 
 TEST_F(CapturedQueriesTest, TheReportNamesOnlyWhatRanAndSaysWhyPoseIsNotMeasured) {
   const testing::CommandResult r = Eval(" --n 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Model memory (cedd-robust): 3 objects, 108 views"));
+  EXPECT_THAT(r.out, HasSubstr("Model memory (cedd-hsv-hog): 3 objects, 108 views"));
   // The default --variant cedd-lire is listed but no method ran on it; the thesis' engine
   // options (window, N_L, Th, ...) are not the product's.
   EXPECT_THAT(r.out, Not(HasSubstr("cedd-lire")));
