@@ -96,31 +96,27 @@ ColourPixels ColourHistogram(const cv::Mat& small) {
 // of the frame is the least, over the ring's common colours, of how much of the frame that colour
 // covers against how much of the ring; each bin keeps what the background does not account for,
 // so a colour the object shares with the background is removed only as far as the background
-// covers it. Dark pixels, which carry no colour to tell the two apart, are kept. All ones when
-// nothing would be left (the object has the ring's colours alone).
+// covers it. Dark pixels, which carry no colour to tell the two apart, are kept. Something is
+// always left: with the background's share at most kMaxBackgroundShare, the expected counts sum
+// to at most that share of the frame's.
 ColourCounts ForegroundShares(const ColourPixels& pixels) {
-  ColourCounts shares;
-  shares.fill(1.0);
-  double whole_total = 0, border_total = 0;
-  for (int b = 0; b < kColourChannelSize; ++b) {
-    whole_total += pixels.whole[b];
-    border_total += pixels.border[b];
-  }
-  if (whole_total <= 0 || border_total <= 0) return shares;
+  // Every pixel counts 1 in all (its own bin's share and the share spread over every hue).
+  constexpr int kInner = kAppearanceSide - 2 * kBorderRing;
+  constexpr double kFramePixels = kAppearanceSide * kAppearanceSide;
+  constexpr double kRingPixels = kFramePixels - kInner * kInner;
   double background = kMaxBackgroundShare;
   for (int b = kDarkBin + 1; b < kColourChannelSize; ++b) {
-    const double ring = pixels.border[b] / border_total;
+    const double ring = pixels.border[b] / kRingPixels;
     if (ring < kCommonBorderColour) continue;
-    background = std::min(background, pixels.whole[b] / whole_total / ring);
+    background = std::min(background, pixels.whole[b] / kFramePixels / ring);
   }
-  double kept = pixels.whole[kDarkBin];
+  ColourCounts shares;
+  shares.fill(1.0);
   for (int b = kDarkBin + 1; b < kColourChannelSize; ++b) {
     if (pixels.whole[b] <= 0) continue;
-    const double expected = background * whole_total * pixels.border[b] / border_total;
+    const double expected = background * kFramePixels * pixels.border[b] / kRingPixels;
     shares[b] = std::max(0.0, pixels.whole[b] - expected) / pixels.whole[b];
-    kept += shares[b] * pixels.whole[b];
   }
-  if (kept <= 0) shares.fill(1.0);
   return shares;
 }
 
