@@ -84,6 +84,14 @@ v1::Decision ToProtoDecision(Decision decision) {
   return v1::DECISION_UNSPECIFIED;
 }
 
+Decision FromProtoDecision(v1::Decision decision) {
+  switch (decision) {
+    case v1::DECISION_ACCEPT: return Decision::kAccept;
+    case v1::DECISION_UNKNOWN: return Decision::kUnknown;
+    default: return Decision::kUndecided;
+  }
+}
+
 v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,
                                         const ViewIndexSnapshot& index) {
   v1::EnrollmentReport report;

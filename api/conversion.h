@@ -45,6 +45,9 @@ v1::View ToProtoView(const ModelView& view, DescriptorVariant variant,
                      const std::string& thumbnail = "");
 
 v1::Decision ToProtoDecision(Decision decision);
+// The inverse; DECISION_UNSPECIFIED and values this build does not know read as kUndecided (no
+// answer).
+Decision FromProtoDecision(v1::Decision decision);
 v1::Move ToProtoMove(SuggestedMove move);
 // Object ids are named from `index` (the name left empty for an id it does not hold).
 v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,

@@ -1,25 +1,33 @@
 // orbit eval: the evaluation protocol (docs/design.md#evaluation-protocol) on a dataset
-// (evaluation/evaluation_runner.h): a Markdown table of hit rates on stdout, optionally a CSV
-// file and a PNG plot.
+// (evaluation/evaluation_runner.h), or a user's captured query sequences recognised against a
+// local model set or, with --server, by a running server (evaluation/server_evaluation.h): a
+// Markdown table of hit rates on stdout, optionally a CSV file and a PNG plot.
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "cli/box_arguments.h"
 #include "cli/commands.h"
+#include "cli/network_options.h"
 #include "cli/progress_bar.h"
+#include "client/connection.h"
+#include "client/rpc_error.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
 #include "evaluation/evaluation_plot.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
 #include "evaluation/recognition_report.h"
+#include "evaluation/server_evaluation.h"
 
 namespace orbit::cli {
 namespace {
@@ -79,6 +87,7 @@ struct EvalOptions {
   std::string plot;
   int threads = EvaluationOptions{}.threads;
   bool no_progress = false;
+  NetworkOptions network;  // --server: the queries go to a running server
 };
 
 std::vector<DistortionSweep> Sweeps(const EvalOptions& o) {
@@ -122,6 +131,130 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   return options;
 }
 
+// Prints the report and writes the files the options ask for; the one output of both modes.
+void WriteReport(const EvaluationReport& report, const EvalOptions& o) {
+  const std::vector<DistortionSweep> sweeps = Sweeps(o);
+  std::cout << MarkdownReport(report);
+  if (!sweeps.empty()) std::cout << SweepMarkdown(report, sweeps);
+  if (report.unknown_objects > 0 || !o.verdicts.empty()) {
+    std::cout << RecognitionMarkdown(report) << ReliabilityMarkdown(report);
+  }
+  std::cout << std::flush;
+  if (!o.csv.empty()) {
+    std::ofstream csv(o.csv);
+    if (csv) sweeps.empty() ? WriteCsv(report, csv) : WriteSweepCsv(report, sweeps, csv);
+    if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
+  }
+  if (!o.recognition_plot.empty()) {
+    WritePng(DrawLineFigure(RecognitionCurves(report)), o.recognition_plot);
+  }
+  if (!o.verdicts.empty()) {
+    std::ofstream verdicts(o.verdicts);
+    if (!verdicts) throw std::runtime_error(o.verdicts + ": cannot write the verdicts file");
+    WriteVerdictsCsv(report, verdicts);
+  }
+  if (!o.plot.empty()) {
+    if (sweeps.empty()) {
+      WriteHitRatePlot(report, o.plot);
+    } else {
+      WritePng(DrawSweepPlot(report, sweeps), o.plot);
+    }
+  }
+}
+
+// The flags a local evaluation takes that mean nothing with --server, and why. A flag listed
+// neither here nor in kServerFlags is refused too, for setting up a local evaluation.
+const std::map<std::string, std::string>& ServerRefusalReasons() {
+  static const std::map<std::string, std::string> reasons = [] {
+    std::map<std::string, std::string> r;
+    for (const char* flag : {"--layout", "--data", "--manifest", "--objects"}) {
+      r[flag] = "the model set is the objects the server holds";
+    }
+    r["--unknown-objects"] =
+        "a query of an object the server does not hold is an unknown query already";
+    for (const char* flag :
+         {"--methods", "--variant", "--index", "--kd-trees", "--kd-checks", "--kd-candidates",
+          "--threshold", "--rejection", "--false-accept-rate", "--orientation-weight",
+          "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight"}) {
+      r[flag] = "the server recognises with its own variant, engine and session defaults";
+    }
+    for (const char* flag : {"--distortions", "--sweep", "--sweep-steps"}) {
+      r[flag] = "the server is sent the frames as captured (df)";
+    }
+    for (const char* flag : {"--active", "--active-step", "--active-policy"}) {
+      r[flag] = "captured sequences have their views already";
+    }
+    for (const char* flag : {"--trials", "--seed", "--threads"}) {
+      r[flag] = "each captured sequence is one query, streamed once as one session";
+    }
+    r["--quality-reading"] =
+        "the client library sends every frame's quality reading, as a device does";
+    r["--recognition-plot"] = "a server's updates do not state the p-values its curves need";
+    return r;
+  }();
+  return reasons;
+}
+
+// What --server works with: the network flags, the queries and how they are sent and reported.
+constexpr std::string_view kServerFlags[] = {
+    "--server",   "--token", "--token-file",  "--tls-ca",     "--tls-server-name", "--timeout",
+    "--queries",  "--n",     "--boxes",       "--box-margin", "--orientation",     "--csv",
+    "--verdicts", "--plot",  "--no-progress", "--help"};
+
+// Throws std::invalid_argument naming the first flag given on `command` that does not apply
+// with --server, and when --queries is missing. --distortions df alone is accepted: it is
+// what the server is sent.
+void RefuseLocalFlags(const CLI::App& command, const EvalOptions& o) {
+  if (o.queries.empty()) {
+    throw std::invalid_argument(
+        "--server needs --queries FILE: the captured query sequences to send it, a CSV with "
+        "columns path,object,sequence[,azimuth]");
+  }
+  for (const CLI::Option* option : command.get_options()) {
+    if (option->count() == 0) continue;
+    const std::string name = option->get_name();
+    if (std::find(std::begin(kServerFlags), std::end(kServerFlags), name) !=
+        std::end(kServerFlags)) {
+      continue;
+    }
+    if (name == "--distortions" && o.distortions == std::vector<std::string>{"df"}) continue;
+    const auto& reasons = ServerRefusalReasons();
+    const auto found = reasons.find(name);
+    throw std::invalid_argument(
+        name + " does not apply with --server: " +
+        (found != reasons.end() ? found->second : "it sets up a local evaluation"));
+  }
+}
+
+// `orbit eval --server --queries`: the captures streamed to the server, one session each.
+int RunServerEval(const EvalOptions& o) {
+  try {
+    const std::vector<CaptureFrame> captures = ReadQueryCaptures(o.queries);
+    ServerEvaluationOptions options;
+    options.query_lengths = o.ns;
+    options.use_orientation = o.orientation == "use";
+    if (!o.boxes.empty()) options.boxes = ReadBoxes(o.boxes);
+    options.box_margin = o.box_margin;
+    std::unique_ptr<ProgressBar> progress;
+    if (!o.no_progress) {
+      progress = std::make_unique<ProgressBar>(std::cerr, ::isatty(STDERR_FILENO) == 1);
+      options.progress = [&progress](std::string_view stage, std::size_t done, std::size_t total) {
+        progress->Update(stage, done, total);
+      };
+    }
+    const Connection connection(ToConnectionOptions(o.network));
+    const EvaluationReport report = RunServerEvaluation(connection, captures, options);
+    progress.reset();
+    WriteReport(report, o);
+    return 0;
+  } catch (const RpcError&) {
+    throw;  // main() says which server could not be reached, or what it refused
+  } catch (const std::exception& e) {
+    std::cerr << "orbit eval: " << e.what() << "\n";
+    return 1;
+  }
+}
+
 int RunEval(const EvalOptions& o) {
   try {
     auto [known, unknown] =
@@ -158,34 +291,7 @@ int RunEval(const EvalOptions& o) {
         o.queries.empty() ? RunEvaluation(known, unknown, options)
                           : RunCaptureEvaluation(known, ReadQueryCaptures(o.queries), options);
     progress.reset();
-
-    const std::vector<DistortionSweep> sweeps = Sweeps(o);
-    std::cout << MarkdownReport(report);
-    if (!sweeps.empty()) std::cout << SweepMarkdown(report, sweeps);
-    if (report.unknown_objects > 0 || !o.verdicts.empty()) {
-      std::cout << RecognitionMarkdown(report) << ReliabilityMarkdown(report);
-    }
-    std::cout << std::flush;
-    if (!o.csv.empty()) {
-      std::ofstream csv(o.csv);
-      if (csv) sweeps.empty() ? WriteCsv(report, csv) : WriteSweepCsv(report, sweeps, csv);
-      if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
-    }
-    if (!o.recognition_plot.empty()) {
-      WritePng(DrawLineFigure(RecognitionCurves(report)), o.recognition_plot);
-    }
-    if (!o.verdicts.empty()) {
-      std::ofstream verdicts(o.verdicts);
-      if (!verdicts) throw std::runtime_error(o.verdicts + ": cannot write the verdicts file");
-      WriteVerdictsCsv(report, verdicts);
-    }
-    if (!o.plot.empty()) {
-      if (sweeps.empty()) {
-        WriteHitRatePlot(report, o.plot);
-      } else {
-        WritePng(DrawSweepPlot(report, sweeps), o.plot);
-      }
-    }
+    WriteReport(report, o);
     return 0;
   } catch (const std::exception& e) {
     std::cerr << "orbit eval: " << e.what() << "\n";
@@ -292,7 +398,8 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   command->add_option("--boxes", o->boxes,
                       "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each "
-                      "image's box, grown by --box-margin, instead of the whole image; " +
+                      "image's box, grown by --box-margin, instead of the whole image (with "
+                      "--server: each query frame's, a row for every frame); " +
                           std::string(kRelativePathsHelp));
   AddBoxMarginOption(*command, o->box_margin);
   command->add_option("--objects", o->objects,
@@ -384,14 +491,31 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->add_option("--queries", o->queries,
                    "CSV of your own query captures, columns path,object,sequence[,azimuth]: "
                    "each sequence is one query, recognised with its first n frames against "
-                   "the model set of --data/--manifest (all of its images); an object not in "
-                   "the model set is an unknown query; --distortions defaults to df (as "
-                   "captured); " +
+                   "the model set of --data/--manifest (all of its images), or by --server; an "
+                   "object not in the model set is an unknown query; --distortions defaults to "
+                   "df (as captured); " +
                        std::string(kRelativePathsHelp))
       ->check(CLI::ExistingFile);
-  command->callback([o, distortions, &exit_code] {
+  AddNetworkOptions(*command, o->network, /*server_required=*/false)
+      ->description(
+          "a running Orbit server, HOST:PORT: with --queries, stream each captured sequence to "
+          "it as one recognition session, with its own objects, defaults and your --token, and "
+          "report its answers as the local --queries mode does (the flags of a local model set "
+          "do not apply)");
+  command->callback([o, distortions, command, &exit_code] {
     if (!o->queries.empty() && distortions->count() == 0) o->distortions = {"df"};
     if (!o->sweeps.empty() && distortions->count() == 0) o->distortions.clear();
+    if (!o->network.server.empty()) {
+      try {
+        RefuseLocalFlags(*command, *o);
+      } catch (const std::invalid_argument& e) {
+        std::cerr << "orbit eval: " << e.what() << "\n";
+        exit_code = 1;
+        return;
+      }
+      exit_code = RunServerEval(*o);
+      return;
+    }
     exit_code = RunEval(*o);
   });
 }

@@ -443,6 +443,32 @@ std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv) {
   return frames;
 }
 
+std::vector<CaptureSequence> GroupCaptureSequences(const std::vector<CaptureFrame>& captures) {
+  std::vector<CaptureSequence> sequences;
+  std::map<std::string, std::size_t> position;  // name -> its place in `sequences`
+  for (std::size_t f = 0; f < captures.size(); ++f) {
+    const CaptureFrame& frame = captures[f];
+    const auto [at, added] = position.emplace(frame.sequence, sequences.size());
+    if (added) sequences.push_back({frame.sequence, frame.object, {}});
+    CaptureSequence& sequence = sequences[at->second];
+    if (sequence.object != frame.object) {
+      throw std::invalid_argument("sequence \"" + sequence.name + "\" shows two objects (\"" +
+                                  sequence.object + "\" and \"" + frame.object + "\")");
+    }
+    sequence.frames.push_back(f);
+  }
+  return sequences;
+}
+
+cv::Mat ReadCaptureImage(const CaptureFrame& frame) {
+  try {
+    return ReadImageFile(frame.path);
+  } catch (const std::runtime_error& e) {
+    if (frame.origin.empty()) throw;
+    throw std::runtime_error(frame.origin + ": " + e.what());
+  }
+}
+
 std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images) {
   std::vector<DatasetObject> objects;
   std::map<std::string, std::size_t> position;  // name -> its place in `objects`

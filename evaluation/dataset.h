@@ -139,6 +139,25 @@ struct CaptureFrame {
 // "FILE: no frames" when there are no data rows.
 std::vector<CaptureFrame> ReadQueryCaptures(const std::filesystem::path& csv);
 
+// One query of a capture file: a sequence's object and its frames' positions in the captures,
+// in file order.
+struct CaptureSequence {
+  std::string name;
+  std::string object;
+  std::vector<std::size_t> frames;
+
+  friend bool operator==(const CaptureSequence&, const CaptureSequence&) = default;
+};
+
+// Groups `captures` by sequence: sequences in order of first appearance. Throws
+// std::invalid_argument naming the sequence when its frames show more than one object.
+std::vector<CaptureSequence> GroupCaptureSequences(const std::vector<CaptureFrame>& captures);
+
+// Reads the frame's image file (ReadImageFile, client/image_file.h); an image that cannot be
+// read is reported after the frame's origin ("FILE:LINE: "), when it has one, since its path
+// may be named relative to the capture file's folder.
+cv::Mat ReadCaptureImage(const CaptureFrame& frame);
+
 // One object of a dataset: the images sharing a name.
 struct DatasetObject {
   std::string name;

@@ -36,6 +36,39 @@ std::vector<const EvaluationCell*> CellsOf(const EvaluationReport& report,
   return cells;
 }
 
+// The distinct variants of the report's cells, in the order they first appear.
+std::vector<DescriptorVariant> VariantsOf(const EvaluationReport& report) {
+  std::vector<DescriptorVariant> variants;
+  for (const EvaluationCell& cell : report.cells) {
+    if (std::find(variants.begin(), variants.end(), cell.variant) == variants.end()) {
+      variants.push_back(cell.variant);
+    }
+  }
+  return variants;
+}
+
+// The first line of the report: what was evaluated, on what, and how long it took.
+std::string RunLine(const EvaluationReport& report) {
+  std::ostringstream out;
+  if (report.server) {
+    const ServerDescription& server = *report.server;
+    out << "Server " << server.address << " (orbit " << server.version
+        << "): " << report.known_objects << " enrolled objects, " << server.views << " views";
+    if (report.unknown_objects > 0) {
+      out << "; " << report.unknown_objects << " unknown objects among the queries";
+    }
+    out << "; sessions " << Format("%.1f", report.trial_seconds) << " s.\n\n";
+    return out.str();
+  }
+  out << "Seed " << report.seed << "; " << report.known_objects << " known objects";
+  if (report.unknown_objects > 0) out << ", " << report.unknown_objects << " unknown objects";
+  out << ", " << report.images << " images; index "
+      << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
+      << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
+      << Format("%.1f", report.trial_seconds) << " s.\n\n";
+  return out.str();
+}
+
 // The distinct n values in the report, in the order they first appear.
 std::vector<int> QueryLengths(const EvaluationReport& report) {
   std::vector<int> ns;
@@ -69,22 +102,21 @@ std::string MarkdownReport(const EvaluationReport& report) {
   std::ostringstream out;
   const std::vector<int> ns = QueryLengths(report);
   const bool recognition = report.unknown_objects > 0;
-  out << "Seed " << report.seed << "; " << report.known_objects << " known objects";
-  if (recognition) out << ", " << report.unknown_objects << " unknown objects";
-  out << ", " << report.images << " images; index "
-      << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
-      << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
-      << Format("%.1f", report.trial_seconds) << " s.\n\n";
+  out << RunLine(report);
   if (report.query_sequences > 0) {
     out << "Queries: " << report.query_sequences << " captured sequences, " << report.query_frames
-        << " frames (`--queries`), against every image of the model set; "
-           "a sequence shorter than n is not counted at n (\"-\": none is that long).\n\n";
+        << " frames (`--queries`), "
+        << (report.server ? "each streamed as one session with the server's defaults, read "
+                            "after its n-th frame, against the server's enrolled objects"
+                          : "against every image of the model set")
+        << "; a sequence shorter than n is not counted at n (\"-\": none is that long).\n\n";
   }
   // The engines' options, orientation, active vision and index: one line, each part only when
   // something it describes ran. The product runs its own options (DescribeProduct below), so
   // the thesis' engine options are stated only when one of those engines ran.
   std::ostringstream setup;
   const bool thesis_engines =
+      !report.server &&
       std::any_of(report.cells.begin(), report.cells.end(),
                   [](const EvaluationCell& cell) { return cell.method != kProductMethod; });
   const EngineOptions& e = report.engine;
@@ -117,8 +149,16 @@ std::string MarkdownReport(const EvaluationReport& report) {
           << " checks, " << report.index.kd_candidates << " candidates re-ranked.";
   }
   if (!setup.str().empty()) out << setup.str().substr(1) << "\n\n";
-  if (std::any_of(report.cells.begin(), report.cells.end(),
-                  [](const EvaluationCell& cell) { return cell.method == kProductMethod; })) {
+  if (report.server) {
+    const ServerDescription& server = *report.server;
+    out << (report.cells.empty() ? std::string("server") : report.cells.front().method)
+        << ": the server's session defaults, " << server.defaults;
+    if (server.runs_product) out << ": the product pipeline, " << DescribeProduct();
+    out << ". ms/query: the server's processing time of a query's frames, as its updates "
+           "state it.\n";
+  } else if (std::any_of(report.cells.begin(), report.cells.end(), [](const EvaluationCell& cell) {
+               return cell.method == kProductMethod;
+             })) {
     out << "product: what `orbit serve` runs by default, " << DescribeProduct() << ".\n\n";
   }
   // Only the variants some method ran on: the runner also describes and indexes a variant
@@ -131,11 +171,10 @@ std::string MarkdownReport(const EvaluationReport& report) {
         << " (heap held by the built index).\n";
   }
 
-  for (const ModelMemory& memory : report.memory) {
-    const auto cells = CellsOf(report, memory.variant);
-    if (cells.empty()) continue;
+  for (const DescriptorVariant variant : VariantsOf(report)) {
+    const auto cells = CellsOf(report, variant);
     const int trials_per_cell = cells.front()->trials;
-    out << "\n### " << VariantName(memory.variant) << ": hit rate (%), top-1, " << trials_per_cell
+    out << "\n### " << VariantName(variant) << ": hit rate (%), top-1, " << trials_per_cell
         << " queries per cell\n\n| distortion | method |";
     for (int n : ns) out << " n=" << n << " |";
     out << " ms/query (n=" << ns.back() << ") |\n|---|---|";
@@ -152,7 +191,7 @@ std::string MarkdownReport(const EvaluationReport& report) {
     });
 
     if (!recognition) continue;
-    out << "\n### " << VariantName(memory.variant)
+    out << "\n### " << VariantName(variant)
         << ": recognition (%), known objects right and accepted / unknown objects rejected\n\n"
            "| distortion | method |";
     for (int n : ns) out << " n=" << n << " |";

@@ -15,9 +15,11 @@ namespace orbit {
 std::string DistortionLabel(const std::string& distortion);
 
 // The report as Markdown: a line with the run's parameters (seed, objects, index, threads,
-// times), the thesis' engine options when one of those engines ran, the model memory of each
-// variant a method ran on, then per variant a table of hit rates in percent with one row per
-// distortion x method and one column per n, plus the time per query at the largest n. When
+// times; for a server's report, the server, its objects and the sessions' time instead), the
+// thesis' engine options when one of those engines ran locally, the model memory of each
+// variant a method ran on (none for a server's report: the server's memory is not measured
+// here; its session defaults instead), then per variant a table of hit rates in percent with one
+// row per distortion x method and one column per n, plus the time per query at the largest n. When
 // unknown objects were queried, a second table per variant gives, per n, the percentage of
 // known-object queries answered right and accepted, and of unknown-object queries rejected. A
 // cell that counted no query (an n longer than every captured sequence) reads "-".

@@ -14,7 +14,6 @@
 #include <string>
 #include <vector>
 
-#include "client/image_file.h"
 #include "core/base/angles.h"
 #include "core/base/mutex.h"
 #include "core/base/parallel_for.h"
@@ -309,19 +308,7 @@ void Judge(const FrameUpdate& update, ObjectId expected, std::optional<double> t
 
 // Adds one query's outcome to its cell.
 void Count(const Outcome& outcome, EvaluationCell& cell) {
-  if (!outcome.answered) return;
-  const QueryVerdict& verdict = outcome.verdict;
-  cell.seconds += outcome.seconds;
-  if (verdict.known) {
-    ++cell.trials;
-    cell.hits += verdict.hit;
-    cell.accepted += verdict.hit && verdict.decision == Decision::kAccept;
-    cell.accepted_wrong += !verdict.hit && verdict.decision == Decision::kAccept;
-  } else {
-    ++cell.unknown_trials;
-    cell.rejected += verdict.decision == Decision::kUnknown;
-  }
-  cell.verdicts.push_back(verdict);
+  if (outcome.answered) cell.Add(outcome.verdict, outcome.seconds);
 }
 
 // Whether `method` is evaluated on descriptors of `variant`.
@@ -635,6 +622,20 @@ std::vector<EvaluationCell> AggregateCells(const std::vector<Outcome>& outcomes,
 
 }  // namespace
 
+void EvaluationCell::Add(const QueryVerdict& verdict, double query_seconds) {
+  seconds += query_seconds;
+  if (verdict.known) {
+    ++trials;
+    hits += verdict.hit;
+    accepted += verdict.hit && verdict.decision == Decision::kAccept;
+    accepted_wrong += !verdict.hit && verdict.decision == Decision::kAccept;
+  } else {
+    ++unknown_trials;
+    rejected += verdict.decision == Decision::kUnknown;
+  }
+  verdicts.push_back(verdict);
+}
+
 std::vector<std::string> DefaultMethods() {
   std::vector<std::string> methods{std::string(kProductMethod)};
   methods.insert(methods.end(), EngineNames().begin(), EngineNames().end());
@@ -738,45 +739,6 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   return report;
 }
 
-namespace {
-
-// A captured query: its object and its frames' positions in the captures, in file order.
-struct CapturedSequence {
-  std::string name;
-  std::string object;
-  std::vector<std::size_t> frames;
-};
-
-std::vector<CapturedSequence> GroupSequences(const std::vector<CaptureFrame>& captures) {
-  std::vector<CapturedSequence> sequences;
-  std::map<std::string, std::size_t> position;
-  for (std::size_t f = 0; f < captures.size(); ++f) {
-    const CaptureFrame& frame = captures[f];
-    const auto [at, added] = position.emplace(frame.sequence, sequences.size());
-    if (added) sequences.push_back({frame.sequence, frame.object, {}});
-    CapturedSequence& sequence = sequences[at->second];
-    if (sequence.object != frame.object) {
-      throw std::invalid_argument("sequence \"" + sequence.name + "\" shows two objects (\"" +
-                                  sequence.object + "\" and \"" + frame.object + "\")");
-    }
-    sequence.frames.push_back(f);
-  }
-  return sequences;
-}
-
-// The frame's image; an image that cannot be read is reported with the row that names it, as
-// the file may be named relative to the CSV's folder (evaluation/dataset.h).
-cv::Mat ReadCapturedFrame(const CaptureFrame& frame) {
-  try {
-    return ReadImageFile(frame.path);
-  } catch (const std::runtime_error& e) {
-    if (frame.origin.empty()) throw;
-    throw std::runtime_error(frame.origin + ": " + e.what());
-  }
-}
-
-}  // namespace
-
 EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                                       const std::vector<CaptureFrame>& captures,
                                       const EvaluationOptions& requested) {
@@ -785,7 +747,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   EvaluationDataset dataset;
   dataset.known = GroupByObject(known);
   for (const DatasetImage& image : known) dataset.images.push_back(&image);
-  const std::vector<CapturedSequence> sequences = GroupSequences(captures);
+  const std::vector<CaptureSequence> sequences = GroupCaptureSequences(captures);
 
   EvaluationReport report = ReportOf(options);
   report.known_objects = dataset.known.size();
@@ -814,7 +776,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                described[i] = DescribeImage(known[i], i, options.variants, {}, options.seed);
                return;
              }
-             const cv::Mat image = ReadCapturedFrame(captures[i - known.size()]);
+             const cv::Mat image = ReadCaptureImage(captures[i - known.size()]);
              auto& frame = queries[i - known.size()];
              frame.assign(options.variants.size(), {});
              for (const DistortionSpec& distortion : options.distortions) {
@@ -840,7 +802,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   const Clock::time_point trial_start = Clock::now();
   const std::vector<Outcome> outcomes =
       RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
-        const CapturedSequence* sequence = &sequences[t.object];
+        const CaptureSequence* sequence = &sequences[t.object];
         const int n = options.query_lengths[t.n_slot];
         TaskQuery query;
         query.skipped = static_cast<int>(sequence->frames.size()) < n;

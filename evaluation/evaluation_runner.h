@@ -105,7 +105,8 @@ struct QueryVerdict {
   bool known = false;  // the query's object is in the model set
   bool hit = false;    // known, and the top-1 object is right
   Decision decision = Decision::kUndecided;
-  double unknown_statistic = 0;  // FrameUpdate's
+  // FrameUpdate's; NaN when the answer did not say (a server's update carries neither).
+  double unknown_statistic = 0;
   double unknown_p_value = 1;
   double confidence = 0;
   // Known hits of the protocol only: |true azimuth of the latest frame - estimated pose|
@@ -128,8 +129,13 @@ struct EvaluationCell {
   int accepted_wrong = 0;  // ... whose top-1 object was wrong and was accepted
   int unknown_trials = 0;  // queries of unknown objects
   int rejected = 0;        // ... answered kUnknown
-  double seconds = 0;      // wall-clock time in ObserveSequence over all queries counted here
+  // Time spent answering all queries counted here: wall-clock time in ObserveSequence, or for
+  // a server's answers the processing time its updates state.
+  double seconds = 0;
   std::vector<QueryVerdict> verdicts;  // every query counted here, known and unknown
+
+  // Counts one more query: its verdict, answered in `query_seconds`.
+  void Add(const QueryVerdict& verdict, double query_seconds);
 
   double hit_rate() const { return trials > 0 ? double(hits) / trials : 0; }
   double accept_rate() const { return trials > 0 ? double(accepted) / trials : 0; }
@@ -154,7 +160,24 @@ struct ModelMemory {
   std::size_t index_bytes = 0;
 };
 
+// The running server whose answers a report counts (RunServerEvaluation,
+// evaluation/server_evaluation.h), as its ServerInfo describes it.
+struct ServerDescription {
+  std::string address;  // HOST:PORT, as given
+  std::string version;
+  std::size_t views = 0;  // of its enrolled objects (their count is the report's known_objects)
+  // Its session defaults, which every query ran with, in words: "engine hmm, window 8, ...".
+  std::string defaults;
+  // Whether those defaults are the product pipeline's (core/engines/product_pipeline.h), as far
+  // as ServerInfo shows them.
+  bool runs_product = false;
+};
+
 struct EvaluationReport {
+  // Set when the answers came from a running server (RunServerEvaluation): then the model set
+  // is the server's, `memory` is empty, and seed, index, threads and engine options are not
+  // this process's.
+  std::optional<ServerDescription> server;
   // One cell per variant x distortion x method x n, in that nesting order (the options' orders).
   std::vector<EvaluationCell> cells;
   std::vector<ModelMemory> memory;  // one per variant

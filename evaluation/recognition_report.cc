@@ -163,11 +163,17 @@ void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
   char numbers[160];
   for (const EvaluationCell& cell : report.cells) {
     for (const QueryVerdict& v : cell.verdicts) {
-      std::snprintf(numbers, sizeof numbers, "%.6g,%.6g,%.6g", v.unknown_statistic,
-                    v.unknown_p_value, v.confidence);
       out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion << ','
-          << cell.n << ',' << v.known << ',' << v.hit << ',' << DecisionName(v.decision) << ','
-          << numbers << ',' << (std::isnan(v.pose_error) ? "" : Degrees(v.pose_error)) << ','
+          << cell.n << ',' << v.known << ',' << v.hit << ',' << DecisionName(v.decision) << ',';
+      for (const double value : {v.unknown_statistic, v.unknown_p_value}) {
+        if (!std::isnan(value)) {
+          std::snprintf(numbers, sizeof numbers, "%.6g", value);
+          out << numbers;
+        }
+        out << ',';
+      }
+      std::snprintf(numbers, sizeof numbers, "%.6g", v.confidence);
+      out << numbers << ',' << (std::isnan(v.pose_error) ? "" : Degrees(v.pose_error)) << ','
           << (std::isnan(v.pose_spread) ? "" : Degrees(v.pose_spread)) << ',';
       if (!std::isnan(v.noise_sigma)) {
         std::snprintf(numbers, sizeof numbers, "%.3f", v.noise_sigma);

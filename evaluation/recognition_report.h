@@ -45,7 +45,8 @@ LineFigure RecognitionCurves(const EvaluationReport& report);
 
 // Every query's verdict as CSV: method,variant,distortion,n,known,hit,decision,
 // unknown_statistic,unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur (empty
-// pose fields when not measured; noise_sigma and blur, the window's mean readings, empty
+// pose fields when not measured; unknown_statistic and unknown_p_value empty when the answer
+// did not state them, as a server's; noise_sigma and blur, the window's mean readings, empty
 // without them).
 // Throws std::runtime_error when the stream fails.
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out);

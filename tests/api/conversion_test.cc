@@ -120,6 +120,11 @@ TEST(ConversionTest, DecisionsAndMoves) {
   EXPECT_EQ(ToProtoDecision(Decision::kAccept), v1::DECISION_ACCEPT);
   EXPECT_EQ(ToProtoDecision(Decision::kUnknown), v1::DECISION_UNKNOWN);
   EXPECT_EQ(ToProtoDecision(Decision::kUndecided), v1::DECISION_UNDECIDED);
+  for (const Decision decision : {Decision::kAccept, Decision::kUnknown, Decision::kUndecided}) {
+    EXPECT_EQ(FromProtoDecision(ToProtoDecision(decision)), decision);
+  }
+  // An update that states no decision is no answer.
+  EXPECT_EQ(FromProtoDecision(v1::DECISION_UNSPECIFIED), Decision::kUndecided);
   EXPECT_EQ(ToProtoMove(SuggestedMove::kNone), v1::MOVE_NONE);
   EXPECT_EQ(ToProtoMove(SuggestedMove::kLeft), v1::MOVE_LEFT);
   EXPECT_EQ(ToProtoMove(SuggestedMove::kRight), v1::MOVE_RIGHT);

@@ -14,6 +14,9 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "tests/support/client_test_support.h"
+#include "tests/support/free_port.h"
+#include "tests/support/server_process.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -27,11 +30,14 @@ struct CsvRow {
   double number(const std::string& name) const { return std::stod(field.at(name)); }
 };
 
+// The fields of a CSV line, an empty last field included.
 std::vector<std::string> SplitComma(const std::string& line) {
   std::vector<std::string> fields;
-  std::stringstream in(line);
-  std::string field;
-  while (std::getline(in, field, ',')) fields.push_back(field);
+  std::size_t start = 0;
+  for (std::size_t comma; (comma = line.find(',', start)) != std::string::npos; start = comma + 1) {
+    fields.push_back(line.substr(start, comma - start));
+  }
+  fields.push_back(line.substr(start));
   return fields;
 }
 
@@ -351,6 +357,162 @@ TEST_F(EvalCommandTest, OrientationIgnoreRunsTheMethodsWithoutAzimuths) {
   r = testing::RunCommand(eval + used + " --orientation sideways");
   EXPECT_NE(r.exit_code, 0);
   EXPECT_THAT(r.err, HasSubstr("--orientation"));
+}
+
+// --server: a user's captures streamed to a running server instead of a local model set. The
+// server holds COIL-100 objects 1-3, enrolled with `orbit enroll` every 20 degrees; the queries
+// are views 10 degrees from the enrolled ones, copied beside the queries file: three frames of
+// object 1 and of object 2, two of object 3 (too short for n = 3), and three of object 9, which
+// the server does not hold.
+class ServerQueriesTest : public EvalCommandTest {
+ protected:
+  void SetUp() override {
+    EvalCommandTest::SetUp();
+    queries_ = dir_ / "walks" / "queries.csv";
+    std::filesystem::create_directories(dir_ / "walks" / "frames");
+    std::ofstream queries(queries_);
+    queries << "path,object,sequence,azimuth\n";
+    for (const auto& [object, sequence, azimuths] :
+         std::vector<std::tuple<int, std::string, std::vector<int>>>{{1, "a", {10, 30, 50}},
+                                                                     {2, "b", {190, 210, 230}},
+                                                                     {3, "c", {90, 110}},
+                                                                     {9, "u", {10, 30, 50}}}) {
+      for (const int azimuth : azimuths) {
+        const std::string name = "obj" + std::to_string(object) + "__" + std::to_string(azimuth);
+        std::filesystem::copy_file(coil_ + "/" + name + ".png",
+                                   dir_ / "walks" / "frames" / (name + ".png"));
+        queries << "frames/" << name << ".png,obj" << object << "," << sequence << ","
+                << azimuth + 40 << "\n";
+      }
+    }
+  }
+
+  std::filesystem::path queries_;
+};
+
+TEST_F(ServerQueriesTest, ReportsTheServersAnswersAsTheLocalModeReportsItsOwn) {
+  testing::ServerProcess server;
+  std::ofstream manifest(dir_ / "set.csv");
+  manifest << "path,object,azimuth\n";
+  for (int object = 1; object <= 3; ++object) {
+    const auto r =
+        testing::RunCommand(testing::OrbitBinary() + " enroll --server " + server.address() +
+                            " --name obj" + std::to_string(object) +
+                            testing::CoilImageArguments(object, testing::EveryTwentyDegrees()));
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const int azimuth : testing::EveryTwentyDegrees()) {
+      manifest << testing::CoilFile(object, azimuth) << ",obj" << object << "," << azimuth << "\n";
+    }
+  }
+  manifest.close();
+
+  const auto csv = dir_ / "server.csv", verdicts = dir_ / "verdicts.csv";
+  const testing::CommandResult r =
+      testing::RunCommand(testing::OrbitBinary() + " eval --server " + server.address() +
+                          " --queries " + queries_.string() + " --n 1,3 --no-progress --csv " +
+                          csv.string() + " --verdicts " + verdicts.string());
+  ASSERT_EQ(r.exit_code, 0) << r.err << server.Log();
+  EXPECT_THAT(r.out, HasSubstr("Server " + server.address() + " (orbit "));
+  EXPECT_THAT(r.out,
+              HasSubstr("3 enrolled objects, 54 views; 1 unknown objects among the queries"));
+  EXPECT_THAT(r.out, HasSubstr("Queries: 4 captured sequences, 11 frames (`--queries`), each "
+                               "streamed as one session with the server's defaults"));
+  // The server runs `orbit serve`'s defaults: the product pipeline, in its variant.
+  EXPECT_THAT(r.out, HasSubstr("server (product): the server's session defaults, engine hmm, "
+                               "window 8"));
+  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate (%)"));
+  EXPECT_THAT(r.out, Not(HasSubstr("Model memory")));
+  EXPECT_THAT(r.out, Not(HasSubstr("Seed ")));
+  // Views 10 degrees from enrolled ones of three very different objects: every known query is
+  // right, at n = 1 (3 queries) and at n = 3 (2: object 3's sequence is too short).
+  const std::vector<std::string> rows = LinesStartingWith(r.out, "| DF | server (product) |");
+  ASSERT_EQ(rows.size(), 2u) << r.out;  // hit rates, then recognition
+  EXPECT_THAT(rows[0], ::testing::StartsWith("| DF | server (product) | 100.0 | 100.0 |"));
+
+  const auto [header, cells] = ReadCsv(csv);
+  EXPECT_EQ(header,
+            "method,variant,distortion,n,trials,hits,hit_rate,ms_per_query,"
+            "accepted,accept_rate,unknown_trials,rejected,reject_rate");
+  ASSERT_EQ(cells.size(), 2u);
+  for (const CsvRow& cell : cells) {
+    EXPECT_EQ(cell.field.at("method"), "server (product)");
+    EXPECT_EQ(cell.field.at("variant"), "cedd-hsv-hog");
+    EXPECT_EQ(cell.field.at("distortion"), "df");
+    EXPECT_EQ(cell.number("unknown_trials"), 1);  // object 9's sequence, at each n
+    EXPECT_GT(cell.number("ms_per_query"), 0);
+  }
+  EXPECT_EQ(cells[0].field.at("n"), "1");
+  EXPECT_EQ(cells[0].number("trials"), 3);
+  EXPECT_EQ(cells[0].number("hits"), 3);
+  EXPECT_EQ(cells[1].field.at("n"), "3");
+  EXPECT_EQ(cells[1].number("trials"), 2);
+  EXPECT_EQ(cells[1].number("hits"), 2);
+
+  // Every query's verdict; the server states no unknown statistic nor p-value.
+  const auto [verdict_header, verdict_rows] = ReadCsv(verdicts);
+  ASSERT_EQ(verdict_rows.size(), 4u + 3u);
+  for (const CsvRow& verdict : verdict_rows) {
+    EXPECT_EQ(verdict.field.at("unknown_statistic"), "");
+    EXPECT_EQ(verdict.field.at("unknown_p_value"), "");
+  }
+
+  // The same captures against a local model set of the same images, run by the same pipeline:
+  // the same answers.
+  const auto local_csv = dir_ / "local.csv";
+  const testing::CommandResult local = testing::RunCommand(
+      testing::OrbitBinary() + " eval --manifest " + (dir_ / "set.csv").string() + " --queries " +
+      queries_.string() + " --methods product --n 1,3 --no-progress --csv " + local_csv.string());
+  ASSERT_EQ(local.exit_code, 0) << local.err;
+  const auto local_cells = ReadCsv(local_csv).second;
+  ASSERT_EQ(local_cells.size(), 2u);
+  for (std::size_t i = 0; i < cells.size(); ++i) {
+    for (const char* field : {"n", "trials", "hits", "accepted", "unknown_trials", "rejected"}) {
+      EXPECT_EQ(cells[i].field.at(field), local_cells[i].field.at(field)) << field;
+    }
+  }
+}
+
+TEST_F(ServerQueriesTest, RefusesWhatDoesNotApplyToAServer) {
+  const std::string eval = testing::OrbitBinary() + " eval --server 127.0.0.1:1 ";
+  const std::string queries = " --queries " + queries_.string();
+  auto r = testing::RunCommand(eval + "--n 1");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("orbit eval: --server needs --queries FILE: the captured query "
+                               "sequences to send it"));
+  r = testing::RunCommand(eval + queries + " --data " + coil_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("orbit eval: --data does not apply with --server: the model set "
+                               "is the objects the server holds"));
+  r = testing::RunCommand(eval + queries + " --methods vci");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--methods does not apply with --server: the server recognises "
+                               "with its own variant, engine and session defaults"));
+  r = testing::RunCommand(eval + queries + " --distortions df,mb");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--distortions does not apply with --server: the server is sent "
+                               "the frames as captured (df)"));
+  r = testing::RunCommand(eval + queries + " --unknown-objects 9");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--unknown-objects does not apply with --server"));
+  r = testing::RunCommand(eval + queries + " --active");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--active does not apply with --server"));
+  r = testing::RunCommand(eval + queries + " --kd-trees 2");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--kd-trees does not apply with --server"));
+
+  // --distortions df is what a server is sent: accepted, so the command goes on to the server,
+  // which is not there.
+  const std::string address = "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
+  r = testing::RunCommand(testing::OrbitBinary() + " eval --server " + address + queries +
+                          " --distortions df --no-progress");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_THAT(r.err, HasSubstr("orbit eval: cannot reach a server at " + address + " ("));
+  EXPECT_THAT(r.err, HasSubstr("): is `orbit serve` running at " + address + "?"));
+
+  r = testing::RunCommand(testing::OrbitBinary() + " eval --help");
+  ASSERT_EQ(r.exit_code, 0);
+  EXPECT_THAT(r.out, HasSubstr("a running Orbit server, HOST:PORT: with --queries, stream each"));
 }
 
 }  // namespace

@@ -277,6 +277,26 @@ TEST(ReadQueryCapturesTest, ErrorsNameTheFileAndLine) {
   EXPECT_THAT(error("path,object,sequence\n"), HasSubstr("bad.csv: no frames"));
 }
 
+TEST(GroupCaptureSequencesTest, SequencesInOrderOfFirstAppearanceEachOfOneObject) {
+  std::vector<CaptureFrame> frames{{"1.png", "mug", 0, "walk1", ""},
+                                   {"2.png", "cup", 0, "walk2", ""},
+                                   {"3.png", "mug", 20, "walk1", ""}};
+  EXPECT_THAT(GroupCaptureSequences(frames), ElementsAre(CaptureSequence{"walk1", "mug", {0, 2}},
+                                                         CaptureSequence{"walk2", "cup", {1}}));
+  frames.push_back({"4.png", "jar", 40, "walk1", "q.csv:5"});
+  EXPECT_EQ(ErrorMessageOf([&] { GroupCaptureSequences(frames); }),
+            "sequence \"walk1\" shows two objects (\"mug\" and \"jar\")");
+}
+
+TEST(ReadCaptureImageTest, NamesTheRowOfAFrameItCannotRead) {
+  ScratchDir dir;
+  const CaptureFrame frame{(dir.path() / "gone.png").string(), "mug", 0, "walk1", "q.csv:7"};
+  EXPECT_THAT(ErrorMessageOf<std::runtime_error>([&] { ReadCaptureImage(frame); }),
+              ::testing::StartsWith("q.csv:7: " + frame.path + ": "));
+  EXPECT_EQ(ReadCaptureImage({testing::CoilDir() + "/obj1__0.png", "obj1", 0, "walk1", ""}).cols,
+            128);
+}
+
 TEST(GroupByObjectTest, ObjectsInOrderOfFirstAppearanceWithTheirPositions) {
   const std::vector<DatasetImage> images{
       {"1.png", "mug", 0, {}, {}}, {"2.png", "cup", 0, {}, {}},  {"3.png", "mug", 90, {}, {}},
