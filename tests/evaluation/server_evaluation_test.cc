@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "api/conversion.h"
@@ -126,6 +127,38 @@ TEST_F(ServerEvaluationTest, ASequenceShorterThanNIsNotCountedAtN) {
   EXPECT_EQ(report.cells[0].unknown_trials, 1);
   EXPECT_EQ(report.cells[1].unknown_trials, 0);
   EXPECT_EQ(report.cells[1].trials, 2);
+}
+
+TEST_F(ServerEvaluationTest, DescribesEachFrameInItsBoxGrownByTheMargin) {
+  ServerEvaluationOptions options;
+  options.query_lengths = {2};
+  options.box_margin = 0.25;  // 40 x 40 grown by 10 px on each side: (34, 34, 60, 60)
+  for (std::size_t f = 0; f < captures_.size(); ++f) {
+    options.boxes[captures_[f].path] = ImageBox{44, 44, 40, 40, "boxes.csv:" + std::to_string(f)};
+  }
+  const EvaluationReport report = RunServerEvaluation(connection_, captures_, options);
+  ASSERT_EQ(report.cells.size(), 1u);
+  ASSERT_EQ(report.cells[0].verdicts.size(), 3u);
+  // The first sequence as a device sends it with that region.
+  auto session = RecognitionSession::Open(connection_, {});
+  for (std::size_t f = 0; f < 2; ++f) {
+    session->Push(ReadImageFile(captures_[f].path), captures_[f].azimuth, cv::Rect(34, 34, 60, 60));
+  }
+  ASSERT_TRUE(session->Close().ok());
+  std::optional<v1::SessionUpdate> last;
+  while (std::optional<v1::SessionUpdate> update = session->NextUpdate()) last = update;
+  ASSERT_TRUE(last.has_value());
+  EXPECT_EQ(report.cells[0].verdicts[0].confidence, last->confidence());
+  // ... which is not what the whole frames give.
+  options.boxes.clear();
+  const EvaluationReport whole = RunServerEvaluation(connection_, captures_, options);
+  EXPECT_NE(whole.cells[0].verdicts[0].confidence, last->confidence());
+
+  options.boxes[captures_[0].path] = ImageBox{100, 100, 40, 40, "boxes.csv:2"};
+  for (std::size_t f = 1; f < captures_.size(); ++f) options.boxes[captures_[f].path] = {};
+  EXPECT_THAT(
+      testing::ErrorMessageOf([&] { RunServerEvaluation(connection_, captures_, options); }),
+      ::testing::StartsWith("boxes.csv:2"));
 }
 
 TEST_F(ServerEvaluationTest, RefusesBadQueryLengthsAndFramesWithoutABox) {
