@@ -162,7 +162,7 @@ void BM_RejectionCalibration(benchmark::State& state, int objects) {
   const auto snapshot = set.index->Snapshot();
   for (auto _ : state) {
     const RejectionCalibration calibration = RejectionCalibration::FromIndex(*snapshot);
-    benchmark::DoNotOptimize(calibration.Threshold(8, 0.15));
+    benchmark::DoNotOptimize(calibration.NullThreshold(8, 0.15));
     state.counters["sampled_views"] = calibration.sampled_views();
   }
 }

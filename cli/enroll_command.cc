@@ -14,8 +14,10 @@
 #include "cli/enrollment_report_text.h"
 #include "cli/image_arguments.h"
 #include "cli/network_options.h"
+#include "cli/rule_estimate_text.h"
 #include "client/capture_views.h"
 #include "client/enroller.h"
+#include "client/models_client.h"
 #include "core/base/parallel_for.h"
 
 namespace orbit::cli {
@@ -34,6 +36,15 @@ struct EnrollOptions {
   unsigned threads = static_cast<unsigned>(AvailableCpus());
 };
 
+// The server's accept / unknown rule with the object just enrolled, when it runs the calibrated
+// one ("" otherwise).
+std::string RuleText(const Connection& connection) {
+  const v1::ServerInfoResponse info = ModelsClient(connection).ServerInfo();
+  if (info.session_defaults().rejection() != v1::REJECTION_CALIBRATED) return "";
+  return RuleEstimateText(info.rule_estimate(), info.object_count(),
+                          info.session_defaults().false_accept_rate());
+}
+
 int RunEnrollFromVideo(const EnrollOptions& options) {
   const std::unique_ptr<CaptureReader> capture = OpenCapture(options.capture, options.boxes);
   const Connection connection(ToConnectionOptions(options.network));
@@ -45,7 +56,7 @@ int RunEnrollFromVideo(const EnrollOptions& options) {
   std::cout << "enrolled " << object.name() << " (id " << object.id() << ", " << object.view_count()
             << " views)\n"
             << CaptureSelectionText(enrolled.selection, options.step)
-            << EnrollmentReportText(object.report());
+            << EnrollmentReportText(object.report()) << RuleText(connection);
   return 0;
 }
 
@@ -72,7 +83,7 @@ int RunEnroll(const EnrollOptions& options) {
   const v1::ObjectInfo object = enroller.Enroll(options.name, images, options.metadata);
   std::cout << "enrolled " << object.name() << " (id " << object.id() << ", " << object.view_count()
             << " views)\n"
-            << EnrollmentReportText(object.report());
+            << EnrollmentReportText(object.report()) << RuleText(connection);
   return 0;
 }
 

@@ -11,6 +11,7 @@
 #include "api/engine_names.h"
 #include "cli/commands.h"
 #include "cli/network_options.h"
+#include "cli/rule_estimate_text.h"
 #include "cli/session_flags.h"
 #include "client/models_client.h"
 
@@ -46,6 +47,12 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
         {"rejection", RejectionText(d.rejection())},
         {"false_accept_rate", d.false_accept_rate()},
         {"threshold", d.threshold()}}},
+      {"rule_estimate",
+       {{"objects", info.rule_estimate().objects()},
+        {"frames", info.rule_estimate().frames()},
+        {"unknown_accepted", info.rule_estimate().unknown_accepted()},
+        {"known_accepted", info.rule_estimate().known_accepted()},
+        {"held_by_known_ceiling", info.rule_estimate().held_by_known_ceiling()}}},
       {"limits",
        {{"max_sessions", l.max_sessions()},
         {"max_frames_per_second", l.max_frames_per_second()},
@@ -66,7 +73,8 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
 
 int RunInfo(const InfoOptions& options) {
   const Connection connection(ToConnectionOptions(options.network));
-  const nlohmann::ordered_json info = InfoJson(ModelsClient(connection).ServerInfo());
+  const v1::ServerInfoResponse response = ModelsClient(connection).ServerInfo();
+  const nlohmann::ordered_json info = InfoJson(response);
   if (options.json) {
     std::cout << info.dump() << "\n";
     return 0;
@@ -93,6 +101,10 @@ int RunInfo(const InfoOptions& options) {
             << " Recognize calls; " << l["max_enrollments"]
             << " enrollments of <= " << l["max_enrollment_bytes"]
             << " bytes, idle <= " << l["enrollment_idle_timeout_seconds"] << " s\n";
+  if (response.session_defaults().rejection() == v1::REJECTION_CALIBRATED) {
+    std::cout << RuleEstimateText(response.rule_estimate(), response.object_count(),
+                                  response.session_defaults().false_accept_rate());
+  }
   return 0;
 }
 
@@ -103,7 +115,8 @@ void AddInfoCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "info",
       "Ask a server what it is and holds: version, descriptor variant, object and view counts,\n"
-      "session defaults and limits. Exit status 0 when it answered (a health check).");
+      "session defaults and limits, and how sure the accept / unknown rule can be with the\n"
+      "objects enrolled. Exit status 0 when it answered (a health check).");
   AddNetworkOptions(*command, options->network, /*server_required=*/true);
   command->add_flag("--json", options->json, "one JSON object");
   command->callback([options, &exit_code] { exit_code = RunInfo(*options); });

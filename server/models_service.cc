@@ -366,6 +366,28 @@ grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContex
                       });
 }
 
+namespace {
+
+// What the calibration says of the default rule: the shares of its simulated unknown and known
+// windows of the default length that the default target accepts.
+v1::RuleEstimate EstimateRule(const RejectionCalibration& calibration,
+                              const EngineOptions& defaults) {
+  v1::RuleEstimate estimate;
+  if (!calibration.calibrated()) return estimate;
+  const int frames = std::min(defaults.window, kCalibratedWindowLengths);
+  const double null_threshold = calibration.NullThreshold(frames, defaults.false_accept_rate);
+  const double ceiling = calibration.KnownCeiling(frames);
+  const double threshold = std::min(null_threshold, ceiling);
+  estimate.set_objects(calibration.sampled_objects());
+  estimate.set_frames(frames);
+  estimate.set_unknown_accepted(calibration.FalseAcceptRate(threshold, frames));
+  estimate.set_known_accepted(calibration.KnownAcceptRate(threshold, frames));
+  estimate.set_held_by_known_ceiling(ceiling < null_threshold);
+  return estimate;
+}
+
+}  // namespace
+
 grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext* context,
                                                     const v1::ServerInfoRequest* /*request*/,
                                                     v1::ServerInfoResponse* response) {
@@ -395,6 +417,8 @@ grpc::ServerUnaryReactor* ModelsService::ServerInfo(grpc::CallbackServerContext*
         limits->set_idle_timeout_seconds(env_.limits.idle_timeout_seconds);
         limits->set_max_image_pixels(env_.limits.max_image_pixels);
         limits->set_max_hmm_cells(env_.limits.max_hmm_cells);
+        *response->mutable_rule_estimate() =
+            EstimateRule(*env_.calibrator.For(index), env_.defaults.options);
         return grpc::Status::OK;
       });
 }

@@ -12,6 +12,7 @@
 #include "server/access_control.h"
 #include "server/audit_log.h"
 #include "server/model_catalogue.h"
+#include "server/rejection_calibrator.h"
 #include "server/server_metrics.h"
 #include "server/serving_gate.h"
 #include "server/session_registry.h"
@@ -32,6 +33,7 @@ struct ModelsEnvironment {
   const ServingGate& gate;       // closed until the index is loaded: every call refused UNAVAILABLE
   SessionRegistry& enrollments;  // the open Enroll streams (--max-enrollments)
   AuditLog& audit;               // every administrative call's outcome
+  RejectionCalibrator& calibrator;  // the calibrated rule's, for ServerInfo's estimate
 };
 
 class ModelsService final : public v1::Models::CallbackService {

@@ -100,7 +100,7 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
       access_);
   models_ = std::make_unique<ModelsService>(ModelsEnvironment{
       *catalogue_, *pool_, *bulk_pool_, access_, config_.limits, config_.session_defaults,
-      kOrbitVersion, *metrics_, gate_, *enrollments_, *audit_});
+      kOrbitVersion, *metrics_, gate_, *enrollments_, *audit_, *calibrator_});
   metrics_->WatchSessions(*registry_);
   metrics_->WatchIndex(*catalogue_);
   metrics_->WatchWorkers(*pool_, *bulk_pool_);

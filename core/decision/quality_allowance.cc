@@ -8,6 +8,17 @@ const AllowanceSlopes& AllowanceSlopesFor(DescriptorVariant variant) {
   return variant == DescriptorVariant::kCeddHsvHog ? kHsvHogAllowanceSlopes : kCeddAllowanceSlopes;
 }
 
+const AllowanceSlopes& KnownAllowanceSlopesFor(DescriptorVariant variant) {
+  return variant == DescriptorVariant::kCeddHsvHog ? kHsvHogKnownAllowanceSlopes
+                                                   : kCeddKnownAllowanceSlopes;
+}
+
+double WindowAllowance(std::optional<double> noise_sigma, std::optional<double> blur,
+                       const AllowanceSlopes& slopes) {
+  return (noise_sigma ? NoiseAllowance(*noise_sigma, slopes) : 0.0) +
+         (blur ? BlurAllowance(*blur, slopes) : 0.0);
+}
+
 double NoiseAllowance(double noise_sigma, const AllowanceSlopes& slopes) {
   return slopes.per_grey_level *
          std::clamp(noise_sigma - kCleanNoiseSigma, 0.0, kNoiseAllowanceSpan);

@@ -66,6 +66,18 @@ inline constexpr AllowanceSlopes kHsvHogAllowanceSlopes = {0.005, 0.2};
 // The slopes fitted for `variant`.
 const AllowanceSlopes& AllowanceSlopesFor(DescriptorVariant variant);
 
+// The known ceiling's allowance (core/decision/rejection_calibration.h): the ceiling is a high
+// quantile of known objects' clean windows, and U rises with noise and blur faster for known
+// objects than for unknown ones, so the ceiling is judged against U less the rise of the known
+// objects' high quantile, fitted on the same sweeps (docs/design.md#known-ceiling).
+inline constexpr AllowanceSlopes kCeddKnownAllowanceSlopes = {0.013, 1.5};
+inline constexpr AllowanceSlopes kHsvHogKnownAllowanceSlopes = {0.017, 1.7};
+const AllowanceSlopes& KnownAllowanceSlopesFor(DescriptorVariant variant);
+
+// NoiseAllowance + BlurAllowance of a window's mean readings; a missing reading allows nothing.
+double WindowAllowance(std::optional<double> noise_sigma, std::optional<double> blur,
+                       const AllowanceSlopes& slopes);
+
 // The formulas above. REQUIRES: noise_sigma in [0, kMaxNoiseSigma], blur in [0, kMaxBlur].
 double NoiseAllowance(double noise_sigma, const AllowanceSlopes& slopes);
 double BlurAllowance(double blur, const AllowanceSlopes& slopes);

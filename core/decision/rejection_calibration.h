@@ -14,6 +14,17 @@
 // themselves. Look-alikes of enrolled objects are in the null too (an object whose twin is
 // enrolled), so on a model set with few of them the measured rate is below f.
 //
+// The known ceiling: with few objects the null is a handful of object pairs (two objects: one
+// pair) and says little about an object nobody enrolled, and an unknown window meets one object
+// more than a left-out object met; the measured rate then lies far above f. So the threshold
+// never exceeds what the known objects' own windows need: each sampled view, matched against
+// its own object's views outside kOwnNeighbourhoodDegrees of it (a query falls between enrolled
+// views), gives a known window the same way, and the rule accepts a window only at or below
+// both the null's f-quantile and the known ceiling, a margin above the known windows'
+// kKnownWindowsAccepted quantile. With many
+// objects the null's quantile usually lies below the ceiling and rules alone
+// (docs/design.md#known-ceiling).
+//
 // Sampling keeps the cost bounded: at most `max_sampled_views` views (spread evenly in azimuth
 // over every object), each compared with every view of the index once; windows draw their frames
 // from the sampled views of one object, with replacement. A sampled view costs one exact scan of
@@ -32,6 +43,15 @@ namespace orbit {
 // Window lengths with a null distribution of their own; longer windows use the longest one's
 // threshold (U's null narrows as n grows, so this rejects a little more than needed).
 inline constexpr int kCalibratedWindowLengths = 16;
+
+// A known object's window matches its own views no nearer than this in azimuth to each
+// frame's: a query falls between enrolled views, not on one.
+inline constexpr double kOwnNeighbourhoodDegrees = 10;
+// The known windows' quantile the ceiling starts from, and the factor it is raised by: a known
+// object seen against another background or in another light than at enrollment lies further
+// from its views than they lie from each other (docs/design.md#known-ceiling).
+inline constexpr double kKnownWindowsAccepted = 0.99;
+inline constexpr double kKnownCeilingMargin = 1.5;
 
 struct CalibrationOptions {
   int max_sampled_views = 2048;   // views compared with the whole index (>= 1)
@@ -52,9 +72,18 @@ class RejectionCalibration {
 
   bool calibrated() const { return !null_.empty(); }
 
-  // The largest U accepted for a window of `frames` frames at the target false-accept rate
-  // (in (0, 1)). REQUIRES: calibrated(), frames >= 1.
-  double Threshold(int frames, double false_accept_rate) const;
+  // The largest U the null accepts for a window of `frames` frames at the target false-accept
+  // rate (in (0, 1)): the null's quantile. REQUIRES: calibrated(), frames >= 1.
+  double NullThreshold(int frames, double false_accept_rate) const;
+
+  // The known ceiling: kKnownCeilingMargin times the U below which kKnownWindowsAccepted of the
+  // known objects' simulated windows of `frames` frames fall; infinity when no object has a view
+  // outside its own neighbourhood. REQUIRES: calibrated(), frames >= 1.
+  double KnownCeiling(int frames) const;
+
+  // The share of the known objects' simulated windows at or below `statistic`, in [0, 1] (1
+  // without any). REQUIRES: calibrated(), frames >= 1.
+  double KnownAcceptRate(double statistic, int frames) const;
 
   // The share of the null at or below `statistic` for a window of `frames` frames, in (0, 1]:
   // how often an unknown object's window looks at least this known (the rule's p-value).
@@ -67,8 +96,10 @@ class RejectionCalibration {
 
  private:
   const std::vector<double>& Null(int frames) const;
+  const std::vector<double>& Known(int frames) const;  // REQUIRES: !known_.empty()
 
-  std::vector<std::vector<double>> null_;  // [n - 1]: sorted U values for windows of n frames
+  std::vector<std::vector<double>> null_;   // [n - 1]: sorted U values for windows of n frames
+  std::vector<std::vector<double>> known_;  // [n - 1]: the same for known objects' windows
   int sampled_objects_ = 0;
   int sampled_views_ = 0;
 };

@@ -164,17 +164,23 @@ void WindowedEngine::Judge(Assessment& winner, const Assessment* runner_up, Fram
 Decision WindowedEngine::Decide(const Assessment& winner, FrameUpdate& update) const {
   const EngineOptions& o = options();
   if (calibration_ != nullptr && calibration_->calibrated()) {
-    // The calibrated rule judges U less what the window's noise and blur alone add to it.
+    // The calibrated rule judges U less what the window's noise and blur alone add to it: the
+    // null's rise against the null's quantile, the known objects' against the known ceiling
+    // (core/decision/rejection_calibration.h).
     const int frames = static_cast<int>(window_.size());
-    const AllowanceSlopes& slopes = AllowanceSlopesFor(index_->variant());
-    const double allowance =
-        (update.noise_sigma ? NoiseAllowance(*update.noise_sigma, slopes) : 0.0) +
-        (update.blur ? BlurAllowance(*update.blur, slopes) : 0.0);
-    const double judged = update.unknown_statistic - allowance;
+    const DescriptorVariant variant = index_->variant();
+    const double judged =
+        update.unknown_statistic -
+        WindowAllowance(update.noise_sigma, update.blur, AllowanceSlopesFor(variant));
     update.unknown_p_value = calibration_->FalseAcceptRate(judged, frames);
     if (o.rejection == RejectionRule::kCalibrated) {
-      return judged <= calibration_->Threshold(frames, o.false_accept_rate) ? Decision::kAccept
-                                                                            : Decision::kUnknown;
+      const double judged_as_known =
+          update.unknown_statistic -
+          WindowAllowance(update.noise_sigma, update.blur, KnownAllowanceSlopesFor(variant));
+      return judged <= calibration_->NullThreshold(frames, o.false_accept_rate) &&
+                     judged_as_known <= calibration_->KnownCeiling(frames)
+                 ? Decision::kAccept
+                 : Decision::kUnknown;
     }
   }
   if (o.rejection != RejectionRule::kTypicalDistance) return Decision::kUndecided;

@@ -83,6 +83,43 @@ TEST(EnrollCommandTest, ABoxStoresTheViewsOfItsRegionCutOutBeforehand) {
   }
 }
 
+// After each enrollment the operator is told how sure the accept / unknown rule can be with the
+// objects now enrolled (cli/rule_estimate_text.h); `orbit info` says the same.
+TEST(EnrollCommandTest, SaysHowSureTheAcceptUnknownRuleIsWithTheObjectsEnrolled) {
+  ServerProcess server;
+  const std::string eth = (testing::DataDir() / "eth-80-dev").string();
+  const auto enroll = [&](const std::string& object) {
+    const std::string views = " --image " + eth + "/images/" + object + "-090-000.jpg" +
+                              " --azimuth 0 --image " + eth + "/images/" + object +
+                              "-090-090.jpg --azimuth 90 --image " + eth + "/images/" + object +
+                              "-090-180.jpg --azimuth 180 --boxes " + eth + "/boxes.csv";
+    const auto r = RunOrbit("enroll --server " + server.address() + " --name " + object + views);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+  };
+  // One object: nothing can play an unknown one yet.
+  EXPECT_THAT(enroll("apple1"), HasSubstr("accept / unknown  not calibrated: it needs two objects "
+                                          "enrolled; until then every answer is undecided\n"));
+  // Two: calibrated on both, with the warning that two objects are few.
+  const std::string second = enroll("cup1");
+  EXPECT_THAT(second, HasSubstr("accept / unknown  calibrated on 2 objects: of windows of 8 "
+                                "frames, accepts about "));
+  EXPECT_THAT(second, HasSubstr("  few objects: on objects nobody enrolled the rate can stray"));
+  const auto info = RunOrbit("info --server " + server.address());
+  ASSERT_EQ(info.exit_code, 0) << info.err;
+  EXPECT_THAT(info.out, HasSubstr("accept / unknown  calibrated on 2 objects: "));
+  const auto json = RunOrbit("info --json --server " + server.address());
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  const auto estimate = nlohmann::json::parse(json.out)["rule_estimate"];
+  EXPECT_EQ(estimate["objects"], 2);
+  EXPECT_EQ(estimate["frames"], 8);
+  // Every known window a target of 0.17 accepts is one the rule's own estimate counts: the
+  // shares are shares.
+  EXPECT_GT(estimate["known_accepted"].get<double>(), 0.5);
+  EXPECT_LE(estimate["known_accepted"].get<double>(), 1.0);
+  EXPECT_LE(estimate["unknown_accepted"].get<double>(), 0.17 + 1.0 / 2000);
+}
+
 TEST(EnrollCommandTest, ABadBoxIsRefusedNamingTheFlagOrTheLineAndNothingIsEnrolled) {
   ServerProcess server;
   const ScratchDir dir;

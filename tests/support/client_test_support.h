@@ -3,15 +3,19 @@
 // image is in the model.
 #pragma once
 
+#include <thread>
+
 #include <chrono>
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "client/connection.h"
 #include "client/enroller.h"
 #include "client/image_file.h"
+#include "client/models_client.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"
 #include "tests/support/test_data.h"
@@ -83,11 +87,21 @@ grpc::StatusCode RpcCodeOf(Call call) {
 }
 
 // Enrolls objects first..last as "objN" through the client library.
+// Then waits until the server's accept / unknown rule is calibrated on every object it holds
+// (ServerInfo.rule_estimate; asking is what starts a recalibration, which runs at idle priority
+// and can wait long on a busy machine): a session then meets the rule of the whole model set.
 inline void EnrollCoilObjects(const Connection& connection, int first, int last) {
   Enroller enroller(connection, {.seed = 1, .threads = 2});
   for (int object = first; object <= last; ++object) {
     enroller.Enroll("obj" + std::to_string(object), CoilEnrollmentImages(object));
   }
+  ModelsClient models(connection);
+  for (int attempt = 0; attempt < 600; ++attempt) {
+    const v1::ServerInfoResponse info = models.ServerInfo();
+    if (info.object_count() < 2 || info.rule_estimate().objects() == info.object_count()) return;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  ADD_FAILURE() << "the server's calibration did not catch up with its objects in 60 s";
 }
 
 }  // namespace orbit::testing

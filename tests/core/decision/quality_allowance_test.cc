@@ -47,6 +47,24 @@ TEST(QualityAllowanceTest, FormulaByHand) {
   EXPECT_NEAR(BlurAllowance(kSharpFrameBlur + 0.25, kHsvHogAllowanceSlopes), 0.05, 1e-12);
 }
 
+TEST(QualityAllowanceTest, WindowAllowanceAddsThePresentReadingsAllowances) {
+  // 12 grey levels above the clean level and 0.25 above the sharp one, at the known slopes.
+  const AllowanceSlopes& known = KnownAllowanceSlopesFor(DescriptorVariant::kCeddHsvHog);
+  EXPECT_NEAR(WindowAllowance(kCleanNoiseSigma + 12, kSharpFrameBlur + 0.25, known),
+              12 * known.per_grey_level + 0.25 * known.per_blur_unit, 1e-12);
+  EXPECT_NEAR(WindowAllowance(std::nullopt, kSharpFrameBlur + 0.25, known),
+              0.25 * known.per_blur_unit, 1e-12);
+  EXPECT_EQ(WindowAllowance(std::nullopt, std::nullopt, known), 0);
+  // Known objects' U rises faster than the null's: the ceiling allows more for the same frame.
+  for (const DescriptorVariant variant :
+       {DescriptorVariant::kCeddRobust, DescriptorVariant::kCeddHsvHog}) {
+    EXPECT_GT(KnownAllowanceSlopesFor(variant).per_grey_level,
+              AllowanceSlopesFor(variant).per_grey_level);
+    EXPECT_GT(KnownAllowanceSlopesFor(variant).per_blur_unit,
+              AllowanceSlopesFor(variant).per_blur_unit);
+  }
+}
+
 TEST(QualityAllowanceTest, MeanOfThePresentReadings) {
   EXPECT_EQ(MeanReading({}), std::nullopt);
   const std::vector<std::optional<double>> none = {std::nullopt, std::nullopt};

@@ -2,6 +2,8 @@
 // seen, and its arithmetic (quantiles, p-values, determinism, small model sets) is exact.
 #include "core/decision/rejection_calibration.h"
 
+#include <limits>
+
 #include <gtest/gtest.h>
 
 #include "core/engines/engine_registry.h"
@@ -30,7 +32,8 @@ TEST(RejectionCalibrationTest, NeedsTwoObjects) {
   const auto one = ViewIndex(CoilObjects(1, 1, EvenView)).Snapshot();
   EXPECT_FALSE(RejectionCalibration::FromIndex(*one).calibrated());
   EXPECT_FALSE(RejectionCalibration().calibrated());
-  const auto two = ViewIndex(CoilObjects(1, 2, EvenView)).Snapshot();
+  constexpr int kFirst = 5;  // objects 5 and 6
+  const auto two = ViewIndex(CoilObjects(kFirst, kFirst + 1, EvenView)).Snapshot();
   EXPECT_TRUE(RejectionCalibration::FromIndex(*two).calibrated());
 }
 
@@ -45,7 +48,7 @@ TEST(RejectionCalibrationTest, ThresholdIsTheNullQuantileOfTheTargetRate) {
   for (const int n : {1, 4, 8}) {
     double previous = -1;
     for (const double rate : {0.01, 0.05, 0.15, 0.5}) {
-      const double threshold = calibration.Threshold(n, rate);
+      const double threshold = calibration.NullThreshold(n, rate);
       EXPECT_GT(threshold, previous) << "n " << n << ", rate " << rate;
       previous = threshold;
       // 2000 null values, some drawn more than once (a window of one frame is one of 720
@@ -57,15 +60,16 @@ TEST(RejectionCalibrationTest, ThresholdIsTheNullQuantileOfTheTargetRate) {
     }
   }
   // Windows longer than the calibrated ones use the longest one's null.
-  EXPECT_EQ(calibration.Threshold(64, 0.15), calibration.Threshold(kCalibratedWindowLengths, 0.15));
+  EXPECT_EQ(calibration.NullThreshold(64, 0.15),
+            calibration.NullThreshold(kCalibratedWindowLengths, 0.15));
 }
 
 TEST(RejectionCalibrationTest, IsTheSameForTheSameSeed) {
   const RejectionCalibration again = RejectionCalibration::FromIndex(*KnownIndex());
-  EXPECT_EQ(again.Threshold(8, 0.15), KnownCalibration().Threshold(8, 0.15));
+  EXPECT_EQ(again.NullThreshold(8, 0.15), KnownCalibration().NullThreshold(8, 0.15));
   const RejectionCalibration other = RejectionCalibration::FromIndex(
       *KnownIndex(), {.max_sampled_views = 2048, .windows_per_length = 2000, .seed = 2});
-  EXPECT_NE(other.Threshold(8, 0.15), KnownCalibration().Threshold(8, 0.15));
+  EXPECT_NE(other.NullThreshold(8, 0.15), KnownCalibration().NullThreshold(8, 0.15));
 }
 
 // 4-frame sweeps (views 15, 35, 55, 75 degrees on, never enrolled) of every known object and of
@@ -74,6 +78,17 @@ struct Decisions {
   int known_accepted = 0;
   int unknown_accepted = 0;
 };
+
+// Views start, start + 20, start + 40, start + 60 of `object`, with their azimuths.
+std::vector<QueryFrame> Sweep(int object, int start) {
+  std::vector<QueryFrame> frames;
+  for (int k = 0; k < 4; ++k) {
+    const int azimuth = start + 20 * k;
+    frames.push_back(
+        {{DescriptorVariant::kCeddLire, CoilView(object, azimuth)}, static_cast<double>(azimuth)});
+  }
+  return frames;
+}
 
 Decisions DecideSweeps(double false_accept_rate) {
   EngineOptions options;
@@ -84,13 +99,7 @@ Decisions DecideSweeps(double false_accept_rate) {
   Decisions decisions;
   for (int object = 1; object <= 30; ++object) {
     for (const int start : {15, 195}) {
-      std::vector<QueryFrame> frames;
-      for (int k = 0; k < 4; ++k) {
-        const int azimuth = start + 20 * k;
-        frames.push_back({{DescriptorVariant::kCeddLire, CoilView(object, azimuth)},
-                          static_cast<double>(azimuth)});
-      }
-      const FrameUpdate update = engine->ObserveSequence(KnownIndex(), frames);
+      const FrameUpdate update = engine->ObserveSequence(KnownIndex(), Sweep(object, start));
       if (update.decision != Decision::kAccept) continue;
       if (object <= 20) {
         decisions.known_accepted += update.ranking[0].object == object;
@@ -112,6 +121,58 @@ TEST(RejectionCalibrationTest, AcceptsKnownObjectsAndRejectsUnseenOnes) {
   EXPECT_GE(strict.known_accepted, 36) << "of 40";
   EXPECT_LE(strict.unknown_accepted, 2) << "of 20";
   EXPECT_LE(strict.unknown_accepted, product.unknown_accepted);
+}
+
+// Two enrolled objects (COIL-100 5 and 6, unlike each other): their one pair is the whole null, and
+// the null's quantile lies far above what either object's own windows need; the known ceiling holds
+// the threshold there.
+TEST(RejectionCalibrationTest, TwoObjectsHoldTheThresholdAtWhatTheirOwnViewsNeed) {
+  constexpr int kFirst = 5;  // objects 5 and 6
+  const auto two = ViewIndex(CoilObjects(kFirst, kFirst + 1, EvenView)).Snapshot();
+  const RejectionCalibration calibration = RejectionCalibration::FromIndex(*two);
+  for (const int n : {1, 4, 16}) {
+    const double ceiling = calibration.KnownCeiling(n);
+    EXPECT_LT(ceiling, calibration.NullThreshold(n, 0.17)) << "n " << n;
+    // The margin above the known windows' quantile.
+    const double quantile = ceiling / kKnownCeilingMargin;
+    EXPECT_GE(calibration.KnownAcceptRate(quantile, n), kKnownWindowsAccepted) << "n " << n;
+    EXPECT_LE(calibration.KnownAcceptRate(quantile - 1e-9, n), kKnownWindowsAccepted) << "n " << n;
+  }
+  // 4-frame sweeps of the two objects and of 20 objects the index does not hold.
+  EngineOptions options;
+  options.rejection = RejectionRule::kCalibrated;
+  options.false_accept_rate = 0.17;
+  auto engine = CreateEngine("hmm", options);
+  engine->SetCalibration(std::make_shared<const RejectionCalibration>(calibration));
+  int known_accepted = 0, unknown_accepted = 0, unknown_under_null = 0;
+  for (int object = 1; object <= 40; ++object) {
+    if (object < kFirst || (object > kFirst + 1 && object < 21)) continue;
+    for (const int start : {15, 195}) {
+      const FrameUpdate update = engine->ObserveSequence(two, Sweep(object, start));
+      const bool accepted = update.decision == Decision::kAccept;
+      if (object <= kFirst + 1) {
+        known_accepted += accepted && update.ranking[0].object == object;
+      } else {
+        unknown_accepted += accepted;
+        unknown_under_null += update.unknown_statistic <= calibration.NullThreshold(4, 0.17);
+      }
+    }
+  }
+  // 4 known sweeps, 40 unknown ones: the null's quantile alone would accept more than the
+  // target's share of the unknown ones (17% of 40: 6.8), the ceiling keeps within it.
+  EXPECT_EQ(known_accepted, 4);
+  EXPECT_GT(unknown_under_null, 6) << "of 40";
+  EXPECT_LE(unknown_accepted, 6) << "of 40";
+}
+
+TEST(RejectionCalibrationTest, AnObjectOfOneViewHasNoKnownWindows) {
+  // Each object a single view: none has a view outside its own neighbourhood.
+  const auto single =
+      ViewIndex(CoilObjects(1, 3, [](int azimuth) { return azimuth == 0; })).Snapshot();
+  const RejectionCalibration calibration = RejectionCalibration::FromIndex(*single);
+  ASSERT_TRUE(calibration.calibrated());
+  EXPECT_EQ(calibration.KnownCeiling(4), std::numeric_limits<double>::infinity());
+  EXPECT_EQ(calibration.KnownAcceptRate(0, 4), 1);
 }
 
 }  // namespace
