@@ -1,10 +1,12 @@
-# Sourced by the bench scripts: serve_in_background ORBIT LOG [SERVE_ARGS...] starts `ORBIT
-# serve --listen 127.0.0.1:0 SERVE_ARGS...` in the background, its output in LOG, and waits (up
-# to 30 s) until it says where it listens; sets server_pid and address ("127.0.0.1:PORT").
-# Exits with the server's log when it does not start.
+# Sourced by the bench scripts and the script tests: serve_in_background ORBIT LOG
+# [SERVE_ARGS...] starts `ORBIT serve --listen 127.0.0.1:0 SERVE_ARGS...` in the background, its
+# output in LOG, and waits (up to 30 s) until it says where it listens; sets server_pid and
+# address ("127.0.0.1:PORT"). Exits with the server's log when it does not start.
 serve_in_background() {
   local orbit=$1 log=$2
   shift 2
+  # The log exists before the first look at it: the server's own redirection may come later.
+  : >"$log"
   "$orbit" serve --listen 127.0.0.1:0 "$@" >"$log" 2>&1 &
   server_pid=$!
   address=""
