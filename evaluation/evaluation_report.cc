@@ -47,21 +47,26 @@ std::vector<DescriptorVariant> VariantsOf(const EvaluationReport& report) {
   return variants;
 }
 
+// "1 unknown object", "2 unknown objects".
+std::string Objects(int count, const std::string& kind) {
+  return std::to_string(count) + " " + kind + (count == 1 ? " object" : " objects");
+}
+
 // The first line of the report: what was evaluated, on what, and how long it took.
 std::string RunLine(const EvaluationReport& report) {
   std::ostringstream out;
   if (report.server) {
     const ServerDescription& server = *report.server;
     out << "Server " << server.address << " (orbit " << server.version
-        << "): " << report.known_objects << " enrolled objects, " << server.views << " views";
+        << "): " << Objects(report.known_objects, "enrolled") << ", " << server.views << " views";
     if (report.unknown_objects > 0) {
-      out << "; " << report.unknown_objects << " unknown objects among the queries";
+      out << "; " << Objects(report.unknown_objects, "unknown") << " among the queries";
     }
     out << "; sessions " << Format("%.1f", report.trial_seconds) << " s.\n\n";
     return out.str();
   }
-  out << "Seed " << report.seed << "; " << report.known_objects << " known objects";
-  if (report.unknown_objects > 0) out << ", " << report.unknown_objects << " unknown objects";
+  out << "Seed " << report.seed << "; " << Objects(report.known_objects, "known");
+  if (report.unknown_objects > 0) out << ", " << Objects(report.unknown_objects, "unknown");
   out << ", " << report.images << " images; index "
       << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads
       << " threads; descriptors " << Format("%.1f", report.descriptor_seconds) << " s, trials "
@@ -173,8 +178,15 @@ std::string MarkdownReport(const EvaluationReport& report) {
 
   for (const DescriptorVariant variant : VariantsOf(report)) {
     const auto cells = CellsOf(report, variant);
-    const int trials_per_cell = cells.front()->trials;
-    out << "\n### " << VariantName(variant) << ": hit rate (%), top-1, " << trials_per_cell
+    // Captured sequences shorter than a cell's n are not counted in it: cells can differ.
+    int fewest = cells.front()->trials, most = fewest;
+    for (const EvaluationCell* cell : cells) {
+      fewest = std::min(fewest, cell->trials);
+      most = std::max(most, cell->trials);
+    }
+    out << "\n### " << VariantName(variant) << ": hit rate (%), top-1, "
+        << (fewest == most ? std::to_string(most)
+                           : std::to_string(fewest) + "-" + std::to_string(most))
         << " queries per cell\n\n| distortion | method |";
     for (int n : ns) out << " n=" << n << " |";
     out << " ms/query (n=" << ns.back() << ") |\n|---|---|";

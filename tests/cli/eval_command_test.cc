@@ -88,7 +88,7 @@ TEST_F(EvalCommandTest, PrintsTableCsvAndPlotForTheChosenMethods) {
   EXPECT_THAT(result.out, HasSubstr("| DF | eis |"));
   EXPECT_THAT(result.out, HasSubstr("| MB | hmm |"));
   EXPECT_THAT(result.out, HasSubstr("Seed 7"));
-  EXPECT_THAT(result.out, HasSubstr("4 known objects, 1 unknown objects"));
+  EXPECT_THAT(result.out, HasSubstr("4 known objects, 1 unknown object,"));
   EXPECT_THAT(result.out, HasSubstr("Model memory (cedd-lire): 4 objects, 288 views"));
   EXPECT_THAT(result.out, HasSubstr("recognition (%)"));
   EXPECT_THAT(result.out, Not(HasSubstr("siis")));  // not asked for
@@ -413,14 +413,14 @@ TEST_F(ServerQueriesTest, ReportsTheServersAnswersAsTheLocalModeReportsItsOwn) {
                           csv.string() + " --verdicts " + verdicts.string());
   ASSERT_EQ(r.exit_code, 0) << r.err << server.Log();
   EXPECT_THAT(r.out, HasSubstr("Server " + server.address() + " (orbit "));
-  EXPECT_THAT(r.out,
-              HasSubstr("3 enrolled objects, 54 views; 1 unknown objects among the queries"));
+  EXPECT_THAT(r.out, HasSubstr("3 enrolled objects, 54 views; 1 unknown object among the queries"));
   EXPECT_THAT(r.out, HasSubstr("Queries: 4 captured sequences, 11 frames (`--queries`), each "
                                "streamed as one session with the server's defaults"));
   // The server runs `orbit serve`'s defaults: the product pipeline, in its variant.
   EXPECT_THAT(r.out, HasSubstr("server (product): the server's session defaults, engine hmm, "
                                "window 8"));
-  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate (%)"));
+  // Object 3's two-frame sequence counts at n = 1, not at n = 3: 3 known queries, then 2.
+  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate (%), top-1, 2-3 queries per cell"));
   EXPECT_THAT(r.out, Not(HasSubstr("Model memory")));
   EXPECT_THAT(r.out, Not(HasSubstr("Seed ")));
   // Views 10 degrees from enrolled ones of three very different objects: every known query is

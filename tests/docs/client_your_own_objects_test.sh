@@ -72,7 +72,7 @@ grep -Eq '^objects +3 \(' "$work/out.log" || fail "orbit info does not show 3 ob
 
 # Measure: three enrolled cars, car04 counted as unknown; at n = 4, the known walks nearly all
 # right and accepted and most unknown ones rejected (a number, not "-": they were counted).
-grep -q '3 enrolled objects, .* 1 unknown objects among the queries' "$work/out.log" ||
+grep -q '3 enrolled objects, .* 1 unknown object among the queries' "$work/out.log" ||
   fail "the eval report does not count 3 enrolled cars and 1 unknown"
 row=$(grep -E '^\| server \(product\) \| [^|]+ \| DF \| 4 \|' "$work/out.log" | head -1)
 [[ -n $row ]] || fail "no recognition row at n = 4 in the eval report"
