@@ -308,7 +308,9 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       "Run the evaluation protocol of docs/design.md on a dataset: per object, n random views\n"
       "are the query (their neighbours within 10 degrees leave the model), unchanged (df),\n"
       "motion-blurred (mb) or noisy (gn), with noisy azimuths; prints the top-1 hit rate per\n"
-      "method x distortion x n as Markdown, plus time per query and model memory.");
+      "method x distortion x n as Markdown, plus time per query and model memory.\n"
+      "Your own captures instead: --queries FILE against the model set of --data/--manifest,\n"
+      "or --server HOST:PORT --queries FILE against the objects a running server holds.");
   command
       ->add_option("--layout", o->layout,
                    "coil100: a folder of objN__A.png (--data); manifest: a CSV file "

@@ -513,6 +513,9 @@ TEST_F(ServerQueriesTest, RefusesWhatDoesNotApplyToAServer) {
   r = testing::RunCommand(testing::OrbitBinary() + " eval --help");
   ASSERT_EQ(r.exit_code, 0);
   EXPECT_THAT(r.out, HasSubstr("a running Orbit server, HOST:PORT: with --queries, stream each"));
+  // The command's own description names both ways of measuring one's own captures.
+  EXPECT_THAT(r.out, HasSubstr("or --server HOST:PORT --queries FILE against the objects a "
+                               "running server holds."));
 }
 
 }  // namespace
