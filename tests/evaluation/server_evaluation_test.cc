@@ -12,6 +12,7 @@
 #include "api/conversion.h"
 #include "api/engine_names.h"
 #include "core/engines/product_pipeline.h"
+#include "server/session_settings.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -23,20 +24,13 @@ using testing::CoilEnrollmentImages;
 using testing::CoilFile;
 using testing::ServerProcess;
 
-// The ServerInfo of a server with the product's defaults.
+// The ServerInfo of a server with the product's defaults: what `orbit serve` reports
+// (server/session_settings.h).
 v1::ServerInfoResponse ProductInfo() {
-  const ProductPipeline& product = Product();
   v1::ServerInfoResponse info;
-  info.set_variant(ToProtoVariant(product.variant));
-  v1::SessionOptions& d = *info.mutable_session_defaults();
-  d.set_engine(ProductSessionEngine());
-  d.set_window(product.options.window);
-  d.set_list_length(product.options.list_length);
-  d.set_orientation_weight(product.options.orientation_weight);
-  d.set_hmm_states(product.options.hmm_states);
-  d.set_rejection(ToProtoRejection(product.options.rejection));
-  d.set_false_accept_rate(product.options.false_accept_rate);
-  d.set_threshold(product.options.threshold);
+  info.set_variant(ToProtoVariant(Product().variant));
+  *info.mutable_session_defaults() =
+      server::DescribeSettings(server::SessionSettings{}, Product().variant);
   return info;
 }
 
