@@ -17,8 +17,8 @@
 # as its volume, answers `orbit-server info`; three COIL-100 objects are enrolled through it with
 # the host's `orbit enroll`, and `orbit recognize` of views it was not enrolled from names the
 # right object; a new container on the same folder still holds and recognises them; the
-# balancer image, on docker/haproxy.cfg, passes a call to that server once its grpc.health.v1
-# check has found it serving. Prints each image's size and fails when the server image is over
+# balancer image, on docker/haproxy.cfg with that server as replica 1 and the other two absent,
+# keeps the server up through its grpc.health.v1 checks and passes a call to it. Prints each image's size and fails when the server image is over
 # 300 MB.
 #
 # --check: every package the Dockerfiles install exists in Debian's archive (the host's apt
@@ -332,13 +332,21 @@ buildah run --isolation chroot --network host \
   --env ORBIT_REPLICA_2="127.0.0.1:$(free_port)" --env ORBIT_REPLICA_3="127.0.0.1:$(free_port)" \
   "$container" -- haproxy -f /etc/haproxy/orbit.cfg -db >"$scratch/balancer.log" 2>&1 &
 pids+=($!)
-passed=false
+# Replicas 2 and 3 listen nowhere: once HAProxy has marked both down, its checks have run more
+# than enough times to mark replica 1 down too, had the server not answered SERVING.
+marked_down() { grep -q "replica-$1 is DOWN" "$scratch/balancer.log"; }
 for _ in $(seq 30); do
-  if "$orbit" info --server "$balancer" >/dev/null 2>&1; then passed=true; break; fi
+  marked_down 2 && marked_down 3 && break
   sleep 1
 done
-$passed || { cat "$scratch/balancer.log" >&2; fail "no answer through the balancer at $balancer"; }
-echo "image.sh: $balancer_image passes calls to the healthy server"
+marked_down 2 && marked_down 3 ||
+  { cat "$scratch/balancer.log" >&2; fail "the balancer ran no health check"; }
+sleep 2  # two more checks of every replica
+! marked_down 1 ||
+  { cat "$scratch/balancer.log" >&2; fail "the balancer found the server image not serving"; }
+"$orbit" info --server "$balancer" >/dev/null ||
+  { cat "$scratch/balancer.log" >&2; fail "no answer through the balancer at $balancer"; }
+echo "image.sh: $balancer_image checks the server's grpc.health.v1 and passes calls to it"
 stop_server
 
 # ---- sizes -----------------------------------------------------------------------------------
