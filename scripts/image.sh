@@ -18,8 +18,8 @@
 # the host's `orbit enroll`, and `orbit recognize` of views it was not enrolled from names the
 # right object; a new container on the same folder still holds and recognises them; the
 # balancer image, on docker/haproxy.cfg with that server as replica 1 and the other two absent,
-# keeps the server up through its grpc.health.v1 checks and passes a call to it. Prints each image's size and fails when the server image is over
-# 300 MB.
+# keeps the server up through its grpc.health.v1 checks and passes a call to it. Prints each
+# image's size and fails when the server image is over 300 MB.
 #
 # --check: every package the Dockerfiles install exists in Debian's archive (the host's apt
 # lists), the server image's runtime stage installs the package of every library orbit-server
