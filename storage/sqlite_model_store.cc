@@ -18,6 +18,7 @@
 #include "storage/sqlite_connection.h"
 #include "storage/sqlite_error.h"
 #include "storage/sqlite_transaction.h"
+#include "storage/store_files.h"
 
 namespace orbit {
 namespace {
@@ -156,6 +157,9 @@ SqliteModelStore::SqliteModelStore(const std::filesystem::path& file,
     throw StoreError(StoreError::Code::kIo, "model store " + file_.string() + " does not exist");
   }
   try {
+    // Created here rather than by SQLite, whose files take the umask's mode: the store and its
+    // log and shared-memory files (SQLite gives them the database file's mode) are private.
+    if (options_.create_if_missing) CreateStoreFile(file_, kStoreFileMode);
     writer_ = std::make_unique<SqliteConnection>(file_,
                                                  options_.create_if_missing
                                                      ? SqliteConnection::Mode::kReadWriteCreate
@@ -431,8 +435,9 @@ void SqliteModelStore::Backup(const std::filesystem::path& destination) {
   std::filesystem::remove(partial, ignored);
   try {
     {
-      SqliteConnection copy(partial, SqliteConnection::Mode::kReadWriteCreate,
-                            options_.busy_timeout);
+      // The copy holds what the store holds: no one may read it who may not read the store.
+      CreateStoreFile(partial, std::filesystem::status(file_).permissions());
+      SqliteConnection copy(partial, SqliteConnection::Mode::kReadWrite, options_.busy_timeout);
       Reader reader(*this);
       sqlite3_backup* backup =
           sqlite3_backup_init(copy.handle(), "main", reader.connection().handle(), "main");

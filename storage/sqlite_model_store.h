@@ -26,7 +26,9 @@ class SqliteConnection;
 class SqliteTransaction;
 
 struct SqliteModelStoreOptions {
-  bool create_if_missing = false;                // otherwise a missing file is StoreError kIo
+  // Otherwise a missing file is StoreError kIo. A created store, its log and its shared-memory
+  // file are readable and writable by their owner only (storage/store_files.h).
+  bool create_if_missing = false;
   std::chrono::milliseconds busy_timeout{5000};  // how long to wait for another writer
   bool quick_check_on_open = true;               // PRAGMA quick_check before anything else
   // After a commit that leaves at least this many pages (4 KiB each) in the write-ahead log, the
@@ -61,6 +63,7 @@ class SqliteModelStore final : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
   std::vector<ObjectModel> LoadAll() override;
+  // As ModelStore::Backup; the copy is created with the store file's own mode.
   void Backup(const std::filesystem::path& destination) override;
 
   const std::filesystem::path& file() const { return file_; }
