@@ -30,6 +30,7 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -74,10 +75,13 @@ class PostgresModelStore final : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
   std::vector<ObjectModel> LoadAll() override;
-
-  // Not done by the store: a PostgreSQL database is backed up with the server's own tools,
-  // which keep ids, the id sequences and the change log (pg_dump --format=custom DBNAME; restore
-  // with pg_restore). Always throws StoreError kIncompatible saying so, writing nothing.
+  // One REPEATABLE READ READ ONLY transaction: replicas writing meanwhile are not seen.
+  ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) override;
+  // Each restored object is also logged as an enrollment, so that replicas following this
+  // database index it. The change log of `source`, if any, is not copied.
+  void RestoreFrom(ModelStore& source) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  // A SQLite model store holding one ForEachObject snapshot, created readable by its owner only
+  // (storage/store_files.h). The change log is not in it (docs/design.md#backup-and-restore).
   void Backup(const std::filesystem::path& destination) override;
 
   // The changes committed after the one numbered `after_seq` (0: from the start), in commit
@@ -95,10 +99,6 @@ class PostgresModelStore final : public ModelStore {
 
  private:
   class Lease;  // a pooled connection, returned to the pool when it goes out of scope
-
-  void InsertViews(PostgresConnection& connection, ObjectId id, DescriptorVariant variant,
-                   const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails)
-      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   const std::string conninfo_;
   const std::string target_;

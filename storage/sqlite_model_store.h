@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -63,6 +64,9 @@ class SqliteModelStore final : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
   std::vector<ObjectModel> LoadAll() override;
+  // One read transaction on one pooled connection; writers carry on in the write-ahead log.
+  ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) override;
+  void RestoreFrom(ModelStore& source) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
   // As ModelStore::Backup; the copy is created with the store file's own mode.
   void Backup(const std::filesystem::path& destination) override;
 
@@ -71,9 +75,6 @@ class SqliteModelStore final : public ModelStore {
  private:
   class Reader;  // a pooled read connection, returned to the pool when it goes out of scope
 
-  void InsertViews(ObjectId id, DescriptorVariant variant, const std::vector<ModelView>& views,
-                   const std::vector<std::string>& thumbnails)
-      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
   // Commits a write and, when the log has grown enough, checkpoints it.
   void CommitWrite(SqliteTransaction& transaction) ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 

@@ -1,4 +1,5 @@
-// What only the PostgreSQL store does: the change log and its notifications, the write lock
+// What only the PostgreSQL store does: the change log and its notifications, a backup as a
+// SQLite file, the write lock
 // shared by every process using the database, clear errors for an unreachable or refusing
 // server, and atomic writes when the database fails one half-way. The contracts it shares with
 // the SQLite store run on both in tests/storage/model_store_test.cc.
@@ -19,6 +20,7 @@
 
 #include "storage/postgres_connection.h"
 #include "storage/postgres_transaction.h"
+#include "storage/sqlite_model_store.h"
 #include "storage/store_error.h"
 #include "tests/support/postgres_test_cluster.h"
 #include "tests/support/storage_test_support.h"
@@ -249,14 +251,24 @@ TEST(PostgresModelStoreTest, ARefusedConnectionCarriesTheServersReason) {
   EXPECT_THROW(PostgresModelStore("postgresql://[bad"), std::invalid_argument);
 }
 
-TEST(PostgresModelStoreTest, BackupIsLeftToPgDump) {
+// A backup of the PostgreSQL store is one private SQLite store file holding the same objects
+// under the same ids, and never handing out the id of an object deleted before it was taken.
+TEST(PostgresModelStoreTest, ABackupIsAPrivateSqliteStoreOfTheSameObjects) {
   TestDatabase database;
   PostgresModelStore store(database.conninfo());
+  const ObjectId mug = store.Enroll(SyntheticObject("mug", 3));
+  store.Delete(store.Enroll(SyntheticObject("jar", 2, 5)));
   testing::ScratchDir dir;
-  const auto [code, message] = StoreErrorOf([&] { store.Backup(dir / "copy.db"); });
-  EXPECT_EQ(code, StoreError::Code::kIncompatible);
-  EXPECT_THAT(message, HasSubstr("pg_dump"));
-  EXPECT_FALSE(std::filesystem::exists(dir / "copy.db"));
+  const testing::ScopedUmask everyone_reads(022);
+  store.Backup(dir / "orbit.db");
+
+  EXPECT_EQ(testing::FileMode(dir / "orbit.db"), 0600u);
+  EXPECT_FALSE(std::filesystem::exists(dir / "orbit.db.partial"));
+  EXPECT_EQ(testing::RawDatabase(dir / "orbit.db").Text("PRAGMA journal_mode"), "delete");
+  SqliteModelStore copy(dir / "orbit.db");
+  EXPECT_EQ(copy.Get(mug), store.Get(mug));
+  EXPECT_EQ(copy.List({}).size(), 1u);
+  EXPECT_EQ(copy.Enroll(SyntheticObject("pot", 2, 9)), 3);  // not jar's 2
 }
 
 }  // namespace
