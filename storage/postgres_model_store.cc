@@ -422,12 +422,19 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
                                 std::to_string(kMaxListLimit));
   }
   Lease lease(*this);
-  const PostgresResult rows =
-      (*lease).Query("SELECT seq, object_id, kind, " ORBIT_PG_TIME(
-                         "committed_at") " FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2",
-                     PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  // One statement, one snapshot: the pruned point and the changes after `after_seq` agree. The
+  // first row always exists (the horizon's); its change columns are NULL when there is none.
+  const PostgresResult rows = (*lease).Query(
+      "SELECT c.seq, c.object_id, c.kind, c.committed_at, h.pruned_through "
+      "FROM change_log_horizon h LEFT JOIN LATERAL ("
+      "SELECT seq, object_id, kind, " ORBIT_PG_TIME("committed_at") " AS committed_at "
+      "FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2) c ON true ORDER BY c.seq",
+      PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  if (const std::int64_t pruned_through = rows.Int64(0, 4); pruned_through > after_seq) {
+    throw ChangeLogPruned(after_seq, pruned_through);
+  }
   std::vector<ModelChange> changes;
-  for (int row = 0; row < rows.rows(); ++row) {
+  for (int row = 0; row < rows.rows() && !rows.IsNull(row, 0); ++row) {
     const std::optional<ModelChangeKind> kind = ParseModelChangeKind(rows.Text(row, 2));
     if (!kind) {
       throw StoreError(
@@ -444,7 +451,42 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
 
 std::int64_t PostgresModelStore::LatestChangeSeq() {
   Lease lease(*this);
-  return (*lease).Query("SELECT COALESCE(max(seq), 0) FROM model_changes").Int64(0, 0);
+  return (*lease)
+      .Query(
+          "SELECT greatest((SELECT coalesce(max(seq), 0) FROM model_changes), "
+          "(SELECT pruned_through FROM change_log_horizon))")
+      .Int64(0, 0);
+}
+
+void PostgresModelStore::ReportApplied(std::string_view replica, std::int64_t applied_seq) {
+  Lease lease(*this);
+  (*lease).Query(
+      "INSERT INTO replica_progress (replica, applied_seq, reported_at) VALUES ($1, $2, now()) "
+      "ON CONFLICT (replica) DO UPDATE SET applied_seq = excluded.applied_seq, "
+      "reported_at = excluded.reported_at",
+      PostgresParams().Add(replica).Add(applied_seq));
+}
+
+std::int64_t PostgresModelStore::PruneChanges(std::chrono::milliseconds lease) {
+  Lease connection(*this);
+  // Every part sees the same snapshot, so `bound` counts the live replicas as they were before
+  // `forgotten` deletes the silent ones. A replica reporting meanwhile is not counted: if the
+  // bound passes it, it is told so by ChangesAfter, never left with a hole.
+  return (*connection)
+      .Query(
+          "WITH live AS (SELECT now() - $1::bigint * interval '1 millisecond' AS since), "
+          "forgotten AS (DELETE FROM replica_progress WHERE reported_at < (SELECT since FROM "
+          "live)), "
+          "bound AS (SELECT min(applied_seq) AS seq FROM replica_progress "
+          "WHERE reported_at >= (SELECT since FROM live)), "
+          "pruned AS (DELETE FROM model_changes WHERE seq <= (SELECT seq FROM bound)), "
+          "horizon AS (UPDATE change_log_horizon "
+          "SET pruned_through = greatest(pruned_through, (SELECT seq FROM bound)) "
+          "WHERE (SELECT seq FROM bound) IS NOT NULL RETURNING pruned_through) "
+          "SELECT coalesce((SELECT pruned_through FROM horizon), "
+          "(SELECT pruned_through FROM change_log_horizon))",
+          PostgresParams().Add(std::int64_t{lease.count()}))
+      .Int64(0, 0);
 }
 
 }  // namespace orbit
