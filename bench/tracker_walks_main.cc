@@ -35,8 +35,10 @@ int Run(int argc, char** argv) {
   const int first = argc > 3 ? std::atoi(argv[3]) : 1;
   const int last = argc > 4 ? std::atoi(argv[4]) : 20;
   const int width = argc > 5 ? std::atoi(argv[5]) : 320;
-  std::printf("| object | least IoU | mean IoU | lost | frames 1-%d |\n| --- | ---: | ---: | ---: | --- |\n",
-              kFrames - 1);
+  std::printf(
+      "| object | least IoU | mean IoU | lost | frames 1-%d |\n| --- | ---: | ---: | ---: | --- "
+      "|\n",
+      kFrames - 1);
   int held = 0, walks = 0, all_lost = 0;
   double worst = 1;
   for (int object = first; object <= last; ++object) {
@@ -68,9 +70,10 @@ int Run(int argc, char** argv) {
     all_lost += lost;
     worst = std::min(worst, least);
   }
-  std::printf("\n%s: %d of %d walks held (every frame found, IoU >= %.1f); %d of %d frames lost; "
-              "least IoU of a frame found %.2f\n",
-              argv[2], held, walks, kIouGoal, all_lost, walks * (kFrames - 1), worst);
+  std::printf(
+      "\n%s: %d of %d walks held (every frame found, IoU >= %.1f); %d of %d frames lost; "
+      "least IoU of a frame found %.2f\n",
+      argv[2], held, walks, kIouGoal, all_lost, walks * (kFrames - 1), worst);
   return 0;
 }
 
