@@ -5,7 +5,7 @@
 // Trackers (built on Debian 12's OpenCV 4.6; measured in docs/results/capture.md on generated
 // walks, tests/client/object_tracker_test.cc):
 // - kTemplate, the default (kDefaultTracker): normalised grey template matching on a frame
-//   reduced around the last box, at three scales, the template following the object's
+//   reduced around the last box, at the first box's size, the template following the object's
 //   appearance, checked against its colours (docs/design.md#object-tracking). Its cost follows
 //   the template's size, not the frame's: within a phone's budget at video rate. Where the
 //   object turns into views unlike the last matched one it reports frames lost rather than
