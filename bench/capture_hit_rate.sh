@@ -7,6 +7,7 @@
 # share of updates whose first candidate is the right object, of final updates that are right,
 # the views enrolled and the frames the tracker lost. VARIANT is the server's descriptor variant
 # (`orbit serve --variant`; the product's by default).
+# TRACKER=name follows the box with that tracker (`--tracker`) instead of the default.
 #   bench/capture_hit_rate.sh [BUILD_DIR] [COIL_DIR] [FIRST] [LAST] [VARIANT]
 set -euo pipefail
 build=${1:-build}
@@ -15,6 +16,8 @@ first=${3:-1}
 last=${4:-20}
 variant=()
 [[ -n ${5:-} ]] && variant=(--variant "$5")
+tracker=()
+[[ -n ${TRACKER:-} ]] && tracker=(--tracker "$TRACKER")
 orbit="$build/orbit"
 work=$(mktemp -d)
 # shellcheck source=bench/serve_in_background.sh
@@ -31,7 +34,7 @@ for mode in tracked true; do
       # shellcheck disable=SC2086
       box=$("$orbit" walk --coil "$coil" --object "$object" --video "$work/$walk.avi" \
         --orientation "$work/$walk.csv" --boxes "$work/$walk.boxes" $shape | sed 's/.*first box //')
-      if [[ $mode == tracked ]]; then where=(--box "$box"); else where=(--boxes "$work/$walk.boxes"); fi
+      if [[ $mode == tracked ]]; then where=(--box "$box" "${tracker[@]}"); else where=(--boxes "$work/$walk.boxes"); fi
       if [[ $walk == enroll ]]; then
         out=$("$orbit" enroll --server "$address" --name "obj$object" --video "$work/$walk.avi" \
           --orientation "$work/$walk.csv" "${where[@]}" 2>"$work/err") ||
@@ -45,7 +48,7 @@ for mode in tracked true; do
     box=$("$orbit" walk --coil "$coil" --object "$object" --video "$work/query.avi" \
       --orientation "$work/query.csv" --boxes "$work/query.boxes" --frames 24 --turn 120 \
       --start 100 --seed 7 | sed 's/.*first box //')
-    if [[ $mode == tracked ]]; then where=(--box "$box"); else where=(--boxes "$work/query.boxes"); fi
+    if [[ $mode == tracked ]]; then where=(--box "$box" "${tracker[@]}"); else where=(--boxes "$work/query.boxes"); fi
     firsts=$("$orbit" recognize --server "$address" --json --fast --top-k 1 \
       --video "$work/query.avi" --orientation "$work/query.csv" "${where[@]}" 2>"$work/err" |
       sed -n 's/.*"candidates":\[{"id":[0-9]*,"name":"\([^"]*\)".*/\1/p')

@@ -21,12 +21,12 @@ void AddCaptureOptions(CLI::App& command, CaptureArguments& arguments) {
   video->needs("--orientation");
   std::string trackers;
   for (TrackerKind kind : kTrackerKinds) {
-    trackers += (trackers.empty() ? "" : ", ") + std::string(TrackerName(kind));
+    trackers += "\n  " + std::string(TrackerName(kind)) + ": " + std::string(TrackerSummary(kind));
   }
   // The name is checked by ParseTrackerName when the capture opens.
   command
       .add_option("--tracker", arguments.tracker,
-                  "with --video: the tracker following --box: " + trackers)
+                  "with --video: the tracker following --box (docs/capture.md):" + trackers)
       ->capture_default_str();
 }
 

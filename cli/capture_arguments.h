@@ -17,7 +17,7 @@ struct CaptureArguments {
   std::string video;        // --video
   std::string orientation;  // --orientation, the CSV log
   // --tracker
-  std::string tracker = std::string(TrackerName(TrackerKind::kCsrt));
+  std::string tracker = std::string(TrackerName(kDefaultTracker));
 };
 
 // Registers --video, --orientation and --tracker on `command`; --orientation is needed with

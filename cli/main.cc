@@ -18,6 +18,7 @@ int main(int argc, char** argv) {
   orbit::cli::AddListCommand(app, exit_code);
   orbit::cli::AddDeleteCommand(app, exit_code);
   orbit::cli::AddBackupCommand(app, exit_code);
+  orbit::cli::AddRestoreCommand(app, exit_code);
   orbit::cli::AddEvalCommand(app, exit_code);
   orbit::cli::AddServeCommand(app, exit_code);
   orbit::cli::AddTokenCommand(app, exit_code);

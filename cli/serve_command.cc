@@ -10,6 +10,7 @@
 
 #include "api/engine_names.h"
 #include "cli/commands.h"
+#include "cli/store_choice.h"
 #include "core/engines/product_pipeline.h"
 #include "server/orbit_server.h"
 
@@ -28,11 +29,7 @@ struct ServeOptions {
 
 int RunServe(ServeOptions& o) {
   server::ServerConfig& config = o.config;
-  if (o.database.empty() == config.store.empty()) {
-    throw CLI::ValidationError("serve",
-                               "give the model store: --db FILE (SQLite) or --store "
-                               "postgresql://... (PostgreSQL), not both");
-  }
+  RequireOneStore("serve", o.database, config.store);
   config.database = o.database;
   if (!o.tokens.empty()) config.tokens_file = o.tokens;
   if (!o.tls_cert.empty()) config.tls_cert = o.tls_cert;

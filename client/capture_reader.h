@@ -35,7 +35,7 @@ namespace orbit {
 struct CaptureOptions {
   std::optional<cv::Rect> first_box = std::nullopt;  // the object on the first frame, then tracked
   std::vector<cv::Rect> boxes = {};  // or one box per frame, used as given (no tracking)
-  TrackerKind tracker = TrackerKind::kCsrt;
+  TrackerKind tracker = kDefaultTracker;
 };
 
 struct VideoFrame {

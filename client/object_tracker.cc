@@ -1,5 +1,7 @@
 #include "client/object_tracker.h"
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <stdexcept>
 
@@ -41,6 +43,19 @@ std::string_view TrackerName(TrackerKind kind) {
     case TrackerKind::kCsrt: return "csrt";
     case TrackerKind::kKcf: return "kcf";
     case TrackerKind::kCamShift: return "camshift";
+    case TrackerKind::kTemplate: return "template";
+  }
+  return "?";
+}
+
+std::string_view TrackerSummary(TrackerKind kind) {
+  switch (kind) {
+    case TrackerKind::kTemplate:
+      return "the default: template matching on a reduced frame, cheap enough for a phone";
+    case TrackerKind::kCsrt:
+      return "correlation filter: holds on longer in clutter, at many times the cost";
+    case TrackerKind::kKcf: return "kernelised correlation filter: costly on large boxes";
+    case TrackerKind::kCamShift: return "mean shift on the object's hues: drifts in clutter";
   }
   return "?";
 }
@@ -188,6 +203,140 @@ class CamShiftTracker : public ObjectTracker::Impl {
   double first_evidence_ = 0;
 };
 
+// Template matching on a reduced frame (docs/design.md#object-tracking): the object's last
+// appearance, reduced so that its box's longer side is kTemplateSide pixels, is searched for in a
+// window around its last box reduced alike. The match moves the box, which keeps the first
+// frame's size (a scale search let the box creep onto background on the generated walks, whose
+// boxes change with the object's outline as it turns more than with its distance); the template
+// then takes in part of the new appearance, so that it follows the object as it turns. The cost
+// follows the template's size, not the frame's.
+class TemplateTracker : public ObjectTracker::Impl {
+ public:
+  TemplateTracker(const cv::Mat& bgr, const cv::Rect& box)
+      : centre_(box.x + box.width / 2.0, box.y + box.height / 2.0), size_(box.size()) {
+    const double reduction = Reduction();
+    template_size_ = cv::Size(std::max(4, static_cast<int>(std::lround(size_.width * reduction))),
+                              std::max(4, static_cast<int>(std::lround(size_.height * reduction))));
+    cv::Mat seen;
+    cv::resize(bgr(box), seen, template_size_, 0, 0, cv::INTER_AREA);
+    template_ = Grey(seen);
+    colours_ = Colours(seen);
+  }
+
+  bool Update(const cv::Mat& bgr, cv::Rect& box) override {
+    const double reduction = Reduction();
+    // The window, in frame pixels, and the same window reduced, padded where it leaves the frame.
+    const cv::Size2d window_size(size_.width * (1 + 2 * kSearchMargin),
+                                 size_.height * (1 + 2 * kSearchMargin));
+    const cv::Point2d window_origin(centre_.x - window_size.width / 2,
+                                    centre_.y - window_size.height / 2);
+    const cv::Mat window = Grey(ReducedWindow(bgr, window_origin, window_size, reduction));
+    if (template_size_.width > window.cols || template_size_.height > window.rows) return false;
+    cv::Mat score;
+    cv::matchTemplate(window, template_, score, cv::TM_CCOEFF_NORMED);
+    double peak;
+    cv::Point at;
+    cv::minMaxLoc(score, nullptr, &peak, nullptr, &at);
+    const cv::Point2d found(at.x + Subpixel(score, at, true) + template_size_.width / 2.0,
+                            at.y + Subpixel(score, at, false) + template_size_.height / 2.0);
+    const cv::Point2d centre = window_origin + found * (1 / reduction);
+    box = BoxAt(centre, size_);
+    if (peak < kMinTemplateMatch) return false;
+    // The region found, at the template's size: its colours must still be the object's.
+    cv::Mat seen = ReducedWindow(bgr, centre - cv::Point2d(size_.width / 2, size_.height / 2),
+                                 size_, reduction);
+    if (seen.size() != template_size_) {
+      cv::resize(seen, seen, template_size_, 0, 0, cv::INTER_LINEAR);
+    }
+    const cv::Mat colours = Colours(seen);
+    const double colour_distance = cv::compareHist(colours_, colours, cv::HISTCMP_BHATTACHARYYA);
+    if (colour_distance > kMaxColourDistance) return false;
+    centre_ = centre;
+    // Take in the new appearance.
+    cv::addWeighted(template_, 1 - kTemplateUpdate, Grey(seen), kTemplateUpdate, 0, template_);
+    cv::addWeighted(colours_, 1 - kTemplateUpdate, colours, kTemplateUpdate, 0, colours_);
+    return true;
+  }
+
+ private:
+  static constexpr double kTemplateSide = 32;   // the template's longer side, reduced pixels
+  static constexpr double kSearchMargin = 0.5;  // of the box's size, on each side
+  // A match counts when the normalised grey correlation of template and region is at least
+  // this, and the Bhattacharyya distance of their colour histograms at most kMaxColourDistance.
+  // Texture alone does not tell a cluttered scene without the object from the object: the
+  // best of the window's positions often correlates as well as a turning object does.
+  static constexpr double kMinTemplateMatch = 0.5;
+  static constexpr double kMaxColourDistance = 0.5;
+  static constexpr double kTemplateUpdate = 0.3;  // share of the new appearance taken in a frame
+  static constexpr int kColourLevels = 4;         // per channel, for the colour histogram
+
+  double Reduction() const { return kTemplateSide / std::max(size_.width, size_.height); }
+
+  static cv::Rect BoxAt(cv::Point2d centre, cv::Size2d size) {
+    return cv::Rect(static_cast<int>(std::lround(centre.x - size.width / 2)),
+                    static_cast<int>(std::lround(centre.y - size.height / 2)),
+                    static_cast<int>(std::lround(size.width)),
+                    static_cast<int>(std::lround(size.height)));
+  }
+
+  // Offset in [-0.5, 0.5] of the peak at `at` along x or y, from a parabola through it and its
+  // two neighbours.
+  static double Subpixel(const cv::Mat& score, cv::Point at, bool along_x) {
+    const cv::Point step = along_x ? cv::Point(1, 0) : cv::Point(0, 1);
+    const cv::Point before = at - step, after = at + step;
+    if (before.x < 0 || before.y < 0 || after.x >= score.cols || after.y >= score.rows) return 0;
+    const double l = score.at<float>(before), c = score.at<float>(at), r = score.at<float>(after);
+    const double curvature = l - 2 * c + r;
+    return curvature < 0 ? std::clamp(0.5 * (l - r) / curvature, -0.5, 0.5) : 0;
+  }
+
+  static cv::Mat Grey(const cv::Mat& bgr) {
+    cv::Mat grey, out;
+    cv::cvtColor(bgr, grey, cv::COLOR_BGR2GRAY);
+    grey.convertTo(out, CV_32F);
+    return out;
+  }
+
+  // The normalised kColourLevels^3 histogram of a reduced BGR region.
+  static cv::Mat Colours(const cv::Mat& bgr) {
+    const int channels[] = {0, 1, 2};
+    const int levels[] = {kColourLevels, kColourLevels, kColourLevels};
+    const float range[] = {0, 256};
+    const float* ranges[] = {range, range, range};
+    cv::Mat histogram;
+    cv::calcHist(&bgr, 1, channels, cv::Mat(), histogram, 3, levels, ranges);
+    return histogram / std::max(1.0, cv::sum(histogram)[0]);
+  }
+
+  // The frame rectangle at `origin` of `size` (frame pixels), reduced by `reduction` (8-bit
+  // BGR); the part outside the frame repeats the nearest pixels inside it.
+  static cv::Mat ReducedWindow(const cv::Mat& bgr, cv::Point2d origin, cv::Size2d size,
+                               double reduction) {
+    const cv::Rect wanted = BoxAt(origin + cv::Point2d(size.width / 2, size.height / 2), size);
+    const cv::Size out_size(std::max(1, static_cast<int>(std::lround(wanted.width * reduction))),
+                            std::max(1, static_cast<int>(std::lround(wanted.height * reduction))));
+    const cv::Rect inside = wanted & cv::Rect(0, 0, bgr.cols, bgr.rows);
+    if (inside.area() == 0) return cv::Mat(out_size, CV_8UC3, cv::Scalar::all(0));
+    const cv::Size inside_size(
+        std::max(1, static_cast<int>(std::lround(inside.width * reduction))),
+        std::max(1, static_cast<int>(std::lround(inside.height * reduction))));
+    cv::Mat small, out;
+    cv::resize(bgr(inside), small, inside_size, 0, 0, cv::INTER_AREA);
+    const int left = std::max(0, static_cast<int>(std::lround((inside.x - wanted.x) * reduction)));
+    const int top = std::max(0, static_cast<int>(std::lround((inside.y - wanted.y) * reduction)));
+    const int right = std::max(0, out_size.width - left - inside_size.width);
+    const int bottom = std::max(0, out_size.height - top - inside_size.height);
+    cv::copyMakeBorder(small, out, top, bottom, left, right, cv::BORDER_REPLICATE);
+    return out;
+  }
+
+  cv::Point2d centre_;     // the object's box in the last matched frame, in frame pixels
+  const cv::Size2d size_;  // the first frame's box
+  cv::Size template_size_;
+  cv::Mat template_;  // CV_32F grey, template_size_: the object's appearance
+  cv::Mat colours_;   // Colours() of the object's appearance
+};
+
 }  // namespace
 
 ObjectTracker::ObjectTracker(const cv::Mat& first_frame, const cv::Rect& box, TrackerKind kind)
@@ -222,6 +371,7 @@ ObjectTracker::ObjectTracker(const cv::Mat& first_frame, const cv::Rect& box, Tr
           [] { return cv::Ptr<cv::Tracker>(cv::TrackerKCF::create()); }, bgr, box);
       break;
     case TrackerKind::kCamShift: impl_ = std::make_unique<CamShiftTracker>(bgr, box); break;
+    case TrackerKind::kTemplate: impl_ = std::make_unique<TemplateTracker>(bgr, box); break;
   }
 }
 

@@ -2,25 +2,31 @@
 // frame, so that each frame's descriptor is computed on the object and not on the whole scene
 // (the thesis' field test did the same with CamShift).
 //
-// Trackers (all from Debian 12's OpenCV 4.6; measured in docs/results/capture.md on generated
+// Trackers (built on Debian 12's OpenCV 4.6; measured in docs/results/capture.md on generated
 // walks, tests/client/object_tracker_test.cc):
-// - kCsrt, the default: the discriminative correlation filter with channel and spatial
-//   reliability (Lukezic et al., CVPR 2017; opencv_contrib's tracking module). It follows the
-//   object's appearance, texture included, so a cluttered background of the same colours does
-//   not pull it away. On the generated walks it holds every frame, the closest of the three.
-// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015): faster, as close when
-//   it holds, but it loses the object on some frames.
+// - kTemplate, the default (kDefaultTracker): normalised grey template matching on a frame
+//   reduced around the last box, at the first box's size, the template following the object's
+//   appearance, checked against its colours (docs/design.md#object-tracking). Its cost follows
+//   the template's size, not the frame's: within a phone's budget at video rate. Where the
+//   object turns into views unlike the last matched one it reports frames lost rather than
+//   follow the background.
+// - kCsrt: the discriminative correlation filter with channel and spatial reliability
+//   (Lukezic et al., CVPR 2017; opencv_contrib's tracking module). It follows the object's
+//   appearance, texture included, and holds on longer in clutter, at many times the cost.
+// - kKcf: kernelised correlation filter (Henriques et al., TPAMI 2015): cheaper on small boxes,
+//   as close when it holds, but it loses the object on some frames.
 // - kCamShift: mean shift on the hue back-projection of the first box (Bradski 1998; the video
 //   module). Cheapest, but it follows colour alone and drifts onto background of the object's
 //   colours.
 //
 // Lost: a frame is reported lost, and must not be described, when the tracker says its match
-// failed (for CSRT a peak-to-sidelobe ratio under 0.07; for CamShift a back-projection with too
-// little of the object's colours), when the region found no longer looks like the last matched
-// one (CSRT, KCF: grey correlation under 0.25 - the camera turned away, or the tracker jumped to
-// the background), or when less than half of the box lies inside the frame (the object is
-// leaving the view). After a loss the tracker retries each frame from the last matched frame
-// and box, and reports found again when the object is still near it.
+// failed (for the template a correlation or colour match too weak; for CSRT a peak-to-sidelobe
+// ratio under 0.07; for CamShift a back-projection with too little of the object's colours),
+// when the region found no longer looks like the last matched one (CSRT, KCF: grey correlation
+// under 0.25 - the camera turned away, or the tracker jumped to the background), or when less
+// than half of the box lies inside the frame (the object is leaving the view). After a loss the
+// tracker retries each frame from the last matched frame and box, and reports found again when
+// the object is still near it.
 //
 // Thread safety: none; one tracker per capture, fed its frames in order.
 #pragma once
@@ -33,12 +39,17 @@
 
 namespace orbit {
 
-enum class TrackerKind { kCsrt, kKcf, kCamShift };
-inline constexpr TrackerKind kTrackerKinds[] = {TrackerKind::kCsrt, TrackerKind::kKcf,
-                                                TrackerKind::kCamShift};
+enum class TrackerKind { kTemplate, kCsrt, kKcf, kCamShift };
+inline constexpr TrackerKind kTrackerKinds[] = {TrackerKind::kTemplate, TrackerKind::kCsrt,
+                                                TrackerKind::kKcf, TrackerKind::kCamShift};
+// The tracker of a capture that names none: within a phone's budget per frame
+// (docs/design.md#object-tracking).
+inline constexpr TrackerKind kDefaultTracker = TrackerKind::kTemplate;
 
-// "csrt", "kcf", "camshift": the names of `--tracker`, written once.
+// "template", "csrt", "kcf", "camshift": the names of `--tracker`, written once.
 std::string_view TrackerName(TrackerKind kind);
+// One line on what the tracker does and costs, for --help.
+std::string_view TrackerSummary(TrackerKind kind);
 // Throws std::invalid_argument naming the allowed names.
 TrackerKind ParseTrackerName(std::string_view name);
 
@@ -53,7 +64,7 @@ class ObjectTracker {
   // std::invalid_argument when the frame is empty or the box is not inside it or smaller than
   // 8 x 8 pixels.
   ObjectTracker(const cv::Mat& first_frame, const cv::Rect& box,
-                TrackerKind kind = TrackerKind::kCsrt);
+                TrackerKind kind = kDefaultTracker);
   ~ObjectTracker();
   ObjectTracker(const ObjectTracker&) = delete;
   ObjectTracker& operator=(const ObjectTracker&) = delete;

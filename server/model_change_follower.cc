@@ -1,8 +1,12 @@
 #include "server/model_change_follower.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <memory>
 #include <optional>
+#include <random>
+#include <sstream>
 #include <stdexcept>
 #include <utility>
 #include <vector>
@@ -24,6 +28,17 @@ constexpr milliseconds kWaitSlice{100};
 // Changes read from the log per query.
 constexpr int kChangesPerRead = 1000;
 
+// A name no other replica of the database has: host, process and a random number (a restarted
+// process is a new replica; its predecessor's entry expires with the lease).
+std::string NewReplicaName() {
+  char host[256] = {};
+  ::gethostname(host, sizeof(host) - 1);
+  std::random_device random;
+  std::ostringstream name;
+  name << host << '/' << ::getpid() << '/' << std::hex << random();
+  return name.str();
+}
+
 }  // namespace
 
 ModelChangeFollower::ModelChangeFollower(PostgresModelStore& store, std::string conninfo,
@@ -33,6 +48,7 @@ ModelChangeFollower::ModelChangeFollower(PostgresModelStore& store, std::string 
       conninfo_(std::move(conninfo)),
       catalogue_(catalogue),
       options_(std::move(options)),
+      replica_(options_.replica.empty() ? NewReplicaName() : options_.replica),
       applied_seq_(after_seq),
       thread_([this] { Run(); }) {}
 
@@ -60,7 +76,13 @@ bool ModelChangeFollower::SleepFor(milliseconds duration) {
 
 void ModelChangeFollower::CatchUp() {
   for (;;) {
-    const std::vector<ModelChange> changes = store_.ChangesAfter(applied_seq_, kChangesPerRead);
+    std::vector<ModelChange> changes;
+    try {
+      changes = store_.ChangesAfter(applied_seq_, kChangesPerRead);
+    } catch (const ChangeLogPruned& pruned) {
+      Reload(pruned);
+      continue;
+    }
     for (const ModelChange& change : changes) {
       try {
         if (catalogue_.Reload(change.object_id)) {
@@ -79,15 +101,36 @@ void ModelChangeFollower::CatchUp() {
   }
 }
 
+void ModelChangeFollower::Reload(const ChangeLogPruned& pruned) {
+  // As at start-up: the position first, then every object; a change committed in between is in
+  // the index and is replayed harmlessly.
+  const std::int64_t position = store_.LatestChangeSeq();
+  catalogue_.Load();
+  applied_seq_ = position;
+  options_.on_event(std::string(pruned.what()) + ": reloaded every object as of change " +
+                    std::to_string(position));
+  ++reloads_;
+}
+
+void ModelChangeFollower::ReportProgress() {
+  store_.ReportApplied(replica_, applied_seq_);
+  store_.PruneChanges(options_.progress_lease);
+}
+
 void ModelChangeFollower::Run() {
   std::unique_ptr<PostgresChangeListener> listener;
   std::optional<Clock::time_point> away_since;  // when the store stopped answering
   bool fit = true;  // the server loaded its index before starting the follower
+  std::optional<Clock::time_point> reported;  // when this replica last reported its progress
   while (!Stopping()) {
     try {
       // LISTEN before reading the log: a change committed after the read wakes the wait below.
       if (!listener) listener = std::make_unique<PostgresChangeListener>(conninfo_);
       CatchUp();
+      if (!reported || Clock::now() - *reported >= options_.poll_interval) {
+        ReportProgress();
+        reported = Clock::now();
+      }
       if (away_since) {
         options_.on_event("the model store answers again; caught up to change " +
                           std::to_string(applied_seq_));

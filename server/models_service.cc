@@ -380,7 +380,7 @@ v1::RuleEstimate EstimateRule(const RejectionCalibration& calibration,
   const double threshold = std::min(null_threshold, ceiling);
   estimate.set_objects(calibration.sampled_objects());
   estimate.set_frames(frames);
-  estimate.set_unknown_accepted(calibration.FalseAcceptRate(threshold, frames));
+  estimate.set_unknown_accepted(calibration.NullShare(threshold, frames));
   estimate.set_known_accepted(calibration.KnownAcceptRate(threshold, frames));
   estimate.set_held_by_known_ceiling(ceiling < null_threshold);
   return estimate;

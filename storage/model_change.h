@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <string_view>
 
@@ -31,6 +32,25 @@ struct ModelChange {
   std::string committed_at;
 
   bool operator==(const ModelChange&) const = default;
+};
+
+// Thrown when the changes after `after_seq` were asked for but the log no longer holds all of
+// them: it was pruned through `pruned_through` (docs/design.md#change-log). Whoever asked cannot
+// follow the log from there, and must read every object again instead.
+class ChangeLogPruned : public std::runtime_error {
+ public:
+  ChangeLogPruned(std::int64_t after_seq, std::int64_t pruned_through)
+      : std::runtime_error("the change log was pruned past change " + std::to_string(after_seq) +
+                           " (through " + std::to_string(pruned_through) + ")"),
+        after_seq_(after_seq),
+        pruned_through_(pruned_through) {}
+
+  std::int64_t after_seq() const { return after_seq_; }
+  std::int64_t pruned_through() const { return pruned_through_; }
+
+ private:
+  std::int64_t after_seq_;
+  std::int64_t pruned_through_;
 };
 
 // `committed_at` as a time point; nullopt when it is not "YYYY-MM-DDTHH:MM:SS.mmmZ".

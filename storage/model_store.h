@@ -17,6 +17,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -47,6 +48,8 @@ struct ObjectSummary {
   std::string created_at;  // UTC, ISO 8601 with milliseconds: "2024-05-01T12:34:56.789Z"
   std::string updated_at;  // changes on rename and when views are added
   std::string metadata;    // JSON object text
+
+  bool operator==(const ObjectSummary&) const = default;
 };
 
 // One object with its views, ordered by azimuth (then by the order they were stored).
@@ -54,6 +57,8 @@ struct StoredObject {
   ObjectSummary summary;
   std::vector<ModelView> views;
   std::vector<std::string> thumbnails;  // one per view, "" where the view has none
+
+  bool operator==(const StoredObject&) const = default;
 };
 
 // One page of ListObjects: objects ordered by id, the first one's id greater than `after_id`.
@@ -99,10 +104,26 @@ class ModelStore {
   // what the engines index at start-up. One consistent snapshot.
   virtual std::vector<ObjectModel> LoadAll() = 0;
 
+  // Hands every object, with its views and thumbnails as Get gives them, to `visit`, one at a
+  // time in id order, all from one consistent snapshot while writers carry on: a write is seen
+  // whole or not at all (docs/design.md#backup-and-restore). Returns the highest object id the
+  // store has handed out, deleted objects' included (read at the snapshot or later, so never
+  // lower), for a copy never to hand those out again. Throws what `visit` throws, and StoreError
+  // as LoadAll.
+  virtual ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) = 0;
+
+  // Copies every object of `source` (its ForEachObject) into this store, which must hold no
+  // object, in one transaction: ids, names, variants, times, metadata, views and thumbnails as
+  // they are there, and no id `source` handed out is handed out here afterwards. Throws StoreError
+  // kAlreadyExists when this store holds objects, std::invalid_argument when an object breaks
+  // storage/model_validation.h, and what `source` throws; this store is then unchanged.
+  virtual void RestoreFrom(ModelStore& source) = 0;
+
   // Writes a consistent copy of the whole store to `destination` while the store stays in use
-  // (readers and the writer carry on). The copy appears atomically: `destination` is either
-  // its previous self or the complete copy, and it is replaced if it exists. Throws
-  // std::invalid_argument when `destination` is the store itself.
+  // (readers and the writer carry on): a SQLite model store (storage/sqlite_model_store.h)
+  // whichever store is copied. The copy appears atomically: `destination` is either its previous
+  // self or the complete copy, and it is replaced if it exists. Throws std::invalid_argument
+  // when `destination` is the store itself.
   virtual void Backup(const std::filesystem::path& destination) = 0;
 };
 

@@ -126,4 +126,10 @@ void ValidateMetadata(std::string_view metadata) {
   if (!parsed.is_object()) throw std::invalid_argument("metadata must be a JSON object ({...})");
 }
 
+void ValidateStoredObject(const StoredObject& object) {
+  ValidateObjectName(object.summary.name);
+  ValidateViews(object.views, object.thumbnails);
+  ValidateMetadata(object.summary.metadata);
+}
+
 }  // namespace orbit

@@ -15,6 +15,7 @@
 
 #include "core/descriptor/descriptor.h"
 #include "core/index/object_model.h"
+#include "storage/model_store.h"
 
 namespace orbit {
 
@@ -46,5 +47,9 @@ void ValidateViews(const std::vector<ModelView>& views, const std::vector<std::s
 // Metadata is the text of one JSON object, at most kMaxMetadataBytes, nesting objects and arrays
 // at most kMaxMetadataDepth deep.
 void ValidateMetadata(std::string_view metadata);
+
+// A whole object as another store gave it (ModelStore::RestoreFrom): its name, views, thumbnails
+// and metadata by the rules above.
+void ValidateStoredObject(const StoredObject& object);
 
 }  // namespace orbit

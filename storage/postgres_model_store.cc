@@ -11,7 +11,10 @@
 #include "storage/postgres_connection.h"
 #include "storage/postgres_schema.h"
 #include "storage/postgres_transaction.h"
+#include "storage/sqlite_model_store.h"
+#include "storage/store_copy.h"
 #include "storage/store_error.h"
+#include "storage/store_files.h"
 
 namespace orbit {
 namespace {
@@ -72,6 +75,60 @@ std::optional<ObjectId> FindId(PostgresConnection& connection, std::string_view 
       connection.Query("SELECT id FROM objects WHERE name = $1", PostgresParams().Add(name));
   if (found.rows() == 0) return std::nullopt;
   return found.Int64(0, 0);
+}
+
+// Inserts `views` (with `thumbnails`: none, or one per view, "" for none) of object `id`, inside
+// the caller's write transaction.
+void InsertViews(PostgresConnection& connection, ObjectId id, DescriptorVariant variant,
+                 const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails) {
+  // One statement for all the views (at most kMaxViewsPerObject x 6 parameters, far below
+  // PostgreSQL's 65535): one round trip, however many views.
+  constexpr int kColumns = 6;
+  std::string sql =
+      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, "
+      "thumbnail) VALUES ";
+  PostgresParams params;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const ModelView& view = views[i];
+    const int first = static_cast<int>(i) * kColumns + 1;
+    sql += i == 0 ? "(" : ", (";
+    for (int c = 0; c < kColumns; ++c) sql += (c == 0 ? "$" : ", $") + std::to_string(first + c);
+    sql += ")";
+    params.Add(id).Add(NormaliseAzimuth(view.azimuth));
+    if (view.elevation) {
+      params.Add(*view.elevation);
+    } else {
+      params.AddNull();
+    }
+    params.AddBytes(DescriptorBytes(view.descriptor, variant)).Add(view.typical_distance);
+    if (i < thumbnails.size() && !thumbnails[i].empty()) {
+      const std::string& thumbnail = thumbnails[i];
+      params.AddBytes({reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
+    } else {
+      params.AddNull();
+    }
+  }
+  connection.Query(sql, params);
+}
+
+// The object `id` with its views and thumbnails, read on `connection` (inside the caller's
+// snapshot); nullopt when absent.
+std::optional<StoredObject> ReadObject(PostgresConnection& connection, ObjectId id) {
+  const PostgresResult found =
+      connection.Query("SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id = $1",
+                       PostgresParams().Add(id));
+  if (found.rows() == 0) return std::nullopt;
+  StoredObject object;
+  object.summary = SummaryFromRow(found, 0);
+  const PostgresResult views = connection.Query(
+      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
+      "WHERE object_id = $1 ORDER BY azimuth, id",
+      PostgresParams().Add(id));
+  for (int row = 0; row < views.rows(); ++row) {
+    object.views.push_back(ViewFromRow(views, row, 0, id, object.summary.variant));
+    object.thumbnails.push_back(views.Bytes(row, 4));
+  }
+  return object;
 }
 
 // Appends the change to the log and tells the listeners, in the caller's write transaction (the
@@ -198,39 +255,6 @@ void PostgresModelStore::AddViews(ObjectId id, const std::vector<ModelView>& vie
   transaction.Commit();
 }
 
-void PostgresModelStore::InsertViews(PostgresConnection& connection, ObjectId id,
-                                     DescriptorVariant variant, const std::vector<ModelView>& views,
-                                     const std::vector<std::string>& thumbnails) {
-  // One statement for all the views (at most kMaxViewsPerObject x 6 parameters, far below
-  // PostgreSQL's 65535): one round trip, however many views.
-  constexpr int kColumns = 6;
-  std::string sql =
-      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, "
-      "thumbnail) VALUES ";
-  PostgresParams params;
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const ModelView& view = views[i];
-    const int first = static_cast<int>(i) * kColumns + 1;
-    sql += i == 0 ? "(" : ", (";
-    for (int c = 0; c < kColumns; ++c) sql += (c == 0 ? "$" : ", $") + std::to_string(first + c);
-    sql += ")";
-    params.Add(id).Add(NormaliseAzimuth(view.azimuth));
-    if (view.elevation) {
-      params.Add(*view.elevation);
-    } else {
-      params.AddNull();
-    }
-    params.AddBytes(DescriptorBytes(view.descriptor, variant)).Add(view.typical_distance);
-    if (i < thumbnails.size() && !thumbnails[i].empty()) {
-      const std::string& thumbnail = thumbnails[i];
-      params.AddBytes({reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
-    } else {
-      params.AddNull();
-    }
-  }
-  connection.Query(sql, params);
-}
-
 void PostgresModelStore::Delete(ObjectId id) {
   MutexLock lock(&write_mutex_);
   Lease lease(*this);
@@ -286,20 +310,7 @@ std::optional<StoredObject> PostgresModelStore::Get(ObjectId id) {
   Lease lease(*this);
   PostgresConnection& connection = *lease;
   PostgresTransaction snapshot(connection, PostgresTransaction::Mode::kSnapshot);
-  const PostgresResult found =
-      connection.Query("SELECT " ORBIT_PG_SUMMARY_COLUMNS " FROM objects o WHERE o.id = $1",
-                       PostgresParams().Add(id));
-  if (found.rows() == 0) return std::nullopt;
-  StoredObject object;
-  object.summary = SummaryFromRow(found, 0);
-  const PostgresResult views = connection.Query(
-      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
-      "WHERE object_id = $1 ORDER BY azimuth, id",
-      PostgresParams().Add(id));
-  for (int row = 0; row < views.rows(); ++row) {
-    object.views.push_back(ViewFromRow(views, row, 0, id, object.summary.variant));
-    object.thumbnails.push_back(views.Bytes(row, 4));
-  }
+  std::optional<StoredObject> object = ReadObject(connection, id);
   snapshot.Commit();
   return object;
 }
@@ -346,12 +357,63 @@ std::vector<ObjectModel> PostgresModelStore::LoadAll() {
   return models;
 }
 
+ObjectId PostgresModelStore::ForEachObject(const std::function<void(const StoredObject&)>& visit) {
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction snapshot(connection, PostgresTransaction::Mode::kSnapshot);
+  const PostgresResult ids = connection.Query("SELECT id FROM objects ORDER BY id");
+  // Every id read above is in the snapshot, so each object is there, whole.
+  for (int row = 0; row < ids.rows(); ++row) visit(*ReadObject(connection, ids.Int64(row, 0)));
+  // Sequences stand outside transactions: this is the latest value, at least the snapshot's.
+  const ObjectId highest = connection
+                               .Query(
+                                   "SELECT coalesce(pg_sequence_last_value("
+                                   "pg_get_serial_sequence('objects', 'id')::regclass), 0)")
+                               .Int64(0, 0);
+  snapshot.Commit();
+  return highest;
+}
+
+void PostgresModelStore::RestoreFrom(ModelStore& source) {
+  MutexLock lock(&write_mutex_);
+  Lease lease(*this);
+  PostgresConnection& connection = *lease;
+  PostgresTransaction transaction(connection, PostgresTransaction::Mode::kWrite);
+  if (const std::int64_t count = connection.Query("SELECT count(*) FROM objects").Int64(0, 0);
+      count > 0) {
+    throw StoreNotEmpty(target_, count);
+  }
+  const ObjectId highest = source.ForEachObject([&connection](const StoredObject& object) {
+    ValidateStoredObject(object);
+    const ObjectSummary& summary = object.summary;
+    connection.Query(
+        "INSERT INTO objects (id, name, variant, created_at, updated_at, metadata) "
+        "OVERRIDING SYSTEM VALUE VALUES ($1, $2, $3, $4::timestamptz, $5::timestamptz, $6)",
+        PostgresParams()
+            .Add(summary.id)
+            .Add(std::string_view(summary.name))
+            .Add(VariantName(summary.variant))
+            .Add(std::string_view(summary.created_at))
+            .Add(std::string_view(summary.updated_at))
+            .Add(std::string_view(summary.metadata)));
+    InsertViews(connection, summary.id, summary.variant, object.views, object.thumbnails);
+    RecordChange(connection, summary.id, ModelChangeKind::kEnroll);
+  });
+  // The identity's next value comes after every id the source handed out and every id here.
+  connection.Query(
+      "SELECT setval(sequence, next_after) FROM ("
+      "SELECT pg_get_serial_sequence('objects', 'id') AS sequence, greatest($1::bigint, "
+      "(SELECT coalesce(max(id), 0) FROM objects), coalesce(pg_sequence_last_value("
+      "pg_get_serial_sequence('objects', 'id')::regclass), 0)) AS next_after) s "
+      "WHERE next_after > 0",
+      PostgresParams().Add(highest));
+  transaction.Commit();
+}
+
 void PostgresModelStore::Backup(const std::filesystem::path& destination) {
-  throw StoreError(StoreError::Code::kIncompatible,
-                   "cannot back up " + target_ + " to " + destination.string() +
-                       ": a PostgreSQL model store is backed up with pg_dump "
-                       "(pg_dump --format=custom, restored with pg_restore), which keeps ids, "
-                       "id sequences and the change log");
+  WriteStoreCopy(target_, destination, kStoreFileMode, [this](const std::filesystem::path& copy) {
+    SqliteModelStore(copy).RestoreFrom(*this);
+  });
 }
 
 std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq, int limit) {
@@ -360,12 +422,19 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
                                 std::to_string(kMaxListLimit));
   }
   Lease lease(*this);
-  const PostgresResult rows =
-      (*lease).Query("SELECT seq, object_id, kind, " ORBIT_PG_TIME(
-                         "committed_at") " FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2",
-                     PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  // One statement, one snapshot: the pruned point and the changes after `after_seq` agree. The
+  // first row always exists (the horizon's); its change columns are NULL when there is none.
+  const PostgresResult rows = (*lease).Query(
+      "SELECT c.seq, c.object_id, c.kind, c.committed_at, h.pruned_through "
+      "FROM change_log_horizon h LEFT JOIN LATERAL ("
+      "SELECT seq, object_id, kind, " ORBIT_PG_TIME("committed_at") " AS committed_at "
+      "FROM model_changes WHERE seq > $1 ORDER BY seq LIMIT $2) c ON true ORDER BY c.seq",
+      PostgresParams().Add(after_seq).Add(std::int64_t{limit}));
+  if (const std::int64_t pruned_through = rows.Int64(0, 4); pruned_through > after_seq) {
+    throw ChangeLogPruned(after_seq, pruned_through);
+  }
   std::vector<ModelChange> changes;
-  for (int row = 0; row < rows.rows(); ++row) {
+  for (int row = 0; row < rows.rows() && !rows.IsNull(row, 0); ++row) {
     const std::optional<ModelChangeKind> kind = ParseModelChangeKind(rows.Text(row, 2));
     if (!kind) {
       throw StoreError(
@@ -382,7 +451,42 @@ std::vector<ModelChange> PostgresModelStore::ChangesAfter(std::int64_t after_seq
 
 std::int64_t PostgresModelStore::LatestChangeSeq() {
   Lease lease(*this);
-  return (*lease).Query("SELECT COALESCE(max(seq), 0) FROM model_changes").Int64(0, 0);
+  return (*lease)
+      .Query(
+          "SELECT greatest((SELECT coalesce(max(seq), 0) FROM model_changes), "
+          "(SELECT pruned_through FROM change_log_horizon))")
+      .Int64(0, 0);
+}
+
+void PostgresModelStore::ReportApplied(std::string_view replica, std::int64_t applied_seq) {
+  Lease lease(*this);
+  (*lease).Query(
+      "INSERT INTO replica_progress (replica, applied_seq, reported_at) VALUES ($1, $2, now()) "
+      "ON CONFLICT (replica) DO UPDATE SET applied_seq = excluded.applied_seq, "
+      "reported_at = excluded.reported_at",
+      PostgresParams().Add(replica).Add(applied_seq));
+}
+
+std::int64_t PostgresModelStore::PruneChanges(std::chrono::milliseconds lease) {
+  Lease connection(*this);
+  // Every part sees the same snapshot, so `bound` counts the live replicas as they were before
+  // `forgotten` deletes the silent ones. A replica reporting meanwhile is not counted: if the
+  // bound passes it, it is told so by ChangesAfter, never left with a hole.
+  return (*connection)
+      .Query(
+          "WITH live AS (SELECT now() - $1::bigint * interval '1 millisecond' AS since), "
+          "forgotten AS (DELETE FROM replica_progress WHERE reported_at < (SELECT since FROM "
+          "live)), "
+          "bound AS (SELECT min(applied_seq) AS seq FROM replica_progress "
+          "WHERE reported_at >= (SELECT since FROM live)), "
+          "pruned AS (DELETE FROM model_changes WHERE seq <= (SELECT seq FROM bound)), "
+          "horizon AS (UPDATE change_log_horizon "
+          "SET pruned_through = greatest(pruned_through, (SELECT seq FROM bound)) "
+          "WHERE (SELECT seq FROM bound) IS NOT NULL RETURNING pruned_through) "
+          "SELECT coalesce((SELECT pruned_through FROM horizon), "
+          "(SELECT pruned_through FROM change_log_horizon))",
+          PostgresParams().Add(std::int64_t{lease.count()}))
+      .Int64(0, 0);
 }
 
 }  // namespace orbit

@@ -20,6 +20,9 @@
 // committed_at) and sends NOTIFY orbit_model_changes with the row's seq as payload, both in the
 // write's own transaction: a listener is told exactly when a change is committed, and the seqs
 // are in commit order because the write lock is held until COMMIT. ChangesAfter reads the log.
+// Replicas report how far they have applied it (ReportApplied) and prune what every live one has
+// applied (PruneChanges); asked for changes that were pruned, ChangesAfter refuses rather than
+// answer with a hole (docs/design.md#change-log).
 //
 // Errors: as ModelStore's. When the server is unreachable or goes away, StoreError kIo names the
 // target and carries libpq's reason. One exception to "a method that throws has changed
@@ -30,8 +33,10 @@
 #include <chrono>
 #include <cstdint>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "core/base/mutex.h"
@@ -74,18 +79,36 @@ class PostgresModelStore final : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
   std::vector<ObjectModel> LoadAll() override;
-
-  // Not done by the store: a PostgreSQL database is backed up with the server's own tools,
-  // which keep ids, the id sequences and the change log (pg_dump --format=custom DBNAME; restore
-  // with pg_restore). Always throws StoreError kIncompatible saying so, writing nothing.
+  // One REPEATABLE READ READ ONLY transaction: replicas writing meanwhile are not seen.
+  ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) override;
+  // Each restored object is also logged as an enrollment, so that replicas following this
+  // database index it. The change log of `source`, if any, is not copied.
+  void RestoreFrom(ModelStore& source) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  // A SQLite model store holding one ForEachObject snapshot, created readable by its owner only
+  // (storage/store_files.h). The change log is not in it (docs/design.md#backup-and-restore).
   void Backup(const std::filesystem::path& destination) override;
 
   // The changes committed after the one numbered `after_seq` (0: from the start), in commit
   // order, at most `limit` (1..kMaxListLimit) of them: a follower calls it again with the last
-  // seq it got until the answer is empty. Throws std::invalid_argument for a limit out of range.
+  // seq it got until the answer is empty. Throws std::invalid_argument for a limit out of range,
+  // ChangeLogPruned when changes after `after_seq` have been pruned (the log and the pruned point
+  // are read in one snapshot, so an answer is never missing a change).
   std::vector<ModelChange> ChangesAfter(std::int64_t after_seq, int limit = 1000);
 
-  // The seq of the last change committed so far (0 when none). A follower reads it before
+  // Records that `replica` (a name unique among the replicas of this database) has applied every
+  // change through `applied_seq`, stamped with the database's clock. Until it has been silent for
+  // longer than PruneChanges' lease, no change after `applied_seq` is pruned.
+  void ReportApplied(std::string_view replica, std::int64_t applied_seq);
+
+  // Deletes from the log every change that each replica which reported within `lease` has
+  // applied, and forgets the replicas silent for longer (they are not waited for: back, they
+  // get ChangeLogPruned). One statement: the deletion and the new pruned point commit together.
+  // Returns the pruned point: the seq through which the log may no longer hold changes (0: none
+  // pruned yet).
+  std::int64_t PruneChanges(std::chrono::milliseconds lease);
+
+  // The seq of the last change committed so far (0 when none; never below the pruned point,
+  // which is the last committed change once everything is pruned). A follower reads it before
   // LoadAll and then follows from it: a change committed in between is applied again, which is
   // harmless because applying a change re-reads the object (server/model_change_follower.h).
   std::int64_t LatestChangeSeq();
@@ -95,10 +118,6 @@ class PostgresModelStore final : public ModelStore {
 
  private:
   class Lease;  // a pooled connection, returned to the pool when it goes out of scope
-
-  void InsertViews(PostgresConnection& connection, ObjectId id, DescriptorVariant variant,
-                   const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails)
-      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 
   const std::string conninfo_;
   const std::string target_;

@@ -57,6 +57,21 @@ constexpr const char* kMigrations[] = {
       ALTER TABLE views DROP CONSTRAINT views_descriptor_check,
         ADD CONSTRAINT views_descriptor_check CHECK (length(descriptor) IN (144, 480));
     )sql",
+    // 3: pruning the change log (docs/design.md#change-log). replica_progress: the last change
+    // each replica has applied, stamped by the database's clock (replicas' clocks may disagree).
+    // change_log_horizon: one row, the seq through which changes may have been deleted.
+    R"sql(
+      CREATE TABLE replica_progress (
+        replica text PRIMARY KEY,
+        applied_seq bigint NOT NULL,
+        reported_at timestamptz NOT NULL
+      );
+      CREATE TABLE change_log_horizon (
+        one_row boolean PRIMARY KEY DEFAULT true CHECK (one_row),
+        pruned_through bigint NOT NULL
+      );
+      INSERT INTO change_log_horizon (pruned_through) VALUES (0);
+    )sql",
 };
 static_assert(std::size(kMigrations) == kPostgresSchemaVersion);
 

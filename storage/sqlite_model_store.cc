@@ -1,8 +1,5 @@
 #include "storage/sqlite_model_store.h"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <algorithm>
 #include <chrono>
 #include <stdexcept>
@@ -18,6 +15,8 @@
 #include "storage/sqlite_connection.h"
 #include "storage/sqlite_error.h"
 #include "storage/sqlite_transaction.h"
+#include "storage/store_copy.h"
+#include "storage/store_files.h"
 
 namespace orbit {
 namespace {
@@ -93,12 +92,57 @@ std::optional<ObjectId> FindId(SqliteConnection& connection, std::string_view na
   return find->ColumnInt64(0);
 }
 
-// Makes a completed rename or file creation in `directory` durable.
-void SyncDirectory(const std::filesystem::path& directory) {
-  const int fd = ::open(directory.empty() ? "." : directory.c_str(), O_RDONLY | O_DIRECTORY);
-  if (fd < 0) return;  // nothing to sync on file systems without directory handles
-  ::fsync(fd);
-  ::close(fd);
+// The object `id` with its views and thumbnails, read on `connection` (inside the caller's read
+// transaction); nullopt when absent.
+std::optional<StoredObject> ReadObject(SqliteConnection& connection, ObjectId id) {
+  StoredObject object;
+  {
+    StatementLease find =
+        connection.Prepare("SELECT " ORBIT_SUMMARY_COLUMNS " FROM objects o WHERE o.id = ?1");
+    find->Bind(1, id);
+    if (!find->Step()) return std::nullopt;
+    object.summary = SummaryFromRow(*find);
+  }
+  StatementLease views = connection.Prepare(
+      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
+      "WHERE object_id = ?1 ORDER BY azimuth, id");
+  views->Bind(1, id);
+  while (views->Step()) {
+    object.views.push_back(ViewFromRow(*views, 0, id, object.summary.variant));
+    const std::span<const std::uint8_t> thumbnail = views->ColumnBlob(4);
+    object.thumbnails.emplace_back(thumbnail.begin(), thumbnail.end());
+  }
+  return object;
+}
+
+// Inserts `views` (with `thumbnails`: none, or one per view, "" for none) of object `id` on the
+// store's writer connection, inside its write transaction.
+void InsertViews(SqliteConnection& writer, ObjectId id, DescriptorVariant variant,
+                 const std::vector<ModelView>& views, const std::vector<std::string>& thumbnails) {
+  StatementLease insert = writer.Prepare(
+      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, thumbnail) "
+      "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const ModelView& view = views[i];
+    insert->Bind(1, id);
+    insert->Bind(2, NormaliseAzimuth(view.azimuth));
+    if (view.elevation) {
+      insert->Bind(3, *view.elevation);
+    } else {
+      insert->BindNull(3);
+    }
+    insert->BindBlob(4, DescriptorBytes(view.descriptor, variant));
+    insert->Bind(5, view.typical_distance);
+    if (i < thumbnails.size() && !thumbnails[i].empty()) {
+      const std::string& thumbnail = thumbnails[i];
+      insert->BindBlob(6,
+                       {reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
+    } else {
+      insert->BindNull(6);
+    }
+    insert->Run();
+    insert->Reset();
+  }
 }
 
 }  // namespace
@@ -156,6 +200,9 @@ SqliteModelStore::SqliteModelStore(const std::filesystem::path& file,
     throw StoreError(StoreError::Code::kIo, "model store " + file_.string() + " does not exist");
   }
   try {
+    // Created here rather than by SQLite, whose files take the umask's mode: the store and its
+    // log and shared-memory files (SQLite gives them the database file's mode) are private.
+    if (options_.create_if_missing) CreateStoreFile(file_, kStoreFileMode);
     writer_ = std::make_unique<SqliteConnection>(file_,
                                                  options_.create_if_missing
                                                      ? SqliteConnection::Mode::kReadWriteCreate
@@ -213,7 +260,7 @@ ObjectId SqliteModelStore::Enroll(const Enrollment& enrollment) {
     id = insert->ColumnInt64(0);
     insert->Run();  // RETURNING: the row is only written once the statement has run to its end
   }
-  InsertViews(id, enrollment.variant, enrollment.views, enrollment.thumbnails);
+  InsertViews(*writer_, id, enrollment.variant, enrollment.views, enrollment.thumbnails);
   CommitWrite(transaction);
   return id;
 }
@@ -240,7 +287,7 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
           std::to_string(kMaxViewsPerObject) + " per object");
     }
   }
-  InsertViews(id, variant, views, thumbnails);
+  InsertViews(*writer_, id, variant, views, thumbnails);
   {
     StatementLease touch =
         writer_->Prepare(std::string("UPDATE objects SET updated_at = ") + kNow + " WHERE id = ?1");
@@ -248,35 +295,6 @@ void SqliteModelStore::AddViews(ObjectId id, const std::vector<ModelView>& views
     touch->Run();
   }
   CommitWrite(transaction);
-}
-
-void SqliteModelStore::InsertViews(ObjectId id, DescriptorVariant variant,
-                                   const std::vector<ModelView>& views,
-                                   const std::vector<std::string>& thumbnails) {
-  StatementLease insert = writer_->Prepare(
-      "INSERT INTO views (object_id, azimuth, elevation, descriptor, typical_distance, thumbnail) "
-      "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    const ModelView& view = views[i];
-    insert->Bind(1, id);
-    insert->Bind(2, NormaliseAzimuth(view.azimuth));
-    if (view.elevation) {
-      insert->Bind(3, *view.elevation);
-    } else {
-      insert->BindNull(3);
-    }
-    insert->BindBlob(4, DescriptorBytes(view.descriptor, variant));
-    insert->Bind(5, view.typical_distance);
-    if (i < thumbnails.size() && !thumbnails[i].empty()) {
-      const std::string& thumbnail = thumbnails[i];
-      insert->BindBlob(6,
-                       {reinterpret_cast<const std::uint8_t*>(thumbnail.data()), thumbnail.size()});
-    } else {
-      insert->BindNull(6);
-    }
-    insert->Run();
-    insert->Reset();
-  }
 }
 
 void SqliteModelStore::Delete(ObjectId id) {
@@ -354,24 +372,7 @@ std::optional<StoredObject> SqliteModelStore::Get(ObjectId id) {
   Reader reader(*this);
   SqliteConnection& connection = reader.connection();
   SqliteTransaction snapshot(connection, SqliteTransaction::Mode::kRead);
-  StoredObject object;
-  {
-    StatementLease find =
-        connection.Prepare("SELECT " ORBIT_SUMMARY_COLUMNS " FROM objects o WHERE o.id = ?1");
-    find->Bind(1, id);
-    if (!find->Step()) return std::nullopt;
-    object.summary = SummaryFromRow(*find);
-  }
-  StatementLease views = connection.Prepare(
-      "SELECT azimuth, elevation, descriptor, typical_distance, thumbnail FROM views "
-      "WHERE object_id = ?1 ORDER BY azimuth, id");
-  views->Bind(1, id);
-  while (views->Step()) {
-    object.views.push_back(ViewFromRow(*views, 0, id, object.summary.variant));
-    const std::span<const std::uint8_t> thumbnail = views->ColumnBlob(4);
-    object.thumbnails.emplace_back(thumbnail.begin(), thumbnail.end());
-  }
-  return object;
+  return ReadObject(connection, id);
 }
 
 std::optional<ObjectSummary> SqliteModelStore::Find(std::string_view name) {
@@ -419,50 +420,90 @@ std::vector<ObjectModel> SqliteModelStore::LoadAll() {
   return models;
 }
 
+ObjectId SqliteModelStore::ForEachObject(const std::function<void(const StoredObject&)>& visit) {
+  Reader reader(*this);
+  SqliteConnection& connection = reader.connection();
+  SqliteTransaction snapshot(connection, SqliteTransaction::Mode::kRead);
+  std::vector<ObjectId> ids;
+  {
+    StatementLease list = connection.Prepare("SELECT id FROM objects ORDER BY id");
+    while (list->Step()) ids.push_back(list->ColumnInt64(0));
+  }
+  // Every id read above is in the snapshot, so each object is there, whole.
+  for (const ObjectId id : ids) visit(*ReadObject(connection, id));
+  StatementLease highest = connection.Prepare(
+      "SELECT coalesce((SELECT seq FROM sqlite_sequence WHERE name = 'objects'), 0)");
+  highest->Step();
+  return highest->ColumnInt64(0);
+}
+
+void SqliteModelStore::RestoreFrom(ModelStore& source) {
+  MutexLock lock(&write_mutex_);
+  SqliteTransaction transaction(*writer_, SqliteTransaction::Mode::kWrite);
+  SqliteConnection& writer = *writer_;  // for the visitor, which runs under this lock
+  if (const std::int64_t count = std::stoll(writer.QueryText("SELECT count(*) FROM objects"));
+      count > 0) {
+    throw StoreNotEmpty(file_.string(), count);
+  }
+  const ObjectId highest = source.ForEachObject([&writer](const StoredObject& object) {
+    ValidateStoredObject(object);
+    const ObjectSummary& summary = object.summary;
+    {
+      StatementLease insert = writer.Prepare(
+          "INSERT INTO objects (id, name, variant, created_at, updated_at, metadata) "
+          "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+      insert->Bind(1, summary.id);
+      insert->Bind(2, std::string_view(summary.name));
+      insert->Bind(3, VariantName(summary.variant));
+      insert->Bind(4, std::string_view(summary.created_at));
+      insert->Bind(5, std::string_view(summary.updated_at));
+      insert->Bind(6, std::string_view(summary.metadata));
+      insert->Run();
+    }
+    InsertViews(writer, summary.id, summary.variant, object.views, object.thumbnails);
+  });
+  // AUTOINCREMENT's high-water mark: at least the source's, so no id it handed out comes back.
+  {
+    StatementLease raise =
+        writer.Prepare("UPDATE sqlite_sequence SET seq = ?1 WHERE name = 'objects' AND seq < ?1");
+    raise->Bind(1, highest);
+    raise->Run();
+  }
+  {
+    StatementLease first = writer.Prepare(
+        "INSERT INTO sqlite_sequence (name, seq) SELECT 'objects', ?1 "
+        "WHERE ?1 > 0 AND NOT EXISTS (SELECT 1 FROM sqlite_sequence WHERE name = 'objects')");
+    first->Bind(1, highest);
+    first->Run();
+  }
+  CommitWrite(transaction);
+}
+
 void SqliteModelStore::Backup(const std::filesystem::path& destination) {
   std::error_code ignored;
   if (std::filesystem::equivalent(destination, file_, ignored)) {
     throw std::invalid_argument("backup destination " + destination.string() +
                                 " is the model store itself");
   }
-  // Written beside the destination and renamed over it once complete and checked, so that a
-  // crash mid-backup never leaves a truncated file under the destination's name.
-  const std::filesystem::path partial = destination.string() + ".partial";
-  std::filesystem::remove(partial, ignored);
-  try {
-    {
-      SqliteConnection copy(partial, SqliteConnection::Mode::kReadWriteCreate,
-                            options_.busy_timeout);
-      Reader reader(*this);
-      sqlite3_backup* backup =
-          sqlite3_backup_init(copy.handle(), "main", reader.connection().handle(), "main");
-      if (backup == nullptr) {
-        throw SqliteError(sqlite3_errcode(copy.handle()), copy.handle(), "cannot start backup");
-      }
-      // All pages in one step: the source stays in one read transaction (one snapshot) for the
-      // whole copy, while writers carry on in the write-ahead log.
-      const int step = sqlite3_backup_step(backup, -1);
-      const int finish = sqlite3_backup_finish(backup);
-      if (step != SQLITE_DONE) throw SqliteError(step, nullptr, "backup failed");
-      if (finish != SQLITE_OK) throw SqliteError(finish, copy.handle(), "backup failed");
-      // A self-contained single file (the copied header says WAL), checked before it is kept.
-      copy.Execute("PRAGMA journal_mode = DELETE");
-      const std::string verdict = copy.QueryText("PRAGMA quick_check");
-      if (verdict != "ok") {
-        throw StoreError(StoreError::Code::kCorrupt, "the copy failed quick_check: " + verdict);
-      }
+  // The copy holds what the store holds: no one may read it who may not read the store.
+  const std::filesystem::file_status status = std::filesystem::status(file_, ignored);
+  const std::filesystem::perms mode =
+      std::filesystem::exists(status) ? status.permissions() : kStoreFileMode;
+  WriteStoreCopy(file_.string(), destination, mode, [this](const std::filesystem::path& partial) {
+    SqliteConnection copy(partial, SqliteConnection::Mode::kReadWrite, options_.busy_timeout);
+    Reader reader(*this);
+    sqlite3_backup* backup =
+        sqlite3_backup_init(copy.handle(), "main", reader.connection().handle(), "main");
+    if (backup == nullptr) {
+      throw SqliteError(sqlite3_errcode(copy.handle()), copy.handle(), "cannot start backup");
     }
-    std::filesystem::rename(partial, destination);
-    SyncDirectory(destination.parent_path());
-  } catch (const StoreError& e) {
-    std::filesystem::remove(partial, ignored);
-    throw StoreError(e.code(), "cannot back up " + file_.string() + " to " + destination.string() +
-                                   ": " + e.what());
-  } catch (const std::filesystem::filesystem_error& e) {
-    std::filesystem::remove(partial, ignored);
-    throw StoreError(StoreError::Code::kIo, "cannot back up " + file_.string() + " to " +
-                                                destination.string() + ": " + e.what());
-  }
+    // All pages in one step: the source stays in one read transaction (one snapshot) for the
+    // whole copy, while writers carry on in the write-ahead log.
+    const int step = sqlite3_backup_step(backup, -1);
+    const int finish = sqlite3_backup_finish(backup);
+    if (step != SQLITE_DONE) throw SqliteError(step, nullptr, "backup failed");
+    if (finish != SQLITE_OK) throw SqliteError(finish, copy.handle(), "backup failed");
+  });
 }
 
 }  // namespace orbit

@@ -13,6 +13,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -26,7 +27,9 @@ class SqliteConnection;
 class SqliteTransaction;
 
 struct SqliteModelStoreOptions {
-  bool create_if_missing = false;                // otherwise a missing file is StoreError kIo
+  // Otherwise a missing file is StoreError kIo. A created store, its log and its shared-memory
+  // file are readable and writable by their owner only (storage/store_files.h).
+  bool create_if_missing = false;
   std::chrono::milliseconds busy_timeout{5000};  // how long to wait for another writer
   bool quick_check_on_open = true;               // PRAGMA quick_check before anything else
   // After a commit that leaves at least this many pages (4 KiB each) in the write-ahead log, the
@@ -61,6 +64,10 @@ class SqliteModelStore final : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override;
   std::optional<ObjectSummary> Find(std::string_view name) override;
   std::vector<ObjectModel> LoadAll() override;
+  // One read transaction on one pooled connection; writers carry on in the write-ahead log.
+  ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) override;
+  void RestoreFrom(ModelStore& source) ABSL_LOCKS_EXCLUDED(write_mutex_) override;
+  // As ModelStore::Backup; the copy is created with the store file's own mode.
   void Backup(const std::filesystem::path& destination) override;
 
   const std::filesystem::path& file() const { return file_; }
@@ -68,9 +75,6 @@ class SqliteModelStore final : public ModelStore {
  private:
   class Reader;  // a pooled read connection, returned to the pool when it goes out of scope
 
-  void InsertViews(ObjectId id, DescriptorVariant variant, const std::vector<ModelView>& views,
-                   const std::vector<std::string>& thumbnails)
-      ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
   // Commits a write and, when the log has grown enough, checkpoints it.
   void CommitWrite(SqliteTransaction& transaction) ABSL_EXCLUSIVE_LOCKS_REQUIRED(write_mutex_);
 

@@ -7,6 +7,7 @@
 // -> INTERNAL / FAILED_PRECONDITION).
 #pragma once
 
+#include <cstdint>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -38,7 +39,7 @@ class StoreError : public std::runtime_error {
   Code code_;
 };
 
-// The two refusals every store and its callers word alike.
+// The refusals every store and its callers word alike.
 // kNotFound: "no object with id ID".
 inline StoreError ObjectNotFound(ObjectId id) {
   return StoreError(StoreError::Code::kNotFound, "no object with id " + std::to_string(id));
@@ -48,6 +49,13 @@ inline StoreError NameTaken(std::string_view name, ObjectId owner) {
   return StoreError(StoreError::Code::kAlreadyExists, "an object named \"" + std::string(name) +
                                                           "\" already exists (id " +
                                                           std::to_string(owner) + ")");
+}
+
+// kAlreadyExists: "STORE holds COUNT objects: restore into an empty store".
+inline StoreError StoreNotEmpty(std::string_view store, std::int64_t count) {
+  return StoreError(StoreError::Code::kAlreadyExists, std::string(store) + " holds " +
+                                                          std::to_string(count) +
+                                                          " objects: restore into an empty store");
 }
 
 }  // namespace orbit

@@ -120,17 +120,41 @@ double KnownWindowStatistic(const std::vector<SampledView>& sampled, const std::
   return UnknownStatisticOf(d1, d2, typical);
 }
 
-// The largest value of the sorted `values` with at most `share` of them at or below it (ties
-// count whole: a value drawn several times is either all in or all out); just below the least
-// value when even that one is too many.
-double LowerQuantile(const std::vector<double>& values, double share) {
-  const auto allowed = static_cast<std::ptrdiff_t>(share * static_cast<double>(values.size()));
-  auto end = std::upper_bound(values.begin(), values.end(),
-                              values[std::max<std::ptrdiff_t>(allowed, 1) - 1]);
-  while (end - values.begin() > allowed && end != values.begin()) {
-    end = std::lower_bound(values.begin(), end, *(end - 1));  // drop the last value and its ties
+// A null window: its U and the left-out object it was drawn from.
+struct NullWindow {
+  double statistic = 0;
+  std::size_t object = 0;
+};
+
+// The upper confidence bound of the null's share at each of `windows` (sorted by statistic): the
+// mean over the null's objects of each one's share of its own windows at or below the value, plus
+// kNullShareBoundSigmas standard errors of that mean; then made non-decreasing. Tied values get
+// the bound at the last of them. One pass: each window moves its object's share by one step.
+std::vector<double> NullShareBounds(const std::vector<NullWindow>& windows, std::size_t objects) {
+  std::vector<int> drawn(objects, 0), below(objects, 0);
+  for (const NullWindow& w : windows) ++drawn[w.object];
+  const double k = static_cast<double>(
+      std::count_if(drawn.begin(), drawn.end(), [](int count) { return count > 0; }));
+  std::vector<double> bounds(windows.size());
+  double sum = 0, sum_of_squares = 0;  // of the objects' shares
+  double running_max = 0;
+  std::size_t group_start = 0;
+  for (std::size_t i = 0; i < windows.size(); ++i) {
+    const std::size_t o = windows[i].object;
+    const double before = static_cast<double>(below[o]) / drawn[o];
+    const double after = static_cast<double>(++below[o]) / drawn[o];
+    sum += after - before;
+    sum_of_squares += after * after - before * before;
+    if (i + 1 < windows.size() && windows[i + 1].statistic == windows[i].statistic) continue;
+    const double mean = sum / k;
+    const double variance =
+        k > 1 ? std::max(0.0, (sum_of_squares - k * mean * mean) / (k - 1)) : 0.0;
+    running_max = std::max(running_max, mean + kNullShareBoundSigmas * std::sqrt(variance / k));
+    std::fill(bounds.begin() + static_cast<std::ptrdiff_t>(group_start),
+              bounds.begin() + static_cast<std::ptrdiff_t>(i + 1), running_max);
+    group_start = i + 1;
   }
-  return end == values.begin() ? values.front() - 1e-12 : *(end - 1);
+  return bounds;
 }
 
 }  // namespace
@@ -170,16 +194,22 @@ RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& in
   std::vector<double> sums(objects);
   std::vector<int> frames;
   calibration.null_.resize(kCalibratedWindowLengths);
+  calibration.null_bound_.resize(kCalibratedWindowLengths);
+  std::vector<NullWindow> windows;
   for (int n = 1; n <= kCalibratedWindowLengths; ++n) {
-    std::vector<double>& null = calibration.null_[n - 1];
-    null.reserve(options.windows_per_length);
+    windows.clear();
     for (int w = 0; w < options.windows_per_length; ++w) {
-      const std::vector<int>& pool = of_object[random.UniformInt(objects)];
+      const std::size_t object = random.UniformInt(objects);
+      const std::vector<int>& pool = of_object[object];
       frames.clear();
       for (int k = 0; k < n; ++k) frames.push_back(pool[random.UniformInt(pool.size())]);
-      null.push_back(WindowStatistic(sampled, frames, sums));
+      windows.push_back({WindowStatistic(sampled, frames, sums), object});
     }
-    std::sort(null.begin(), null.end());
+    std::sort(windows.begin(), windows.end(),
+              [](const NullWindow& a, const NullWindow& b) { return a.statistic < b.statistic; });
+    std::vector<double>& null = calibration.null_[n - 1];
+    for (const NullWindow& w : windows) null.push_back(w.statistic);
+    calibration.null_bound_[n - 1] = NullShareBounds(windows, objects);
   }
   if (matched_objects.empty()) return calibration;
   calibration.known_.resize(kCalibratedWindowLengths);
@@ -206,8 +236,16 @@ const std::vector<double>& RejectionCalibration::Known(int frames) const {
   return known_[static_cast<std::size_t>(std::clamp(frames, 1, kCalibratedWindowLengths) - 1)];
 }
 
+const std::vector<double>& RejectionCalibration::NullBound(int frames) const {
+  return null_bound_[static_cast<std::size_t>(std::clamp(frames, 1, kCalibratedWindowLengths) - 1)];
+}
+
 double RejectionCalibration::NullThreshold(int frames, double false_accept_rate) const {
-  return LowerQuantile(Null(frames), false_accept_rate);
+  const std::vector<double>& null = Null(frames);
+  const std::vector<double>& bound = NullBound(frames);
+  const auto accepted =
+      std::upper_bound(bound.begin(), bound.end(), false_accept_rate) - bound.begin();
+  return accepted == 0 ? null.front() - 1e-12 : null[static_cast<std::size_t>(accepted - 1)];
 }
 
 double RejectionCalibration::KnownCeiling(int frames) const {
@@ -227,10 +265,19 @@ double RejectionCalibration::KnownAcceptRate(double statistic, int frames) const
          static_cast<double>(known.size());
 }
 
+double RejectionCalibration::NullShare(double statistic, int frames) const {
+  const std::vector<double>& null = Null(frames);
+  return static_cast<double>(std::upper_bound(null.begin(), null.end(), statistic) - null.begin()) /
+         static_cast<double>(null.size());
+}
+
 double RejectionCalibration::FalseAcceptRate(double statistic, int frames) const {
   const std::vector<double>& null = Null(frames);
   const auto at_or_below = std::upper_bound(null.begin(), null.end(), statistic) - null.begin();
-  return (static_cast<double>(at_or_below) + 1) / (static_cast<double>(null.size()) + 1);
+  const double least = 1 / (static_cast<double>(null.size()) + 1);
+  return at_or_below == 0
+             ? least
+             : std::max(least, NullBound(frames)[static_cast<std::size_t>(at_or_below - 1)]);
 }
 
 }  // namespace orbit

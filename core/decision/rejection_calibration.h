@@ -7,12 +7,20 @@
 // as a session would answer it (the winner and the runner-up are the two objects with the
 // largest summed best-view similarity over the window's frames) and gives one value of the
 // unknown statistic U (core/decision/unknown_statistic.h). Those values are the null distribution:
-// what U looks like when the object in front of the camera is unknown. The threshold for a target
-// false-accept rate f is the f-quantile of the null at the window's length: a window whose U is
-// at or below it is accepted, and an unknown object's window is accepted with probability about
-// f, provided unknown objects differ from the known ones the way known ones differ among
-// themselves. Look-alikes of enrolled objects are in the null too (an object whose twin is
-// enrolled), so on a model set with few of them the measured rate is below f.
+// what U looks like when the object in front of the camera is unknown. A window whose U is at or
+// below the threshold for a target false-accept rate f is accepted, and an unknown object's
+// window is then accepted with probability at most about f, provided unknown objects differ from
+// the known ones the way known ones differ among themselves. Look-alikes of enrolled objects are
+// in the null too (an object whose twin is enrolled), so on a model set with few of them the
+// measured rate is below f.
+//
+// The bound: the null's share at a threshold is the mean over its left-out objects of each
+// one's share, and with few objects that mean is a rough estimate (an object nobody enrolled may
+// look like none of them, or like one of them as closely as a twin). The threshold for f is
+// therefore the largest null value at which an upper confidence bound of that mean stays at or
+// below f: the mean plus kNullShareBoundSigmas standard errors over objects. With many objects
+// the bound lies close to the share (the threshold near the null's f-quantile); with few it lies
+// well above it, and the rule is stricter (docs/design.md#calibrated-rule).
 //
 // The known ceiling: with few objects the null is a handful of object pairs (two objects: one
 // pair) and says little about an object nobody enrolled, and an unknown window meets one object
@@ -50,6 +58,9 @@ inline constexpr double kOwnNeighbourhoodDegrees = 10;
 // The known windows' quantile the ceiling starts from, and the factor it is raised by: a known
 // object seen against another background or in another light than at enrollment lies further
 // from its views than they lie from each other (docs/design.md#known-ceiling).
+// The one-sided normal bound at 90% confidence on the null's share.
+inline constexpr double kNullShareBoundSigmas = 1.2816;
+
 inline constexpr double kKnownWindowsAccepted = 0.99;
 inline constexpr double kKnownCeilingMargin = 1.5;
 
@@ -73,7 +84,8 @@ class RejectionCalibration {
   bool calibrated() const { return !null_.empty(); }
 
   // The largest U the null accepts for a window of `frames` frames at the target false-accept
-  // rate (in (0, 1)): the null's quantile. REQUIRES: calibrated(), frames >= 1.
+  // rate (in (0, 1)): the largest null value whose FalseAcceptRate is at most the target; just
+  // below the least value when none is. REQUIRES: calibrated(), frames >= 1.
   double NullThreshold(int frames, double false_accept_rate) const;
 
   // The known ceiling: kKnownCeilingMargin times the U below which kKnownWindowsAccepted of the
@@ -85,9 +97,14 @@ class RejectionCalibration {
   // without any). REQUIRES: calibrated(), frames >= 1.
   double KnownAcceptRate(double statistic, int frames) const;
 
-  // The share of the null at or below `statistic` for a window of `frames` frames, in (0, 1]:
-  // how often an unknown object's window looks at least this known (the rule's p-value).
-  // REQUIRES: calibrated(), frames >= 1.
+  // The share of the null at or below `statistic` for a window of `frames` frames, in [0, 1]:
+  // how often a left-out object's window looked at least this known. REQUIRES: calibrated(),
+  // frames >= 1.
+  double NullShare(double statistic, int frames) const;
+
+  // The rule's p-value, in (0, 1]: the upper bound of NullShare at `statistic` over the null's
+  // objects, never below one window's worth (1 / (N + 1)). A window is accepted by the null at
+  // target f iff its FalseAcceptRate is at most f. REQUIRES: calibrated(), frames >= 1.
   double FalseAcceptRate(double statistic, int frames) const;
 
   // The objects and views the null was drawn from.
@@ -96,9 +113,13 @@ class RejectionCalibration {
 
  private:
   const std::vector<double>& Null(int frames) const;
+  const std::vector<double>& NullBound(int frames) const;
   const std::vector<double>& Known(int frames) const;  // REQUIRES: !known_.empty()
 
-  std::vector<std::vector<double>> null_;   // [n - 1]: sorted U values for windows of n frames
+  std::vector<std::vector<double>> null_;  // [n - 1]: sorted U values for windows of n frames
+  // [n - 1][i]: the bound on the share of the null at or below null_[n - 1][i], non-decreasing
+  // in i, equal within tied values.
+  std::vector<std::vector<double>> null_bound_;
   std::vector<std::vector<double>> known_;  // [n - 1]: the same for known objects' windows
   int sampled_objects_ = 0;
   int sampled_views_ = 0;

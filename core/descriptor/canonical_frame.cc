@@ -12,21 +12,10 @@
 #include <opencv2/imgproc.hpp>
 
 #include "core/base/cpu_dispatch.h"
+#include "core/descriptor/column_sums.h"
 
 namespace orbit {
 namespace {
-
-// acc[i] += row[i] for n bytes: the one loop that reads every pixel of a large frame. Compiled for
-// AVX2 as well as the baseline, chosen at load time (core/base/cpu_dispatch.h). One overload per
-// type rather than a template: clang does not multi-version function templates.
-ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint16_t* __restrict acc,
-                              std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) acc[i] = static_cast<std::uint16_t>(acc[i] + row[i]);
-}
-ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint32_t* __restrict acc,
-                              std::size_t n) {
-  for (std::size_t i = 0; i < n; ++i) acc[i] = acc[i] + row[i];
-}
 
 // floor(n / d) for 0 <= n < 512 * d and 0 < d < 2^19, by a multiply and a shift instead of a
 // division: with m = floor(2^48 / d) + 1, n * m / 2^48 exceeds n / d by at most n / 2^48, which
@@ -56,7 +45,9 @@ cv::Mat BlockMeans(const cv::Mat& bgr, int k) {
   const auto block_row = [&](int y, auto& sums, const auto& divide) {
     using Sum = typename std::decay_t<decltype(sums)>::value_type;
     std::fill(sums.begin(), sums.end(), Sum{0});
-    for (int dy = 0; dy < k; ++dy) AddRow(bgr.ptr<std::uint8_t>(y * k + dy), sums.data(), span);
+    for (int dy = 0; dy < k; ++dy) {
+      RunHotLoop<AddRowToColumnSums<Sum>>(bgr.ptr<std::uint8_t>(y * k + dy), sums.data(), span);
+    }
     std::uint8_t* row = out.ptr<std::uint8_t>(y);
     const Sum* block = sums.data();
     for (int x = 0; x < width; ++x, block += 3 * k) {
@@ -95,8 +86,8 @@ constexpr int kBlurRadius = 6;
 constexpr std::array<std::uint32_t, kBlurRadius + 1> kBlurKernel = {52, 45, 31, 16, 7, 2, 1};
 
 // One row, horizontally: padded holds the row with kBlurRadius reflected pixels on each side.
-ORBIT_AVX2_CLONES void BlurRow(const std::uint8_t* __restrict padded, std::uint16_t* __restrict out,
-                               int n, int channels) {
+ORBIT_HOT_LOOP void BlurRow(const std::uint8_t* __restrict padded, std::uint16_t* __restrict out,
+                            int n, int channels) {
   const std::uint8_t* centre = padded + kBlurRadius * channels;
   for (int i = 0; i < n; ++i) {  // 16-bit lanes suffice: the sum is at most 255 * 256
     std::uint16_t sum = static_cast<std::uint16_t>(kBlurKernel[0] * centre[i]);
@@ -109,8 +100,8 @@ ORBIT_AVX2_CLONES void BlurRow(const std::uint8_t* __restrict padded, std::uint1
 }
 
 // One output row, vertically: rows[t] is the horizontally blurred row t - kBlurRadius away.
-ORBIT_AVX2_CLONES void BlurColumn(const std::uint16_t* const* rows, std::uint8_t* __restrict out,
-                                  int n) {
+ORBIT_HOT_LOOP void BlurColumn(const std::uint16_t* const* rows, std::uint8_t* __restrict out,
+                               int n) {
   const std::uint16_t* centre = rows[kBlurRadius];
   for (int i = 0; i < n; ++i) {
     std::uint32_t sum = kBlurKernel[0] * centre[i] + (1u << 15);
@@ -139,7 +130,8 @@ cv::Mat CanonicalBlur(const cv::Mat& bgr) {
       std::copy_n(in + Reflect(width - 1 + t, width) * channels, channels,
                   padded.begin() + (kBlurRadius + width - 1 + t) * channels);
     }
-    BlurRow(padded.data(), horizontal.data() + static_cast<std::size_t>(y) * n, n, channels);
+    RunHotLoop<BlurRow>(padded.data(), horizontal.data() + static_cast<std::size_t>(y) * n, n,
+                        channels);
   }
   cv::Mat out(height, width, CV_8UC3);
   std::array<const std::uint16_t*, 2 * kBlurRadius + 1> rows;
@@ -148,7 +140,7 @@ cv::Mat CanonicalBlur(const cv::Mat& bgr) {
       rows[t] =
           horizontal.data() + static_cast<std::size_t>(Reflect(y + t - kBlurRadius, height)) * n;
     }
-    BlurColumn(rows.data(), out.ptr<std::uint8_t>(y), n);
+    RunHotLoop<BlurColumn>(rows.data(), out.ptr<std::uint8_t>(y), n);
   }
   return out;
 }

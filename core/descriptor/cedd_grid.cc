@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "core/base/cpu_dispatch.h"
+#include "core/descriptor/column_sums.h"
 
 namespace orbit::cedd {
 namespace {
@@ -42,19 +43,6 @@ void ProportionalBlocks(int size, std::vector<int>& edges, std::vector<int>& fir
   }
 }
 
-// acc[i] += row[i] for n bytes: the one loop that reads every pixel. Compiled for AVX2 as well as
-// the baseline, chosen at load time by the CPU (function multi-versioning), since it is
-// memory-bound work that AVX2 halves. One overload per accumulator type rather than a template:
-// clang (the fuzz build) does not multi-version function templates.
-ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint16_t* __restrict acc,
-                              int n) {
-  for (int i = 0; i < n; ++i) acc[i] = static_cast<std::uint16_t>(acc[i] + row[i]);
-}
-ORBIT_AVX2_CLONES void AddRow(const std::uint8_t* __restrict row, std::uint32_t* __restrict acc,
-                              int n) {
-  for (int i = 0; i < n; ++i) acc[i] = acc[i] + row[i];
-}
-
 // Adds the image rows [y0, y1) into acc (one entry per byte of a row), then adds acc's runs
 // between col_edges into the sums of one row of cells. Acc is wide enough not to overflow:
 // uint16 holds up to 257 rows of 255.
@@ -63,7 +51,10 @@ void SumCellRow(const cv::Mat& bgr, int y0, int y1, const std::vector<int>& col_
                 std::int64_t* sums) {
   const int bytes = col_edges.back() * 3;
   std::vector<Acc> acc(bytes, 0);
-  for (int y = y0; y < y1; ++y) AddRow(bgr.ptr<std::uint8_t>(y), acc.data(), bytes);
+  for (int y = y0; y < y1; ++y) {
+    RunHotLoop<AddRowToColumnSums<Acc>>(bgr.ptr<std::uint8_t>(y), acc.data(),
+                                        static_cast<std::size_t>(bytes));
+  }
   const int cols = static_cast<int>(col_edges.size()) - 1;
   for (int c = 0; c < cols; ++c) {
     std::int64_t b = 0, g = 0, r = 0;

@@ -15,9 +15,10 @@ namespace orbit {
 namespace {
 
 // second[i] = row[i - step] - 2 row[i] + row[i + step] for i in [step, n - step): the horizontal
-// second difference of a row of interleaved channels (step = channels). GCC vectorises it.
-ORBIT_AVX2_CLONES void SecondDifference(const std::uint8_t* __restrict row, int step,
-                                        std::int16_t* __restrict second, int n) {
+// second difference of a row of interleaved channels (step = channels). A hot loop
+// (core/base/cpu_dispatch.h).
+ORBIT_HOT_LOOP void SecondDifference(const std::uint8_t* __restrict row, int step,
+                                     std::int16_t* __restrict second, int n) {
   for (int i = step; i < n - step; ++i) {
     second[i] = static_cast<std::int16_t>(row[i - step] - 2 * row[i] + row[i + step]);
   }
@@ -26,10 +27,10 @@ ORBIT_AVX2_CLONES void SecondDifference(const std::uint8_t* __restrict row, int 
 // Sum over i in [step, n - step) of |above[i] - 2 middle[i] + below[i]|: the mask N, being
 // the product of two second differences, is the vertical second difference of the horizontal
 // ones.
-ORBIT_AVX2_CLONES std::int64_t AbsoluteResponse(const std::int16_t* __restrict above,
-                                                const std::int16_t* __restrict middle,
-                                                const std::int16_t* __restrict below, int step,
-                                                int n) {
+ORBIT_HOT_LOOP std::int64_t AbsoluteResponse(const std::int16_t* __restrict above,
+                                             const std::int16_t* __restrict middle,
+                                             const std::int16_t* __restrict below, int step,
+                                             int n) {
   std::int32_t sum = 0;  // at most 16 x 255 per value: rows of up to 500 000 values fit
   for (int i = step; i < n - step; ++i) {
     const int v = above[i] - 2 * middle[i] + below[i];
@@ -56,12 +57,13 @@ double EstimateNoiseSigma(const cv::Mat& image) {
   std::vector<std::int16_t> rows[3] = {std::vector<std::int16_t>(n), std::vector<std::int16_t>(n),
                                        std::vector<std::int16_t>(n)};
   for (int r = 0; r < 2; ++r)
-    SecondDifference(pixels.ptr<std::uint8_t>(r), step, rows[r].data(), n);
+    RunHotLoop<SecondDifference>(pixels.ptr<std::uint8_t>(r), step, rows[r].data(), n);
   std::int64_t sum = 0;
   for (int r = 1; r + 1 < pixels.rows; ++r) {
     std::vector<std::int16_t>& below = rows[(r + 1) % 3];
-    SecondDifference(pixels.ptr<std::uint8_t>(r + 1), step, below.data(), n);
-    sum += AbsoluteResponse(rows[(r - 1) % 3].data(), rows[r % 3].data(), below.data(), step, n);
+    RunHotLoop<SecondDifference>(pixels.ptr<std::uint8_t>(r + 1), step, below.data(), n);
+    sum += RunHotLoop<AbsoluteResponse>(rows[(r - 1) % 3].data(), rows[r % 3].data(), below.data(),
+                                        step, n);
   }
   const double values = static_cast<double>(pixels.rows - 2) * (pixels.cols - 2) * step;
   return std::sqrt(std::numbers::pi / 2) * static_cast<double>(sum) / (6 * values);

@@ -11,12 +11,12 @@ namespace {
 
 constexpr std::size_t kMaxStates = 65536;  // back pointers are 16 bits
 
-// The vector kernels below are plain loops over objects that GCC vectorises; the AVX2 clones
-// handle 8 objects per instruction.
+// The vector kernels below are plain loops over objects, hot loops (core/base/cpu_dispatch.h)
+// that the compiler vectorises: the AVX2 path handles 8 objects per instruction.
 
 // next[o] = pi * emission[o]; top[o] = max(top[o], next[o]).
-ORBIT_AVX2_CLONES void Start(float pi, const float* __restrict emission, float* __restrict next,
-                             float* __restrict top, std::size_t n) {
+ORBIT_HOT_LOOP void Start(float pi, const float* __restrict emission, float* __restrict next,
+                          float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     next[o] = pi * emission[o];
     top[o] = std::max(top[o], next[o]);
@@ -24,8 +24,8 @@ ORBIT_AVX2_CLONES void Start(float pi, const float* __restrict emission, float* 
 }
 
 // best[o], arg[o] = score_i[o] * a, i: the first transition into a state.
-ORBIT_AVX2_CLONES void Enter(const float* __restrict score_i, float a, std::int32_t i,
-                             float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
+ORBIT_HOT_LOOP void Enter(const float* __restrict score_i, float a, std::int32_t i,
+                          float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     best[o] = score_i[o] * a;
     arg[o] = i;
@@ -34,8 +34,8 @@ ORBIT_AVX2_CLONES void Enter(const float* __restrict score_i, float a, std::int3
 
 // best[o], arg[o] = the larger of (best[o], arg[o]) and (score_i[o] * a, i); strict, so that
 // among equal values the earlier (lower) state stays.
-ORBIT_AVX2_CLONES void Relax(const float* __restrict score_i, float a, std::int32_t i,
-                             float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
+ORBIT_HOT_LOOP void Relax(const float* __restrict score_i, float a, std::int32_t i,
+                          float* __restrict best, std::int32_t* __restrict arg, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     const float value = score_i[o] * a;
     const bool better = value > best[o];
@@ -45,9 +45,9 @@ ORBIT_AVX2_CLONES void Relax(const float* __restrict score_i, float a, std::int3
 }
 
 // next[o] = best[o] * emission[o]; back[o] = arg[o]; top[o] = max(top[o], next[o]).
-ORBIT_AVX2_CLONES void Emit(const float* __restrict best, const std::int32_t* __restrict arg,
-                            const float* __restrict emission, float* __restrict next,
-                            std::uint16_t* __restrict back, float* __restrict top, std::size_t n) {
+ORBIT_HOT_LOOP void Emit(const float* __restrict best, const std::int32_t* __restrict arg,
+                         const float* __restrict emission, float* __restrict next,
+                         std::uint16_t* __restrict back, float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     next[o] = best[o] * emission[o];
     back[o] = static_cast<std::uint16_t>(arg[o]);
@@ -56,8 +56,7 @@ ORBIT_AVX2_CLONES void Emit(const float* __restrict best, const std::int32_t* __
 }
 
 // row[o] *= scale[o], and values below FLT_MIN become 0 (see the header).
-ORBIT_AVX2_CLONES void Rescale(float* __restrict row, const float* __restrict scale,
-                               std::size_t n) {
+ORBIT_HOT_LOOP void Rescale(float* __restrict row, const float* __restrict scale, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     const float value = row[o] * scale[o];
     row[o] = value >= FLT_MIN ? value : 0.0f;
@@ -65,7 +64,7 @@ ORBIT_AVX2_CLONES void Rescale(float* __restrict row, const float* __restrict sc
 }
 
 // scale[o] = 1 / top[o], or 1 when every score of the object is 0.
-ORBIT_AVX2_CLONES void Reciprocal(float* __restrict top, std::size_t n) {
+ORBIT_HOT_LOOP void Reciprocal(float* __restrict top, std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) top[o] = top[o] > 0.0f ? 1.0f / top[o] : 1.0f;
 }
 
@@ -112,7 +111,8 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
     std::fill(top.begin(), top.end(), 0.0f);
     if (t == 0) {
       for (std::size_t i = 0; i < states; ++i) {
-        Start(initial_[i], &emission[i * objects], &next[i * objects], top.data(), objects);
+        RunHotLoop<Start>(initial_[i], &emission[i * objects], &next[i * objects], top.data(),
+                          objects);
       }
     } else {
       std::uint16_t* back = &back_pointers[t * states * objects];
@@ -124,14 +124,19 @@ void BatchViterbi::Decode(std::span<const float* const> emissions,
         }
         for (std::size_t k = 0; k < into.size(); ++k) {
           const auto [i, a] = into[k];
-          (k == 0 ? Enter : Relax)(&score[i * objects], a, i, best.data(), arg.data(), objects);
+          if (k == 0) {
+            RunHotLoop<Enter>(&score[i * objects], a, i, best.data(), arg.data(), objects);
+          } else {
+            RunHotLoop<Relax>(&score[i * objects], a, i, best.data(), arg.data(), objects);
+          }
         }
-        Emit(best.data(), arg.data(), &emission[j * objects], &next[j * objects],
-             &back[j * objects], top.data(), objects);
+        RunHotLoop<Emit>(best.data(), arg.data(), &emission[j * objects], &next[j * objects],
+                         &back[j * objects], top.data(), objects);
       }
     }
-    Reciprocal(top.data(), objects);
-    for (std::size_t i = 0; i < states; ++i) Rescale(&next[i * objects], top.data(), objects);
+    RunHotLoop<Reciprocal>(top.data(), objects);
+    for (std::size_t i = 0; i < states; ++i)
+      RunHotLoop<Rescale>(&next[i * objects], top.data(), objects);
     score.swap(next);
   }
 

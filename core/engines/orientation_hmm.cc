@@ -160,9 +160,9 @@ constexpr float kUnseenEmission = -1.0f;
 // best[o] is the object's highest emission, or 0 when it is unseen (its similarity on any
 // path), so best[o] > 0 exactly when the object is seen. `sum` is scratch of n floats. Called
 // with n = 1 on one object's values, it gives what it gives that object among many.
-ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int states,
-                                                 float* __restrict sum, float* __restrict best,
-                                                 std::size_t n) {
+ORBIT_HOT_LOOP void EmissionsFromSimilarities(float* __restrict values, int states,
+                                              float* __restrict sum, float* __restrict best,
+                                              std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) sum[o] = 0.0f;
   for (int i = 0; i < states; ++i) {
     const float* row = &values[static_cast<std::size_t>(i) * n];
@@ -185,8 +185,8 @@ ORBIT_AVX2_CLONES void EmissionsFromSimilarities(float* __restrict values, int s
 constexpr float kBoundUnitsPerOne = 32768.0f;
 
 // units[o] = ceil(best[o] * 2^15): exact, as scaling by a power of two is.
-ORBIT_AVX2_CLONES void BoundUnits(const float* __restrict best, std::uint16_t* __restrict units,
-                                  std::size_t n) {
+ORBIT_HOT_LOOP void BoundUnits(const float* __restrict best, std::uint16_t* __restrict units,
+                               std::size_t n) {
   for (std::size_t o = 0; o < n; ++o) {
     units[o] = static_cast<std::uint16_t>(std::ceil(best[o] * kBoundUnitsPerOne));
   }
@@ -194,8 +194,8 @@ ORBIT_AVX2_CLONES void BoundUnits(const float* __restrict best, std::uint16_t* _
 
 // bound[o] += units[o], or -= with `subtract`: a window's bounds follow its frames in
 // integers, exactly, as frames enter and leave.
-ORBIT_AVX2_CLONES void AddBounds(const std::uint16_t* __restrict units, bool subtract,
-                                 std::uint32_t* __restrict bound, std::size_t n) {
+ORBIT_HOT_LOOP void AddBounds(const std::uint16_t* __restrict units, bool subtract,
+                              std::uint32_t* __restrict bound, std::size_t n) {
   if (subtract) {
     for (std::size_t o = 0; o < n; ++o) bound[o] -= units[o];
   } else {
@@ -249,7 +249,7 @@ void AppendEmissions(std::span<const float> all, std::size_t objects, int states
 // nothing for the objects that can rank.
 // Values that would fall below FLT_MIN are set to 0 at once: subnormal floats cost the
 // multiplications here and in BatchViterbi tens of cycles each.
-ORBIT_AVX2_CLONES void Sharpen(float* __restrict values, std::size_t count, int squarings) {
+ORBIT_HOT_LOOP void Sharpen(float* __restrict values, std::size_t count, int squarings) {
   if (squarings == 0) return;
   // The smallest value whose 2^squarings-th power is a normal float.
   const float smallest =
@@ -347,11 +347,11 @@ class OrientationHmm final : public WindowedEngine {
     }
     previous_ = frame;
     bound_.resize(objects, 0);
-    AddBounds(stored.best.data(), false, bound_.data(), objects);
+    RunHotLoop<AddBounds>(stored.best.data(), false, bound_.data(), objects);
     frames_.push_back(std::move(stored));
   }
   void DropOldest() override {
-    AddBounds(frames_.front().best.data(), true, bound_.data(), bound_.size());
+    RunHotLoop<AddBounds>(frames_.front().best.data(), true, bound_.data(), bound_.size());
     spare_ = std::move(frames_.front());  // its buffers serve the next frame
     frames_.pop_front();
   }
@@ -387,7 +387,7 @@ class OrientationHmm final : public WindowedEngine {
     }
     bound_.assign(objects, 0);
     for (const WindowFrame& frame : frames_) {
-      AddBounds(frame.best.data(), false, bound_.data(), objects);
+      RunHotLoop<AddBounds>(frame.best.data(), false, bound_.data(), objects);
     }
     ForgetKept();
   }
@@ -490,8 +490,9 @@ class OrientationHmm final : public WindowedEngine {
     best_emission.resize(objects);
     best.resize(objects);
     table.Compute(descriptor, by_state);
-    EmissionsFromSimilarities(by_state.data(), states, sum.data(), best_emission.data(), objects);
-    BoundUnits(best_emission.data(), best.data(), objects);
+    RunHotLoop<EmissionsFromSimilarities>(by_state.data(), states, sum.data(), best_emission.data(),
+                                          objects);
+    RunHotLoop<BoundUnits>(best_emission.data(), best.data(), objects);
     return by_state;
   }
 
@@ -535,7 +536,7 @@ class OrientationHmm final : public WindowedEngine {
       for (const SectorViews* object_sectors : sectors) {
         SectorSimilarityTable::ComputeObject(window[t].descriptor.values, *object_sectors,
                                              emissions);
-        EmissionsFromSimilarities(emissions.data(), states_, &sum, &best, 1);
+        RunHotLoop<EmissionsFromSimilarities>(emissions.data(), states_, &sum, &best, 1);
         kept.insert(kept.end(), emissions.begin(), emissions.end());
       }
     }
@@ -610,7 +611,7 @@ class OrientationHmm final : public WindowedEngine {
           lanes_of_frame[i * lanes + j] = std::abs(object_states[i]);  // kUnseenEmission: 1
         }
       }
-      Sharpen(lanes_of_frame, states * lanes, sharpness);
+      RunHotLoop<Sharpen>(lanes_of_frame, states * lanes, sharpness);
       emissions.push_back(lanes_of_frame);
       if (t > 0) steps.push_back(&frames_[t].step);
     }

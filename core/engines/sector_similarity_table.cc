@@ -16,18 +16,18 @@ constexpr std::size_t kMaxViewsForExactSums = 32767 / kDescriptorMaxValue;
 constexpr std::size_t kRowAlignment = 16;
 
 // acc[s] += q * row[s]: exact, since |q * row[s]| <= 7 * 32767 and at most 144 such terms are
-// added. GCC vectorises the loop; the AVX2 clone handles 8 states per instruction.
-ORBIT_AVX2_CLONES void AddScaledRow(const std::int16_t* __restrict row, std::int32_t q,
-                                    std::int32_t* __restrict acc, std::size_t n) {
+// added. A hot loop (core/base/cpu_dispatch.h): the AVX2 path handles 8 states per instruction.
+ORBIT_HOT_LOOP void AddScaledRow(const std::int16_t* __restrict row, std::int32_t q,
+                                 std::int32_t* __restrict acc, std::size_t n) {
   for (std::size_t s = 0; s < n; ++s) acc[s] += q * row[s];
 }
 
 // similarity[s] = TC from the dot product with the state's sum: q.S = acc / count, and
 // TC = q.S / (q.q + S.S - q.S); 1 when both are zero vectors, 0 when only one is.
-ORBIT_AVX2_CLONES void TanimotoFromSums(const std::int32_t* __restrict acc,
-                                        const float* __restrict inverse_counts,
-                                        const float* __restrict squared_norms, float query_norm,
-                                        float* __restrict similarity, std::size_t n) {
+ORBIT_HOT_LOOP void TanimotoFromSums(const std::int32_t* __restrict acc,
+                                     const float* __restrict inverse_counts,
+                                     const float* __restrict squared_norms, float query_norm,
+                                     float* __restrict similarity, std::size_t n) {
   for (std::size_t s = 0; s < n; ++s) {
     const float qc = static_cast<float>(acc[s]) * inverse_counts[s];
     const float denominator = query_norm + squared_norms[s] - qc;
@@ -124,10 +124,11 @@ void SectorSimilarityTable::Compute(const DescriptorValues& query,
   for (int d = 0; d < kDescriptorSize; ++d) {
     if (query[d] == 0) continue;  // most bins of a CEDD are empty
     query_norm += query[d] * query[d];
-    AddScaledRow(&bin_sums_[static_cast<std::size_t>(d) * stride_], query[d], acc.data(), count);
+    RunHotLoop<AddScaledRow>(&bin_sums_[static_cast<std::size_t>(d) * stride_], query[d],
+                             acc.data(), count);
   }
-  TanimotoFromSums(acc.data(), inverse_counts_.data(), squared_norms_.data(),
-                   static_cast<float>(query_norm), similarity.data(), count);
+  RunHotLoop<TanimotoFromSums>(acc.data(), inverse_counts_.data(), squared_norms_.data(),
+                               static_cast<float>(query_norm), similarity.data(), count);
   for (const auto& [s, mean] : wide_states_) {
     similarity[s] = static_cast<float>(Tanimoto(query, *mean));
   }
@@ -163,8 +164,8 @@ void SectorSimilarityTable::ComputeObject(const DescriptorValues& query, const S
     inverse_counts[i] = InverseCount(sectors, i);
     squared_norms[i] = SquaredNorm(sectors, i);
   }
-  TanimotoFromSums(acc.data(), inverse_counts.data(), squared_norms.data(),
-                   static_cast<float>(query_norm), similarity.data(), count);
+  RunHotLoop<TanimotoFromSums>(acc.data(), inverse_counts.data(), squared_norms.data(),
+                               static_cast<float>(query_norm), similarity.data(), count);
   for (std::size_t i = 0; i < count; ++i) {
     if (IsWide(sectors, i)) {
       similarity[i] = static_cast<float>(Tanimoto(query, sectors.descriptor[i]));

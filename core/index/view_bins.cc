@@ -11,10 +11,11 @@ namespace {
 constexpr std::size_t kLineBytes = 64;
 
 // products[j] += q * low 4 bits of packed[j], products[half + j] += q * high 4 bits, for j <
-// half: in AVX2 where the CPU has it (16 lanes of 16 bits an instruction).
-ORBIT_AVX2_CLONES void AddPackedProducts(const std::uint8_t* __restrict packed, std::uint16_t q,
-                                         std::uint16_t* __restrict low,
-                                         std::uint16_t* __restrict high, std::size_t half) {
+// half: a hot loop (core/base/cpu_dispatch.h), 16 lanes of 16 bits an instruction on the AVX2
+// path.
+ORBIT_HOT_LOOP void AddPackedProducts(const std::uint8_t* __restrict packed, std::uint16_t q,
+                                      std::uint16_t* __restrict low, std::uint16_t* __restrict high,
+                                      std::size_t half) {
   for (std::size_t j = 0; j < half; ++j) {
     low[j] = static_cast<std::uint16_t>(low[j] + q * (packed[j] & 0x0F));
     high[j] = static_cast<std::uint16_t>(high[j] + q * (packed[j] >> 4));
@@ -40,7 +41,7 @@ ViewBins::ViewBins(std::span<const DescriptorValues> views)
 
 void ViewBins::AddProducts(std::size_t bin, std::uint16_t q,
                            std::span<std::uint16_t> products) const {
-  AddPackedProducts(Bin(bin), q, products.data(), products.data() + half_, half_);
+  RunHotLoop<AddPackedProducts>(Bin(bin), q, products.data(), products.data() + half_, half_);
 }
 
 std::uint8_t ViewBins::Value(std::size_t bin, std::size_t view) const {

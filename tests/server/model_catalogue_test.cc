@@ -113,6 +113,10 @@ class StoreWithAnotherUser : public ModelStore {
   std::optional<StoredObject> Get(ObjectId id) override { return mine_.Get(id); }
   std::optional<ObjectSummary> Find(std::string_view name) override { return mine_.Find(name); }
   std::vector<ObjectModel> LoadAll() override { return mine_.LoadAll(); }
+  ObjectId ForEachObject(const std::function<void(const StoredObject&)>& visit) override {
+    return mine_.ForEachObject(visit);
+  }
+  void RestoreFrom(ModelStore& source) override { mine_.RestoreFrom(source); }
   void Backup(const std::filesystem::path& to) override { mine_.Backup(to); }
 
   SqliteModelStore& mine() { return mine_; }

@@ -1,6 +1,8 @@
 // ModelChangeFollower (server/model_change_follower.h) on a real PostgreSQL server: replica B's
 // index follows what replica A writes, in order, through a dropped connection and a crash of
-// the database server, and B reports itself unfit to serve only after the grace.
+// the database server, and B reports itself unfit to serve only after the grace. The log is
+// pruned only through what every live replica applied, and a replica back from beyond its lease
+// reloads its whole index.
 #include "server/model_change_follower.h"
 
 #include <chrono>
@@ -165,6 +167,89 @@ TEST(PostgresModelChangeFollowerTest, ARestartedDatabaseIsCaughtUpAndFitnessFoll
   ASSERT_TRUE(WaitUntil([&] { return b.Find(jar.id).has_value(); }));
   ASSERT_TRUE(WaitUntil([&] { return reported().size() == 2; }));
   EXPECT_EQ(reported(), (std::vector<bool>{false, true}));
+}
+
+// The name replica `follower` reports its progress under, quoted for SQL.
+std::string Quoted(const ModelChangeFollower& follower) { return "'" + follower.replica() + "'"; }
+
+// Two replicas follow: what both have applied leaves the log; while one is stopped but within its
+// lease, what it has not applied stays, and it then catches up without reloading anything.
+TEST(PostgresModelChangeFollowerTest, TheLogKeepsWhatALiveReplicaHasNotApplied) {
+  TestDatabase database;
+  ModelChangeFollowerOptions options;
+  options.poll_interval = milliseconds(50);
+  Replica a(database.conninfo(), options);
+  Replica b(database.conninfo(), options);
+  for (int i = 0; i < 3; ++i) a.catalogue.Enroll(SyntheticObject("o" + std::to_string(i), 2, i));
+  ASSERT_TRUE(WaitUntil([&] { return b.catalogue.Snapshot()->object_count() == 3; }));
+  ASSERT_TRUE(WaitUntil([&] { return database.Int("SELECT count(*) FROM model_changes") == 0; }));
+
+  const std::string b_name = Quoted(*b.follower);
+  ModelChangeFollowerOptions resumed = options;  // B comes back as itself
+  resumed.replica = b.follower->replica();
+  const std::int64_t b_applied = b.follower->applied_seq();
+  ASSERT_TRUE(WaitUntil([&] {
+    return database.Int("SELECT applied_seq FROM replica_progress WHERE replica = " + b_name) ==
+           b_applied;
+  }));
+  b.follower.reset();  // B pauses, well within its lease
+  for (int i = 3; i < 5; ++i) a.catalogue.Enroll(SyntheticObject("o" + std::to_string(i), 2, i));
+  const std::int64_t latest = a.store.LatestChangeSeq();
+  ASSERT_TRUE(WaitUntil([&] {
+    return database.Int("SELECT applied_seq FROM replica_progress WHERE replica = " +
+                        Quoted(*a.follower)) == latest;
+  }));
+  EXPECT_EQ(a.store.PruneChanges(options.progress_lease), b_applied);
+  EXPECT_EQ(database.Int("SELECT count(*) FROM model_changes"), 2);
+
+  b.follower = std::make_unique<ModelChangeFollower>(b.store, database.conninfo(), b.catalogue,
+                                                     b_applied, resumed);
+  ASSERT_TRUE(WaitUntil([&] { return b.catalogue.Snapshot()->object_count() == 5; }));
+  EXPECT_EQ(b.follower->reloads(), 0);
+  ASSERT_TRUE(WaitUntil([&] { return database.Int("SELECT count(*) FROM model_changes") == 0; }));
+}
+
+// B stops following for longer than its lease, and A prunes the log past it. Back, B finds the
+// changes it needs gone and reloads its whole index, so it misses neither A's new object nor
+// the deletion of one it held.
+TEST(PostgresModelChangeFollowerTest, AReplicaBackFromBeyondItsLeaseReloadsItsWholeIndex) {
+  TestDatabase database;
+  std::mutex mutex;
+  std::vector<std::string> events;  // what B told the operator
+  ModelChangeFollowerOptions options;
+  options.poll_interval = milliseconds(50);
+  options.progress_lease = milliseconds(300);
+  Replica a(database.conninfo(), options);
+  Replica b(database.conninfo(), options);
+  const ObjectSummary mug = a.catalogue.Enroll(SyntheticObject("mug", 3));
+  ASSERT_TRUE(WaitUntil([&] { return b.Find(mug.id).has_value(); }));
+
+  const std::int64_t b_applied = b.follower->applied_seq();
+  b.follower.reset();
+  a.catalogue.Delete(mug.id);
+  const ObjectSummary jar = a.catalogue.Enroll(SyntheticObject("jar", 3, 5));
+  ASSERT_TRUE(WaitUntil([&] {
+    return database.Int("SELECT pruned_through FROM change_log_horizon") ==
+           a.store.LatestChangeSeq();
+  }));
+  EXPECT_THROW(b.store.ChangesAfter(b_applied), ChangeLogPruned);
+
+  options.on_event = [&](const std::string& event) {
+    std::lock_guard lock(mutex);
+    events.push_back(event);
+  };
+  b.follower = std::make_unique<ModelChangeFollower>(b.store, database.conninfo(), b.catalogue,
+                                                     b_applied, options);
+  ASSERT_TRUE(WaitUntil([&] { return b.follower->reloads() == 1; }));
+  EXPECT_FALSE(b.Find(mug.id).has_value());
+  EXPECT_EQ(b.Find(jar.id), a.Find(jar.id));
+  EXPECT_EQ(b.follower->applied_seq(), a.store.LatestChangeSeq());
+  std::lock_guard lock(mutex);
+  ASSERT_EQ(events.size(), 1u);
+  EXPECT_EQ(events[0], "the change log was pruned past change " + std::to_string(b_applied) +
+                           " (through " + std::to_string(a.store.LatestChangeSeq()) +
+                           "): reloaded every object as of change " +
+                           std::to_string(a.store.LatestChangeSeq()));
 }
 
 }  // namespace

@@ -1,7 +1,8 @@
 // ModelStore's contracts (storage/model_store.h) as a user of any store sees them, run on both
 // implementations (tests/support/model_store_backends.h): what goes in comes out, ids, names,
-// paging, deletes, what survives closing and reopening, and whole objects for readers while
-// another store instance writes.
+// paging, deletes, what survives closing and reopening, whole objects for readers while
+// another store instance writes, one snapshot for a walk over every object, and restoring one
+// store into another.
 #include "storage/model_store.h"
 
 #include <atomic>
@@ -316,6 +317,77 @@ TYPED_TEST(ModelStoreTest, ReadersOfTwoInstancesSeeWholeObjectsWhileOneWrites) {
 
   EXPECT_GT(loads.load(), 0);
   EXPECT_EQ(other->LoadAll().size(), static_cast<std::size_t>(kObjects));
+}
+
+// Every object as ForEachObject hands them over.
+std::vector<StoredObject> EveryObject(ModelStore& store) {
+  std::vector<StoredObject> objects;
+  store.ForEachObject([&](const StoredObject& object) { objects.push_back(object); });
+  return objects;
+}
+
+// Another instance writes while the walk is half-way: the walk still gives the store as it was
+// when it began, every object whole, nothing of the writes.
+TYPED_TEST(ModelStoreTest, ForEachObjectGivesOneSnapshotWhileAnotherInstanceWrites) {
+  ModelStore& store = *this->store_;
+  const ObjectId mug = store.Enroll(SyntheticObject("mug", 3, 1));
+  const ObjectId jar = store.Enroll(SyntheticObject("jar", 2, 5));
+  const ObjectId pot = store.Enroll(SyntheticObject("pot", 4, 9));
+  const std::vector<StoredObject> before = {*store.Get(mug), *store.Get(jar), *store.Get(pot)};
+
+  const std::unique_ptr<ModelStore> other = this->backend_.Open();
+  std::vector<StoredObject> seen;
+  store.ForEachObject([&](const StoredObject& object) {
+    if (seen.empty()) {
+      other->Delete(pot);
+      other->AddViews(jar, {SyntheticView(40, 123)});
+      other->Rename(mug, "cup");
+      other->Enroll(SyntheticObject("bowl", 2, 20));
+    }
+    seen.push_back(object);
+  });
+  EXPECT_EQ(seen, before);
+  EXPECT_EQ(EveryObject(store).size(), 3u);  // after the walk: mug (as cup), jar, bowl
+}
+
+// A copy made by RestoreFrom is the same objects under the same ids, with the same times; and the
+// id of an object deleted before the copy is never handed out by it, nor by a copy of the copy.
+TYPED_TEST(ModelStoreTest, RestoreFromKeepsIdsTimesAndNeverReusesAnId) {
+  ModelStore& store = *this->store_;
+  Enrollment mug = SyntheticObject("mug", 3, 1);
+  mug.metadata = R"({"shelf": 2})";
+  mug.thumbnails = {"jpeg-0", "", "jpeg-2"};
+  store.Enroll(mug);
+  const ObjectId jar = store.Enroll(SyntheticObject("jar", 2, 5));
+  store.Delete(store.Enroll(SyntheticObject("pot", 2, 9)));  // id 3, gone
+  store.AddViews(jar, {SyntheticView(40, 123)});
+  const std::vector<StoredObject> original = EveryObject(store);
+
+  testing::ScratchDir dir;
+  SqliteModelStore copy(dir / "copy.db", {.create_if_missing = true});
+  copy.RestoreFrom(store);
+  EXPECT_EQ(EveryObject(copy), original);
+
+  TypeParam fresh;
+  const std::unique_ptr<ModelStore> restored = fresh.Open();
+  restored->RestoreFrom(copy);
+  EXPECT_EQ(EveryObject(*restored), original);
+  EXPECT_EQ(restored->Enroll(SyntheticObject("bowl", 2, 20)), 4);  // not 3 again
+  EXPECT_EQ(copy.Enroll(SyntheticObject("bowl", 2, 20)), 4);
+}
+
+TYPED_TEST(ModelStoreTest, RestoreIntoAStoreThatHoldsObjectsIsRefusedAndWritesNothing) {
+  ModelStore& store = *this->store_;
+  store.Enroll(SyntheticObject("mug", 2));
+  testing::ScratchDir dir;
+  SqliteModelStore backup(dir / "backup.db", {.create_if_missing = true});
+  backup.Enroll(SyntheticObject("jar", 2, 5));
+
+  const auto [code, message] = StoreErrorOf([&] { store.RestoreFrom(backup); });
+  EXPECT_EQ(code, StoreError::Code::kAlreadyExists);
+  EXPECT_THAT(message, ::testing::HasSubstr("holds 1 objects: restore into an empty store"));
+  ASSERT_EQ(EveryObject(store).size(), 1u);
+  EXPECT_EQ(EveryObject(store)[0].summary.name, "mug");
 }
 
 }  // namespace

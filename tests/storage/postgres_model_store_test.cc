@@ -1,4 +1,5 @@
-// What only the PostgreSQL store does: the change log and its notifications, the write lock
+// What only the PostgreSQL store does: the change log, its notifications and its pruning, a
+// backup as a SQLite file, the write lock
 // shared by every process using the database, clear errors for an unreachable or refusing
 // server, and atomic writes when the database fails one half-way. The contracts it shares with
 // the SQLite store run on both in tests/storage/model_store_test.cc.
@@ -19,6 +20,7 @@
 
 #include "storage/postgres_connection.h"
 #include "storage/postgres_transaction.h"
+#include "storage/sqlite_model_store.h"
 #include "storage/store_error.h"
 #include "tests/support/postgres_test_cluster.h"
 #include "tests/support/storage_test_support.h"
@@ -249,14 +251,77 @@ TEST(PostgresModelStoreTest, ARefusedConnectionCarriesTheServersReason) {
   EXPECT_THROW(PostgresModelStore("postgresql://[bad"), std::invalid_argument);
 }
 
-TEST(PostgresModelStoreTest, BackupIsLeftToPgDump) {
+// A backup of the PostgreSQL store is one private SQLite store file holding the same objects
+// under the same ids, and never handing out the id of an object deleted before it was taken.
+TEST(PostgresModelStoreTest, ABackupIsAPrivateSqliteStoreOfTheSameObjects) {
   TestDatabase database;
   PostgresModelStore store(database.conninfo());
+  const ObjectId mug = store.Enroll(SyntheticObject("mug", 3));
+  store.Delete(store.Enroll(SyntheticObject("jar", 2, 5)));
   testing::ScratchDir dir;
-  const auto [code, message] = StoreErrorOf([&] { store.Backup(dir / "copy.db"); });
-  EXPECT_EQ(code, StoreError::Code::kIncompatible);
-  EXPECT_THAT(message, HasSubstr("pg_dump"));
-  EXPECT_FALSE(std::filesystem::exists(dir / "copy.db"));
+  const testing::ScopedUmask everyone_reads(022);
+  store.Backup(dir / "orbit.db");
+
+  EXPECT_EQ(testing::FileMode(dir / "orbit.db"), 0600u);
+  EXPECT_FALSE(std::filesystem::exists(dir / "orbit.db.partial"));
+  EXPECT_EQ(testing::RawDatabase(dir / "orbit.db").Text("PRAGMA journal_mode"), "delete");
+  SqliteModelStore copy(dir / "orbit.db");
+  EXPECT_EQ(copy.Get(mug), store.Get(mug));
+  EXPECT_EQ(copy.List({}).size(), 1u);
+  EXPECT_EQ(copy.Enroll(SyntheticObject("pot", 2, 9)), 3);  // not jar's 2
+}
+
+// The seq of each change, in the order given.
+std::vector<std::int64_t> Seqs(const std::vector<ModelChange>& changes) {
+  std::vector<std::int64_t> seqs;
+  for (const ModelChange& change : changes) seqs.push_back(change.seq);
+  return seqs;
+}
+
+TEST(PostgresModelStoreTest, TheLogIsPrunedThroughWhatEveryLiveReplicaHasApplied) {
+  TestDatabase database;
+  PostgresModelStore store(database.conninfo());
+  for (int i = 0; i < 5; ++i) store.Enroll(SyntheticObject("o" + std::to_string(i), 2, i));
+  const std::chrono::minutes lease(5);
+  EXPECT_EQ(store.PruneChanges(lease), 0);  // no replica has said what it applied: all kept
+  EXPECT_EQ(database.Int("SELECT count(*) FROM model_changes"), 5);
+
+  store.ReportApplied("a", 3);
+  store.ReportApplied("b", 5);
+  EXPECT_EQ(store.PruneChanges(lease), 3);
+  EXPECT_THAT(Seqs(store.ChangesAfter(3)), ElementsAre(4, 5));
+  EXPECT_EQ(database.Int("SELECT count(*) FROM model_changes"), 2);
+
+  // "a" has been silent for longer than the lease: it is not waited for, and is forgotten.
+  database.Execute(
+      "UPDATE replica_progress SET reported_at = now() - interval '10 minutes' "
+      "WHERE replica = 'a'");
+  EXPECT_EQ(store.PruneChanges(lease), 5);
+  EXPECT_EQ(database.Int("SELECT count(*) FROM model_changes"), 0);
+  EXPECT_EQ(database.Text("SELECT string_agg(replica, ',') FROM replica_progress"), "b");
+  EXPECT_EQ(store.LatestChangeSeq(), 5);  // the log is empty; its position is not lost
+
+  store.Enroll(SyntheticObject("o5", 2, 5));
+  EXPECT_THAT(Seqs(store.ChangesAfter(5)), ElementsAre(6));
+}
+
+TEST(PostgresModelStoreTest, ChangesThatWerePrunedAreRefusedNotSkipped) {
+  TestDatabase database;
+  PostgresModelStore store(database.conninfo());
+  for (int i = 0; i < 3; ++i) store.Enroll(SyntheticObject("o" + std::to_string(i), 2, i));
+  store.ReportApplied("a", 2);
+  ASSERT_EQ(store.PruneChanges(std::chrono::minutes(5)), 2);
+
+  try {
+    store.ChangesAfter(1);
+    ADD_FAILURE() << "answered without change 2, which was pruned";
+  } catch (const ChangeLogPruned& e) {
+    EXPECT_EQ(e.after_seq(), 1);
+    EXPECT_EQ(e.pruned_through(), 2);
+    EXPECT_STREQ(e.what(), "the change log was pruned past change 1 (through 2)");
+  }
+  EXPECT_THROW(store.ChangesAfter(0), ChangeLogPruned);
+  EXPECT_THAT(Seqs(store.ChangesAfter(2)), ElementsAre(3));
 }
 
 }  // namespace

@@ -12,9 +12,12 @@
 namespace orbit {
 namespace {
 
+using testing::FileMode;
 using ::testing::HasSubstr;
+using testing::ScopedUmask;
 using testing::ScratchDir;
 using testing::StoreErrorOf;
+using testing::SyntheticObject;
 
 TEST(SqliteModelStoreTest, OpeningAMissingFileWithoutCreateIsAClearError) {
   ScratchDir dir;
@@ -22,6 +25,35 @@ TEST(SqliteModelStoreTest, OpeningAMissingFileWithoutCreateIsAClearError) {
   EXPECT_EQ(code, StoreError::Code::kIo);
   EXPECT_THAT(message, HasSubstr("absent.db does not exist"));
   EXPECT_FALSE(std::filesystem::exists(dir / "absent.db"));
+}
+
+// Under the umask most shells have (files readable by everyone), a new store, its write-ahead
+// log and its shared-memory file are still its owner's alone: they hold the operator's objects.
+TEST(SqliteModelStoreTest, ANewStoreAndItsLogFilesAreReadableByTheirOwnerOnly) {
+  ScratchDir dir;
+  const ScopedUmask everyone_reads(022);
+  SqliteModelStore store(dir / "models.db", {.create_if_missing = true});
+  store.Enroll(SyntheticObject("mug", 2));
+  ASSERT_TRUE(std::filesystem::exists(dir / "models.db-wal"));
+  ASSERT_TRUE(std::filesystem::exists(dir / "models.db-shm"));
+  EXPECT_EQ(FileMode(dir / "models.db"), 0600u);
+  EXPECT_EQ(FileMode(dir / "models.db-wal"), 0600u);
+  EXPECT_EQ(FileMode(dir / "models.db-shm"), 0600u);
+}
+
+// A backup is as private as its store, and no more: a store its group may read gives a copy its
+// group may read, whatever the umask.
+TEST(SqliteModelStoreTest, ABackupHasItsStoresMode) {
+  ScratchDir dir;
+  const ScopedUmask everyone_reads(022);
+  SqliteModelStore store(dir / "models.db", {.create_if_missing = true});
+  store.Enroll(SyntheticObject("mug", 2));
+  store.Backup(dir / "backup.db");
+  EXPECT_EQ(FileMode(dir / "backup.db"), 0600u);
+
+  std::filesystem::permissions(dir / "models.db", std::filesystem::perms(0640));
+  store.Backup(dir / "backup.db");  // replaces the copy, mode and all
+  EXPECT_EQ(FileMode(dir / "backup.db"), 0640u);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // What the storage tests share: synthetic object models (scratch folders: test_data.h), the
-// StoreError a call throws, and a raw SQLite connection to look at a store's file from outside
-// the store.
+// StoreError a call throws, a raw SQLite connection to look at a store's file from outside
+// the store, and the process's umask and a file's mode.
 #pragma once
 
 #include <cstdint>
@@ -12,6 +12,7 @@
 #include <vector>
 
 #include <sqlite3.h>
+#include <sys/stat.h>
 
 #include "core/index/object_model.h"
 #include "storage/model_store.h"
@@ -104,5 +105,24 @@ class RawDatabase {
  private:
   sqlite3* db_ = nullptr;
 };
+
+// Sets the process's umask for the span of a test (the umask a user's shell typically has is
+// 022: files readable by everyone), then restores it.
+class ScopedUmask {
+ public:
+  explicit ScopedUmask(mode_t mask) : previous_(::umask(mask)) {}
+  ~ScopedUmask() { ::umask(previous_); }
+  ScopedUmask(const ScopedUmask&) = delete;
+  ScopedUmask& operator=(const ScopedUmask&) = delete;
+
+ private:
+  mode_t previous_;
+};
+
+// The permission bits of `file`, as `ls -l` shows them in octal (0600, 0644).
+inline unsigned FileMode(const std::filesystem::path& file) {
+  return static_cast<unsigned>(std::filesystem::status(file).permissions() &
+                               std::filesystem::perms::mask);
+}
 
 }  // namespace orbit::testing

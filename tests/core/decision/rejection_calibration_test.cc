@@ -43,7 +43,7 @@ TEST(RejectionCalibrationTest, SamplesEveryViewOfASmallModelSet) {
   EXPECT_EQ(KnownCalibration().sampled_views(), 720);
 }
 
-TEST(RejectionCalibrationTest, ThresholdIsTheNullQuantileOfTheTargetRate) {
+TEST(RejectionCalibrationTest, ThresholdIsTheLargestNullValueWhoseBoundMeetsTheTarget) {
   const RejectionCalibration& calibration = KnownCalibration();
   for (const int n : {1, 4, 8}) {
     double previous = -1;
@@ -51,17 +51,52 @@ TEST(RejectionCalibrationTest, ThresholdIsTheNullQuantileOfTheTargetRate) {
       const double threshold = calibration.NullThreshold(n, rate);
       EXPECT_GT(threshold, previous) << "n " << n << ", rate " << rate;
       previous = threshold;
-      // 2000 null values, some drawn more than once (a window of one frame is one of 720
-      // views): the share at or below the threshold is the rate, never above it (the p-value
-      // counts one value more), and below it by a few tied values at most.
-      const double share = calibration.FalseAcceptRate(threshold, n);
-      EXPECT_LE(share, rate + 1.0 / 2000 + 1e-9) << "n " << n << ", rate " << rate;
-      EXPECT_GE(share, rate - 8.0 / 2000) << "n " << n << ", rate " << rate;
+      // The p-value at the threshold meets the target, the next null value's does not.
+      EXPECT_LE(calibration.FalseAcceptRate(threshold, n), rate) << "n " << n << ", rate " << rate;
+      double next = threshold + 1e-6;
+      while (calibration.NullShare(next, n) == calibration.NullShare(threshold, n)) next += 1e-3;
+      EXPECT_GT(calibration.FalseAcceptRate(next, n), rate) << "n " << n << ", rate " << rate;
+      // The bound lies above the share the null's windows show: the threshold accepts less
+      // of the null than the target, and no more than the bound's margin less. Shares in
+      // [0, 1] over 20 objects have a standard deviation of at most 0.5 * sqrt(20 / 19), so
+      // a standard error of at most 0.115 (and one tied window's worth on top).
+      const double share = calibration.NullShare(threshold, n);
+      EXPECT_LT(share, rate) << "n " << n << ", rate " << rate;
+      EXPECT_GT(share, rate - kNullShareBoundSigmas * 0.115 - 0.005)
+          << "n " << n << ", rate " << rate;
     }
   }
   // Windows longer than the calibrated ones use the longest one's null.
   EXPECT_EQ(calibration.NullThreshold(64, 0.15),
             calibration.NullThreshold(kCalibratedWindowLengths, 0.15));
+}
+
+TEST(RejectionCalibrationTest, FewObjectsBoundTheShareFurtherBelowTheTarget) {
+  // The same target on 5 of the 20 objects: the bound over five objects' shares lies further
+  // above their mean, and the threshold accepts a smaller share of the null.
+  const auto five = ViewIndex(CoilObjects(1, 5, EvenView)).Snapshot();
+  const RejectionCalibration few = RejectionCalibration::FromIndex(*five);
+  for (const int n : {1, 4}) {
+    const double few_share = few.NullShare(few.NullThreshold(n, 0.17), n);
+    const double many_share =
+        KnownCalibration().NullShare(KnownCalibration().NullThreshold(n, 0.17), n);
+    EXPECT_LT(few_share, many_share) << "n " << n;
+    EXPECT_LE(few.FalseAcceptRate(few.NullThreshold(n, 0.17), n), 0.17) << "n " << n;
+  }
+}
+
+TEST(RejectionCalibrationTest, PValueIsTheBoundAndNeverZero) {
+  const RejectionCalibration& calibration = KnownCalibration();
+  for (const int n : {1, 4}) {
+    // Below every null value: one window's worth; above every one: the whole null.
+    EXPECT_DOUBLE_EQ(calibration.FalseAcceptRate(-1, n), 1.0 / 2001);
+    EXPECT_EQ(calibration.NullShare(-1, n), 0);
+    EXPECT_GE(calibration.FalseAcceptRate(1e9, n), 1 - 1e-9);
+    EXPECT_EQ(calibration.NullShare(1e9, n), 1);
+    for (const double u : {0.5, 1.0, 1.5}) {
+      EXPECT_GE(calibration.FalseAcceptRate(u, n), calibration.NullShare(u, n)) << u;
+    }
+  }
 }
 
 TEST(RejectionCalibrationTest, IsTheSameForTheSameSeed) {
