@@ -23,10 +23,10 @@ std::filesystem::path MakeTempDir() {
   return pattern;
 }
 
-// fork + exec `orbit` with `args`, stdout and stderr into `log`, under `descriptor_limit`.
-pid_t Spawn(const std::vector<std::string>& args, const std::filesystem::path& log,
-            std::optional<int> descriptor_limit) {
-  std::vector<std::string> argv_storage = {OrbitBinary()};
+// fork + exec `binary` with `args`, stdout and stderr into `log`, under `descriptor_limit`.
+pid_t Spawn(const std::string& binary, const std::vector<std::string>& args,
+            const std::filesystem::path& log, std::optional<int> descriptor_limit) {
+  std::vector<std::string> argv_storage = {binary};
   argv_storage.insert(argv_storage.end(), args.begin(), args.end());
   std::vector<char*> argv;
   for (std::string& a : argv_storage) argv.push_back(a.data());
@@ -88,7 +88,7 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   if (options.tls_key) args.insert(args.end(), {"--tls-key", options.tls_key->string()});
   if (options.metrics) args.insert(args.end(), {"--metrics-listen", "127.0.0.1:0"});
   args.insert(args.end(), options.extra_args.begin(), options.extra_args.end());
-  pid_ = Spawn(args, log_file_, options.descriptor_limit);
+  pid_ = Spawn(options.binary, args, log_file_, options.descriptor_limit);
 
   const std::string marker = "listening on ";
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -150,7 +150,7 @@ std::string ServerProcess::Log() const { return Slurp(log_file_); }
 
 RefusedStart StartServerExpectingRefusal(const std::vector<std::string>& args) {
   const std::filesystem::path dir = MakeTempDir();
-  const pid_t pid = Spawn(args, dir / "server.log", std::nullopt);
+  const pid_t pid = Spawn(OrbitBinary(), args, dir / "server.log", std::nullopt);
   RefusedStart result;
   result.exit_code = WaitExit(pid, std::chrono::seconds(30));
   if (result.exit_code < 0) {

@@ -16,9 +16,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/test_data.h"
+
 namespace orbit::testing {
 
 struct ServerProcessOptions {
+  // The binary whose `serve` runs: the `orbit` tool, or OrbitServerBinary().
+  std::string binary = OrbitBinary();
   // The model store; a fresh file in a temporary folder when unset (removed afterwards).
   std::optional<std::filesystem::path> database = std::nullopt;
   // A PostgreSQL model store (`--store`, a connection string) instead of the SQLite file.

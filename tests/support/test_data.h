@@ -53,6 +53,9 @@ CommandResult RunCommand(const std::string& command);
 // Path of the built `orbit` binary.
 std::string OrbitBinary();
 
+// Path of the built `orbit-server` binary, the server machine's subset of `orbit`.
+std::string OrbitServerBinary();
+
 // RunCommand of `orbit ARGUMENTS`.
 CommandResult RunOrbit(const std::string& arguments);
 
