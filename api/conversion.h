@@ -12,7 +12,7 @@
 #include "core/decision/enrollment_feedback.h"
 #include "core/descriptor/descriptor.h"
 #include "core/engines/recognition_engine.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 #include "core/index/view_index.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
