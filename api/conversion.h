@@ -1,6 +1,8 @@
-// Between the types of core/ and the messages of proto/orbit/v1, both ways where both are
-// needed: the one conversion unit the client library and the server share, so that the two
-// ends of a call cannot drift apart (they once defaulted an unknown variant differently).
+// Between the types of core/ a device sends (descriptor variants, descriptors, views) and the
+// messages of proto/orbit/v1, both ways where both are needed: the one conversion unit the
+// client library and the server share, so that the two ends of a call cannot drift apart (they
+// once defaulted an unknown variant differently). What the engines answer is converted in
+// api/engines/conversion.h, which a device does not link.
 //
 // Refusals are std::invalid_argument with a message naming the field; the server turns them
 // into INVALID_ARGUMENT. Pure functions, thread-safe.
@@ -9,11 +11,8 @@
 #include <string>
 #include <string_view>
 
-#include "core/decision/enrollment_feedback.h"
 #include "core/descriptor/descriptor.h"
-#include "core/engines/recognition_engine.h"
-#include "core/index/object_model.h"
-#include "core/index/view_index.h"
+#include "core/model/object_model.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
 
@@ -43,21 +42,5 @@ void SetWireDescriptor(const DescriptorValues& values, DescriptorVariant variant
 // known, typical distance and `thumbnail` (empty: none).
 v1::View ToProtoView(const ModelView& view, DescriptorVariant variant,
                      const std::string& thumbnail = "");
-
-v1::Decision ToProtoDecision(Decision decision);
-// The inverse; DECISION_UNSPECIFIED and values this build does not know read as kUndecided (no
-// answer).
-Decision FromProtoDecision(v1::Decision decision);
-v1::Move ToProtoMove(SuggestedMove move);
-// Object ids are named from `index` (the name left empty for an id it does not hold).
-v1::EnrollmentReport ToEnrollmentReport(const EnrollmentFeedback& feedback,
-                                        const ViewIndexSnapshot& index);
-v1::Rejection ToProtoRejection(RejectionRule rule);
-// nullopt for REJECTION_UNSPECIFIED and values no rule has.
-std::optional<RejectionRule> FromProtoRejection(v1::Rejection rule);
-
-// An engine's update as the wire carries it, with each candidate's name from `index` (the
-// snapshot the update was computed on).
-v1::SessionUpdate ToSessionUpdate(const FrameUpdate& update, const ViewIndexSnapshot& index);
 
 }  // namespace orbit

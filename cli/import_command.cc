@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "api/engines/conversion.h"
 #include "cli/box_arguments.h"
 #include "cli/commands.h"
 #include "cli/enrollment_report_text.h"

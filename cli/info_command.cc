@@ -8,7 +8,8 @@
 #include <nlohmann/json.hpp>
 
 #include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/conversion.h"
+#include "api/engines/engine_names.h"
 #include "cli/commands.h"
 #include "cli/network_options.h"
 #include "cli/rule_estimate_text.h"

@@ -20,7 +20,7 @@ namespace orbit {
 struct LoadReport {
   // What was asked.
   std::string server;          // HOST:PORT
-  std::string engine;          // the sessions' engine (api/engine_names.h)
+  std::string engine;          // the sessions' engine (api/engines/engine_names.h)
   int sessions = 0;            // sessions asked for
   int connections = 1;         // TCP connections they share (round robin)
   std::optional<double> rate;  // frames/s per session (open loop); unset: closed loop

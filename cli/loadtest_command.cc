@@ -19,7 +19,7 @@
 #include <vector>
 
 #include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "api/status_code_name.h"
 #include "cli/commands.h"
 #include "cli/load_report.h"

@@ -8,7 +8,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "cli/commands.h"
 #include "cli/store_choice.h"
 #include "core/engines/product_pipeline.h"

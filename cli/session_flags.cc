@@ -2,8 +2,8 @@
 
 #include <string>
 
-#include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/conversion.h"
+#include "api/engines/engine_names.h"
 #include "core/engines/engine_options.h"
 
 namespace orbit::cli {

@@ -17,7 +17,7 @@
 #include "client/capture_reader.h"
 #include "client/enrollment_image.h"
 #include "client/frame_quality.h"
-#include "core/decision/enrollment_feedback.h"
+#include "core/model/azimuth_gaps.h"
 
 namespace orbit {
 
@@ -63,7 +63,7 @@ struct CaptureViewSelection {
   std::vector<CaptureStep> steps;  // steps_total of them, from azimuth 0 up
   // The arcs between the views kept (their azimuths, circularly) wider than the step: a view
   // may lie anywhere in its step, so views in neighbouring steps can be up to two steps apart,
-  // and an empty step widens the arc further (core/decision/enrollment_feedback.h, AzimuthGaps).
+  // and an empty step widens the arc further (core/model/azimuth_gaps.h).
   std::vector<AzimuthGap> gaps;
 };
 

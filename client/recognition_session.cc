@@ -8,7 +8,6 @@
 #include "client/models_client.h"
 #include "client/rpc_error.h"
 #include "core/descriptor/cedd.h"
-#include "core/engines/recognition_engine.h"
 
 namespace orbit {
 namespace {
@@ -27,11 +26,12 @@ bool IsTransient(const grpc::Status& status) {
 }
 
 // The window the server will keep: the session's own, else the server's default, else the
-// largest the API allows (replaying more frames than the window changes nothing).
+// largest the server allows (replaying more frames than the window changes nothing). An Orbit
+// server reports both in ServerInfo; one that reports neither gets the last frame replayed.
 int WindowSize(const RecognitionOptions& options, const v1::ServerInfoResponse& info) {
   if (options.window > 0) return options.window;
   if (info.session_defaults().window() > 0) return info.session_defaults().window();
-  return kMaxWindow;
+  return std::max(1, info.limits().max_window());
 }
 
 std::chrono::microseconds ReplayInterval(const v1::ServerInfoResponse& info) {

@@ -18,21 +18,22 @@ foreach(module core imgproc imgcodecs video videoio tracking)
   endif()
 endforeach()
 
-# FLANN (the view index's kd-trees) is used header-only; its headers use lz4.
-if(NOT TARGET flann::flann)
-  find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
-  find_path(LZ4_INCLUDE_DIR lz4.h REQUIRED)
-  find_library(LZ4_LIBRARY lz4 REQUIRED)
-  add_library(flann::flann INTERFACE IMPORTED)
-  set_target_properties(flann::flann PROPERTIES
-    INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}"
-    INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
-endif()
-
 # Abseil's thread-safety annotations (core/base/mutex.h) are a header of libabsl-dev, which
 # Debian's libgrpc++-dev depends on, in the default include path: nothing to find or link.
 
 find_package(Threads REQUIRED)
 # gRPC and Protobuf (Debian ships gRPC's CMake config; Protobuf is found by CMake's module).
 find_package(Protobuf REQUIRED)
-find_package(gRPC CONFIG REQUIRED)
+if(CMAKE_CROSSCOMPILING)
+  # gRPC's CMake config also imports its protoc plugins, programs of the target, and refuses to
+  # load from a sysroot that lacks them; a cross build needs only the libraries (the build
+  # machine's protoc and plugin generate the code: proto/CMakeLists.txt), found by pkg-config.
+  if(NOT TARGET gRPC::grpc++)
+    find_package(PkgConfig REQUIRED)
+    pkg_check_modules(ORBIT_GRPCXX REQUIRED IMPORTED_TARGET grpc++)
+    add_library(gRPC::grpc++ INTERFACE IMPORTED)
+    set_target_properties(gRPC::grpc++ PROPERTIES INTERFACE_LINK_LIBRARIES PkgConfig::ORBIT_GRPCXX)
+  endif()
+else()
+  find_package(gRPC CONFIG REQUIRED)
+endif()

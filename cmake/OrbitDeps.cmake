@@ -1,8 +1,22 @@
 # Third-party libraries, all from Debian 12 packages (see scripts/setup.sh).
 #
-# The device library's: OpenCV's modules, FLANN, Threads, gRPC and Protobuf, found as the
-# installed package finds them.
+# The device library's: OpenCV's modules, Threads, gRPC and Protobuf, found as the installed
+# package finds them.
 include(${CMAKE_CURRENT_LIST_DIR}/OrbitClientDependencies.cmake)
+if(ORBIT_DEVICE_ONLY)
+  return()
+endif()
+
+# FLANN (the view index's kd-trees) is used header-only; its headers use lz4.
+if(NOT TARGET flann::flann)
+  find_path(FLANN_INCLUDE_DIR flann/flann.hpp REQUIRED)
+  find_path(LZ4_INCLUDE_DIR lz4.h REQUIRED)
+  find_library(LZ4_LIBRARY lz4 REQUIRED)
+  add_library(flann::flann INTERFACE IMPORTED)
+  set_target_properties(flann::flann PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${FLANN_INCLUDE_DIR};${LZ4_INCLUDE_DIR}"
+    INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
+endif()
 
 find_package(PkgConfig REQUIRED)
 

@@ -1,6 +1,8 @@
 # `cmake --install build --prefix P` installs the device library as a C++ package:
-#   P/lib/liborbit_client.a and the libraries it links (orbit_api, orbit_proto and the core/
-#   layers below them),
+#   P/lib/liborbit_client.a and the libraries it links: orbit_api, orbit_proto and the core/
+#   layers below them (orbit_model, orbit_descriptor, orbit_base); no view index, engine or
+#   decision rule (docs/design.md#layers; tests/install/build_example.cmake checks that the
+#   prefix holds these libraries and no others),
 #   P/include/: the public API only, that is the headers of client/ and every header of this tree
 #   they include, directly or through others (so "client/enroller.h" and "core/descriptor/
 #   descriptor.h", never a server's or an engine's internals), at the paths they are included by;
@@ -13,8 +15,8 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-set(orbit_client_libraries orbit_client orbit_api orbit_engines orbit_decision orbit_index
-  orbit_descriptor orbit_base orbit_proto)
+set(orbit_client_libraries orbit_client orbit_api orbit_model orbit_descriptor orbit_base
+  orbit_proto)
 # Inside the build the libraries include from the source and build trees; installed, from
 # P/include.
 foreach(library IN LISTS orbit_client_libraries)

@@ -24,7 +24,7 @@
 #include <vector>
 
 #include "core/engines/recognition_engine.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 

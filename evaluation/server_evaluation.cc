@@ -11,7 +11,8 @@
 #include <thread>
 
 #include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/conversion.h"
+#include "api/engines/engine_names.h"
 #include "client/models_client.h"
 #include "client/recognition_session.h"
 #include "client/rpc_error.h"

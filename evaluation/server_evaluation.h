@@ -47,7 +47,7 @@ struct ServerEvaluationOptions {
 // The report's method for a server with `info`: "server (product)" when the defaults ServerInfo
 // shows are the product pipeline's (core/engines/product_pipeline.h: its engine, its variant and
 // its engine's options), else "server (ENGINE)" with the default engine's name
-// (api/engine_names.h).
+// (api/engines/engine_names.h).
 std::string ServerMethodName(const v1::ServerInfoResponse& info);
 
 // Asks the server behind `connection` (its address is the report's ServerDescription) for its

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "api/engines/conversion.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/index/view_index.h"
 #include "fuzz/fuzz_support.h"

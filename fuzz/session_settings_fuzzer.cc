@@ -12,7 +12,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "core/engines/recognition_engine.h"
 #include "fuzz/fuzz_support.h"
 #include "orbit/v1/recognition.pb.h"

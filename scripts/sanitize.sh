@@ -63,7 +63,8 @@ run() {
   local targets=()
   # tsan runs only the GoogleTest suite (with the PostgreSQL fixture its *Postgres* tests need)
   # and the Python client: no benchmarks, no fuzz replays.
-  [[ $name == tsan ]] && targets=(--target orbit_tests orbit_test_postgres orbit_python_stubs)
+  [[ $name == tsan ]] && targets=(--target orbit_tests orbit_device_tests orbit_test_postgres
+    orbit_python_stubs)
   nice -n 10 cmake --build "$build" --parallel "$(nproc)" "${targets[@]}"
   took[$name build]=$(($(date +%s) - start))
 

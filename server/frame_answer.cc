@@ -2,7 +2,7 @@
 
 #include <exception>
 
-#include "api/conversion.h"
+#include "api/engines/conversion.h"
 #include "core/descriptor/query_frame.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "api/conversion.h"
+#include "api/engines/conversion.h"
 #include "core/decision/enrollment_feedback.h"
 #include "server/enrollment_stream.h"
 #include "server/error_status.h"

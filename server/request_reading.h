@@ -13,7 +13,7 @@
 #include <grpcpp/grpcpp.h>
 
 #include "core/engines/recognition_engine.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 #include "orbit/v1/models.pb.h"
 #include "orbit/v1/recognition.pb.h"
 #include "server/session_settings.h"

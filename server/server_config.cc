@@ -5,7 +5,7 @@
 #include <sstream>
 #include <stdexcept>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "core/engines/product_pipeline.h"
 #include "server/tls_credentials.h"
 #include "storage/postgres_connection.h"

@@ -8,7 +8,7 @@
 #include <string>
 #include <utility>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "api/status_code_name.h"
 #include "core/base/mutex.h"
 #include "server/connection_admission.h"

@@ -2,7 +2,7 @@
 
 #include <string>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "core/engines/engine_registry.h"
 
 namespace orbit::server {

@@ -5,7 +5,8 @@
 #include <string>
 
 #include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/conversion.h"
+#include "api/engines/engine_names.h"
 #include "server/error_status.h"
 #include "server/request_reading.h"
 

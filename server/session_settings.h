@@ -6,7 +6,7 @@
 
 #include <grpcpp/grpcpp.h>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "api/image_header.h"
 #include "core/descriptor/descriptor.h"
 #include "core/engines/product_pipeline.h"
@@ -67,7 +67,7 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
 // Every field filled in: what ServerInfo reports as the defaults.
 v1::SessionOptions DescribeSettings(const SessionSettings& settings, DescriptorVariant variant);
 
-// The HMM memory rule: OK unless `settings` runs an HMM (api/engine_names.h, RunsHmm) with
+// The HMM memory rule: OK unless `settings` runs an HMM (api/engines/engine_names.h, RunsHmm) with
 // window x hmm_states above limits.max_hmm_cells; then RESOURCE_EXHAUSTED naming both numbers.
 // Checked for every session, and for the server's defaults at start-up (server_config.h).
 grpc::Status CheckHmmCells(const SessionSettings& settings, const ServerLimits& limits);

@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "core/descriptor/descriptor.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 #include "storage/model_store.h"
 
 namespace orbit {

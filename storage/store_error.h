@@ -12,7 +12,7 @@
 #include <string>
 #include <string_view>
 
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 

@@ -3,7 +3,8 @@
 // it could be taken for. Like the scanning apps that guide a user round an object, but after
 // the fact, in the Enroll and AddViews replies.
 //
-//   gaps:        azimuth arcs wider than kCoverageGapDegrees with no view (circularly)
+//   gaps:        azimuth arcs wider than kCoverageGapDegrees with no view (circularly;
+//                core/model/azimuth_gaps.h)
 //   redundant:   views whose TC with a view before them (azimuth order) is at least
 //                kRedundantSimilarity: the camera did not move, or the object looks the same
 //                from there (a can turning on its axis); they add no information
@@ -18,8 +19,9 @@
 
 #include <vector>
 
-#include "core/index/object_model.h"
 #include "core/index/view_index.h"
+#include "core/model/azimuth_gaps.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 
@@ -28,18 +30,6 @@ inline constexpr double kCoverageGapDegrees = 30;
 // 0.995 and above is a repeat.
 inline constexpr double kRedundantSimilarity = 0.995;
 inline constexpr int kConfusableObjects = 3;
-
-struct AzimuthGap {
-  double from = 0;  // degrees, [0, 360): the view before the gap
-  double to = 0;    // degrees, [0, 360): the view after it (going up, across 360)
-  double width() const;
-};
-
-// The arcs with no azimuth of `azimuths` (degrees, any finite values) wider than `wider_than`
-// degrees, between neighbours in azimuth order and across 360, in azimuth order. Azimuths that
-// are equal count once; one azimuth alone leaves the whole circle open: one gap of 360 from it
-// to itself. None for no azimuths.
-std::vector<AzimuthGap> AzimuthGaps(std::vector<double> azimuths, double wider_than);
 
 struct Confusion {
   ObjectId object = 0;

@@ -1,6 +1,6 @@
 // The engines, by name: the one list of them (docs/design.md#engines). The server's sessions,
-// `orbit eval --methods`, the API's Engine values (api/engine_names.h, whose test checks that
-// the two agree) and every --help read their names here.
+// `orbit eval --methods`, the API's Engine values (api/engines/engine_names.h, whose test checks
+// that the two agree) and every --help read their names here.
 #pragma once
 
 #include <memory>

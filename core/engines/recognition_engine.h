@@ -36,8 +36,8 @@
 #include "core/decision/rejection.h"
 #include "core/descriptor/query_frame.h"
 #include "core/engines/engine_options.h"
-#include "core/index/object_model.h"
 #include "core/index/view_index.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 

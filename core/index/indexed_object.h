@@ -16,8 +16,8 @@
 
 #include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
-#include "core/index/object_model.h"
 #include "core/index/view_bins.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 

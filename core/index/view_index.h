@@ -40,7 +40,7 @@
 #include "core/base/mutex.h"
 #include "core/descriptor/descriptor.h"
 #include "core/index/indexed_object.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 
 namespace orbit {
 

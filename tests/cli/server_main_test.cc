@@ -22,9 +22,11 @@ using ::testing::Contains;
 using ::testing::IsSupersetOf;
 using ::testing::Not;
 using testing::OrbitBinary;
-using testing::OrbitServerBinary;
 using testing::RunCommand;
 using testing::ServerProcess;
+
+// Path of the built `orbit-server` binary, the server machine's subset of `orbit`.
+std::string OrbitServerBinary() { return ORBIT_SERVER_BINARY; }
 
 // The shared libraries `binary` loads, as the dynamic loader resolves them (ldd): each one's
 // name up to ".so" ("libopencv_core" for libopencv_core.so.406).

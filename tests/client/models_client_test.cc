@@ -5,9 +5,9 @@
 
 #include <gtest/gtest.h>
 
+#include "api/conversion.h"
 #include "client/enroller.h"
 #include "client/rpc_error.h"
-#include "core/engines/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 
@@ -31,6 +31,7 @@ TEST(ModelsClientTest, EnrollsListsGetsAndDeletesObjects) {
   EXPECT_EQ(info.object_count(), 3);
   EXPECT_EQ(info.view_count(), 3 * 36);
   EXPECT_EQ(info.variant(), v1::CEDD_HSV_HOG);  // the product's, for a new store
+  const DescriptorVariant variant = FromProtoVariant(info.variant());
 
   // Paged listing: two pages of two and one, in id order.
   const v1::ListObjectsResponse first = models.ListObjects(2);
@@ -50,14 +51,13 @@ TEST(ModelsClientTest, EnrollsListsGetsAndDeletesObjects) {
   const v1::GetObjectResponse obj2 = models.GetObject(ObjectByName("obj2"), true);
   ASSERT_EQ(obj2.views_size(), 36);
   EXPECT_EQ(obj2.views(1).azimuth_deg(), 10.0);
-  const v1::View expected = ComputeView(CoilEnrollmentImages(2)[1], Product().variant);
+  const v1::View expected = ComputeView(CoilEnrollmentImages(2)[1], variant);
   EXPECT_EQ(obj2.views(1).cedd(), expected.cedd());
   EXPECT_NEAR(obj2.views(1).typical_distance(), expected.typical_distance(), 1e-12);
 
   // Adding views, then deleting.
-  const v1::ObjectInfo grown =
-      models.AddViews(ObjectById(obj2.object().id()),
-                      {ComputeView({CoilImage(2, 5), 5.0, {}, {}}, Product().variant, 3)});
+  const v1::ObjectInfo grown = models.AddViews(
+      ObjectById(obj2.object().id()), {ComputeView({CoilImage(2, 5), 5.0, {}, {}}, variant, 3)});
   EXPECT_EQ(grown.view_count(), 37);
   const v1::ObjectInfo deleted = models.DeleteObject(ObjectByName("obj1"));
   EXPECT_EQ(deleted.name(), "obj1");

@@ -21,7 +21,6 @@
 #include "core/base/angles.h"
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/distortion.h"
-#include "core/engines/product_pipeline.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
 #include "tests/support/test_data.h"

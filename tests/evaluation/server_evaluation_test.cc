@@ -10,7 +10,8 @@
 #include <gtest/gtest.h>
 
 #include "api/conversion.h"
-#include "api/engine_names.h"
+#include "api/engines/conversion.h"
+#include "api/engines/engine_names.h"
 #include "core/engines/product_pipeline.h"
 #include "server/session_settings.h"
 #include "tests/support/client_test_support.h"

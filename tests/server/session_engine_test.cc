@@ -6,7 +6,7 @@
 
 #include <gtest/gtest.h>
 
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 #include "tests/support/coil_models.h"
 #include "tests/support/sector_table.h"
 

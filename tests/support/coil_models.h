@@ -10,7 +10,7 @@
 #include "client/image_file.h"
 #include "core/base/mutex.h"
 #include "core/descriptor/cedd.h"
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 #include "tests/support/test_data.h"
 
 namespace orbit::testing {

@@ -21,7 +21,8 @@
 namespace orbit::testing {
 
 struct ServerProcessOptions {
-  // The binary whose `serve` runs: the `orbit` tool, or OrbitServerBinary().
+  // The binary whose `serve` runs: the `orbit` tool, or `orbit-server`
+  // (tests/cli/server_main_test.cc).
   std::string binary = OrbitBinary();
   // The model store; a fresh file in a temporary folder when unset (removed afterwards).
   std::optional<std::filesystem::path> database = std::nullopt;

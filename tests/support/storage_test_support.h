@@ -14,7 +14,7 @@
 #include <sqlite3.h>
 #include <sys/stat.h>
 
-#include "core/index/object_model.h"
+#include "core/model/object_model.h"
 #include "storage/model_store.h"
 #include "storage/store_error.h"
 #include "tests/support/test_data.h"

@@ -92,8 +92,6 @@ std::filesystem::path ScratchDir::Write(const std::string& name, const std::stri
 
 std::string OrbitBinary() { return ORBIT_BINARY; }
 
-std::string OrbitServerBinary() { return ORBIT_SERVER_BINARY; }
-
 CommandResult RunOrbit(const std::string& arguments) {
   return RunCommand(OrbitBinary() + " " + arguments);
 }

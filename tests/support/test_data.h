@@ -50,11 +50,9 @@ struct CommandResult {
 };
 CommandResult RunCommand(const std::string& command);
 
-// Path of the built `orbit` binary.
+// Path of the `orbit` binary the tests run: the build's own, or in a device-only build the one
+// named by ORBIT_TEST_SERVER (tests/CMakeLists.txt).
 std::string OrbitBinary();
-
-// Path of the built `orbit-server` binary, the server machine's subset of `orbit`.
-std::string OrbitServerBinary();
 
 // RunCommand of `orbit ARGUMENTS`.
 CommandResult RunOrbit(const std::string& arguments);

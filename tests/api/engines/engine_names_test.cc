@@ -1,6 +1,6 @@
-// The engines' names (api/engine_names.h): the proto's Engine values and core's engines agree,
-// and a name read from the command line maps to the engine a server runs.
-#include "api/engine_names.h"
+// The engines' names (api/engines/engine_names.h): the proto's Engine values and core's engines
+// agree, and a name read from the command line maps to the engine a server runs.
+#include "api/engines/engine_names.h"
 
 #include <stdexcept>
 

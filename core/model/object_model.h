@@ -2,7 +2,9 @@
 // azimuth (docs/design.md#notation: c_i is a set of views c_{i,f}).
 //
 // This is the vocabulary shared by core/ (index, engines), storage/ (the model store loads and
-// saves it) and server/. Plain data; no invariants beyond the field comments.
+// saves it), server/ and the device, which sends its views in this form (api/conversion.h,
+// ToProtoView): hence its own layer below the index, which a device does not link. Plain data;
+// no invariants beyond the field comments.
 #pragma once
 
 #include <cstdint>

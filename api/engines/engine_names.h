@@ -3,8 +3,8 @@
 // v1::Engine runs), the command line (--engine) and reports.
 //
 // A value's name is the value's, lower-cased, without "ENGINE_" and with '-' for '_'
-// (ENGINE_VCI_HMM: "vci-hmm"). tests/api/engine_names_test.cc checks that every value names an
-// engine of the registry and every engine has a value.
+// (ENGINE_VCI_HMM: "vci-hmm"). tests/api/engines/engine_names_test.cc checks that every value
+// names an engine of the registry and every engine has a value.
 #pragma once
 
 #include <string>

@@ -1,4 +1,4 @@
-#include "api/engine_names.h"
+#include "api/engines/engine_names.h"
 
 #include <cctype>
 #include <stdexcept>
