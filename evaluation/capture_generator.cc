@@ -35,25 +35,42 @@ cv::Mat RenderBackground(cv::Size size, SeededRandom& random) {
   }
   cv::Mat scene;
   cv::resize(grain, scene, size, 0, 0, cv::INTER_LINEAR);
+  // Every draw is its own statement: the order in which a call's arguments are evaluated is
+  // unspecified (GCC goes right to left on x86-64, left to right on ARM), so draws inside one
+  // call's arguments would give another scene on another machine. The order below is the one
+  // x86-64 builds have always drawn in, so their scenes stay as they were.
   auto colour = [&] {
-    return cv::Scalar(static_cast<double>(random.UniformInt(256)),
-                      static_cast<double>(random.UniformInt(256)),
-                      static_cast<double>(random.UniformInt(256)));
+    const double red = static_cast<double>(random.UniformInt(256));
+    const double green = static_cast<double>(random.UniformInt(256));
+    const double blue = static_cast<double>(random.UniformInt(256));
+    return cv::Scalar(blue, green, red);
   };
   auto point = [&] {
-    return cv::Point(static_cast<int>(random.UniformInt(size.width)),
-                     static_cast<int>(random.UniformInt(size.height)));
+    const int y = static_cast<int>(random.UniformInt(size.height));
+    const int x = static_cast<int>(random.UniformInt(size.width));
+    return cv::Point(x, y);
   };
   const int shapes = size.area() / 900;
   for (int s = 0; s < shapes; ++s) {
     switch (random.UniformInt(3)) {
-      case 0: cv::rectangle(scene, point(), point(), colour(), cv::FILLED); break;
-      case 1:
-        cv::circle(scene, point(), 4 + static_cast<int>(random.UniformInt(30)), colour(),
-                   cv::FILLED);
+      case 0: {
+        const cv::Scalar fill = colour();
+        const cv::Point corner = point();
+        cv::rectangle(scene, point(), corner, fill, cv::FILLED);
         break;
-      default:
-        cv::line(scene, point(), point(), colour(), 1 + static_cast<int>(random.UniformInt(4)));
+      }
+      case 1: {
+        const cv::Scalar fill = colour();
+        const int radius = 4 + static_cast<int>(random.UniformInt(30));
+        cv::circle(scene, point(), radius, fill, cv::FILLED);
+        break;
+      }
+      default: {
+        const int thickness = 1 + static_cast<int>(random.UniformInt(4));
+        const cv::Scalar ink = colour();
+        const cv::Point end = point();
+        cv::line(scene, point(), end, ink, thickness);
+      }
     }
   }
   return scene;
