@@ -13,9 +13,10 @@
 # block (-d exec, with the blocks' chaining off so that none runs unlogged: nochain). The
 # instructions executed are the sum over executions of the block's size. Each work runs with
 # TIMES 1 and 2: the difference is one more time's cost, without the program's start, the
-# work's set-up and what its first time alone pays. Slow: the emulator logs every block, about
-# a million a second, and each run starts the program (loading its libraries: some 350 million
-# instructions) and sets its work up again.
+# work's set-up and what its first time alone pays. Slow: the emulator logs every block (about
+# a million a second), and each run starts the program (loading its libraries: some 540 million
+# instructions) and sets its work up again (a walk's work renders the walk first: ten minutes
+# or more a run on the 2-core development machine).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
