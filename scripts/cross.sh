@@ -33,6 +33,11 @@ steps=(host_packages build_sysroot host_build device_build device_tests device_b
   device_example)
 usage() { echo "usage: $0 arm64|armhf [STEP...]   (steps: ${steps[*]})" >&2; exit 2; }
 [[ $# -ge 1 ]] || usage
+# --help: the comment at the top of this file, what each step does.
+if [[ $1 == -h || $1 == --help ]]; then
+  sed -n '2,/^# shellcheck/p' "$0" | grep -v '^# shellcheck\|^# The steps are functions' | sed 's/^# \{0,1\}//'
+  exit 0
+fi
 arch=$1
 shift
 if [[ $# -gt 0 ]]; then
