@@ -20,10 +20,8 @@
 //                                    multiples of 10 degrees, queried with the views in between;
 //                                    the kd-tree reports recall@4 against exact search
 //
-// Synthetic objects resemble COIL-100's CEDDs (about 21 non-zero bins of 144, values mostly 1-2,
-// bins of unequal popularity): each object has three keyframe descriptors around the circle and
-// its view at azimuth a blends the two nearest keyframes, with +-1 jitter on some bins. Queries
-// are views 2.5 degrees off the model views. Everything is seeded: every run sees the same sets.
+// The synthetic objects are bench/synthetic_objects.h's. Queries are views 2.5 degrees off
+// the model views. Everything is seeded: every run sees the same sets.
 //
 // Run: build/orbit_bench --benchmark_filter='exact-scan|session-frame|coil100'
 #include <benchmark/benchmark.h>
@@ -40,6 +38,7 @@
 #include <vector>
 
 #include "bench/bench_data.h"
+#include "bench/synthetic_objects.h"
 #include "client/image_file.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/descriptor/cedd.h"
@@ -52,79 +51,7 @@
 namespace orbit {
 namespace {
 
-constexpr int kViewsPerObject = 72;
-
-class SyntheticObjects {
- public:
-  explicit SyntheticObjects(int objects) : random_(20240611) {
-    std::vector<double> popularity(kCeddSize);
-    for (int bin = 0; bin < kCeddSize; ++bin) popularity[bin] = std::exp(-bin / 30.0);
-    std::shuffle(popularity.begin(), popularity.end(), random_);
-    bins_ = std::discrete_distribution<int>(popularity.begin(), popularity.end());
-    for (int o = 0; o < objects; ++o) {
-      keyframes_.push_back({Keyframe(), Keyframe(), Keyframe()});
-    }
-  }
-
-  // View of object o at azimuth a (degrees), blended from the keyframes with jitter.
-  DescriptorValues View(int o, double azimuth) {
-    const double position = azimuth / 120.0;
-    const int first = static_cast<int>(std::floor(position)) % 3;
-    const double t = position - std::floor(position);
-    const auto& a = keyframes_[o][first];
-    const auto& b = keyframes_[o][(first + 1) % 3];
-    std::bernoulli_distribution jitter(0.1), up(0.5);
-    DescriptorValues view{};
-    for (int i = 0; i < kCeddSize; ++i) {
-      int value = static_cast<int>(std::lround((1 - t) * a[i] + t * b[i]));
-      if (value > 0 && jitter(random_)) value += up(random_) ? 1 : -1;
-      view[i] = static_cast<std::uint8_t>(std::clamp(value, 0, kDescriptorMaxValue));
-    }
-    return view;
-  }
-
-  std::vector<ObjectModel> Models() {
-    std::vector<ObjectModel> models;
-    for (int o = 0; o < static_cast<int>(keyframes_.size()); ++o) {
-      ObjectModel model;
-      model.id = o + 1;
-      model.name = "synthetic" + std::to_string(o + 1);
-      for (int v = 0; v < kViewsPerObject; ++v) {
-        ModelView view;
-        view.descriptor = View(o, v * 5.0);
-        view.azimuth = v * 5.0;
-        view.typical_distance = 0.2;
-        model.views.push_back(view);
-      }
-      models.push_back(std::move(model));
-    }
-    return models;
-  }
-
-  // A sequence of frames of one object, 10 degrees apart, starting between two model views.
-  std::vector<QueryFrame> Frames(int o, double start, int count) {
-    std::vector<QueryFrame> frames;
-    for (int k = 0; k < count; ++k) {
-      const double azimuth = std::fmod(start + 2.5 + 10.0 * k, 360.0);
-      frames.push_back({{DescriptorVariant::kCeddLire, View(o, azimuth)}, azimuth + 33.0});
-    }
-    return frames;
-  }
-
- private:
-  DescriptorValues Keyframe() {
-    // Values 1..7 with COIL-100's proportions (53% ones, 20% twos, ...).
-    std::discrete_distribution<int> value({0, 53, 20, 10, 5, 4.5, 5, 2});
-    DescriptorValues keyframe{};
-    for (int n = 0; n < 21; ++n)
-      keyframe[bins_(random_)] = static_cast<std::uint8_t>(value(random_));
-    return keyframe;
-  }
-
-  std::mt19937 random_;
-  std::discrete_distribution<int> bins_;
-  std::vector<std::array<DescriptorValues, 3>> keyframes_;
-};
+using bench::SyntheticObjects;
 
 struct SyntheticSet {
   std::unique_ptr<SyntheticObjects> objects;
