@@ -1,12 +1,15 @@
-// Speed of the view index and the engines, on synthetic model sets of 100 and
-// 1000 objects x 72 views, plus the kd-tree's recall against exact search on COIL-100.
+// Speed of the view index and the engines, on synthetic model sets of 100, 1000 and 10000
+// objects x 72 views, plus the kd-tree's recall against exact search on COIL-100.
 //
 //   exact-scan/<objects>             one brute-force Tanimoto pass over every view
 //                                    (ViewIndexSnapshot::SimilarityToEveryView)
 //   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
 //                                    kd-tree index, default options; engine "product" is the
 //                                    product pipeline's engine with its options (the
-//                                    product's budget: at most 0.25x exact-scan/1000)
+//                                    product's budget: at most 0.25x exact-scan/1000), and
+//                                    "product-every-object" the same without object candidates
+//                                    (docs/design.md#object-candidates), "product-candidates:C"
+//                                    with C candidates per frame
 //   session-frame/<engine>/<objects>/sessions:<n>
 //                                    the same, with n sessions on the snapshot taking frames in
 //                                    turn, so each frame finds its session's state out of cache
@@ -94,11 +97,24 @@ void BM_RejectionCalibration(benchmark::State& state, int objects) {
   }
 }
 
-// The engine called `name` with its default options, or for "product" the product pipeline's
-// engine with its options (core/engines/product_pipeline.h).
+// The engine called `name` with its default options; for "product" the product pipeline's
+// engine with its options (core/engines/product_pipeline.h); for "product-every-object" the same
+// scoring every object at any catalogue size (candidate_objects 0), the reference that shows
+// what the candidates save.
 std::unique_ptr<RecognitionEngine> BenchEngine(const std::string& name) {
-  return name == kProductMethod ? CreateEngine(Product().engine, Product().options)
-                                : CreateEngine(name);
+  if (name == kProductMethod) return CreateEngine(Product().engine, Product().options);
+  if (name == "product-every-object") {
+    EngineOptions options = Product().options;
+    options.candidate_objects = 0;
+    return CreateEngine(Product().engine, options);
+  }
+  if (name.starts_with("product-candidates:")) {
+    EngineOptions options = Product().options;
+    options.candidate_objects = std::stoi(name.substr(name.find(':') + 1));
+    options.candidates_above = 0;
+    return CreateEngine(Product().engine, options);
+  }
+  return CreateEngine(name);
 }
 
 void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objects) {
@@ -266,7 +282,7 @@ void BM_CoilSearch(benchmark::State& state, SearchMode mode) {
 }
 
 int RegisterEngineBenchmarks() {
-  for (const int objects : {100, 1000}) {
+  for (const int objects : {100, 1000, 10000}) {
     benchmark::RegisterBenchmark(("exact-scan/" + std::to_string(objects)).c_str(), BM_ExactScan,
                                  objects)
         ->Unit(benchmark::kMicrosecond);
@@ -276,8 +292,10 @@ int RegisterEngineBenchmarks() {
                                  BM_RejectionCalibration, objects)
         ->Unit(benchmark::kMillisecond);
   }
-  for (const char* engine : {"vci", "hmm", "product"}) {
-    for (const int objects : {100, 1000}) {
+  for (const char* engine :
+       {"vci", "hmm", "product", "product-every-object", "product-candidates:8",
+        "product-candidates:16", "product-candidates:32"}) {
+    for (const int objects : {100, 1000, 10000}) {
       benchmark::RegisterBenchmark(
           ("session-frame/" + std::string(engine) + "/" + std::to_string(objects)).c_str(),
           BM_SessionFrame, std::string(engine), objects)

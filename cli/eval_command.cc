@@ -21,6 +21,7 @@
 #include "cli/progress_bar.h"
 #include "client/connection.h"
 #include "client/rpc_error.h"
+#include "core/engines/product_pipeline.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
 #include "evaluation/evaluation_plot.h"
@@ -83,6 +84,8 @@ struct EvalOptions {
   int hmm_states = EngineOptions{}.hmm_states;
   int hmm_sharpness = EngineOptions{}.hmm_sharpness;
   double nearest_view_weight = EngineOptions{}.nearest_view_weight;
+  int candidates = 0;
+  int candidates_above = 0;
   std::string csv;
   std::string plot;
   int threads = EvaluationOptions{}.threads;
@@ -127,6 +130,8 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.hmm_states = o.hmm_states;
   options.engine.hmm_sharpness = o.hmm_sharpness;
   options.engine.nearest_view_weight = o.nearest_view_weight;
+  options.engine.candidate_objects = o.candidates;
+  options.engine.candidates_above = o.candidates_above;
   options.threads = o.threads;
   return options;
 }
@@ -175,7 +180,8 @@ const std::map<std::string, std::string>& ServerRefusalReasons() {
     for (const char* flag :
          {"--methods", "--variant", "--index", "--kd-trees", "--kd-checks", "--kd-candidates",
           "--threshold", "--rejection", "--false-accept-rate", "--orientation-weight",
-          "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight"}) {
+          "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight",
+          "--candidates", "--candidates-above"}) {
       r[flag] = "the server recognises with its own variant, engine and session defaults";
     }
     for (const char* flag : {"--distortions", "--sweep", "--sweep-steps"}) {
@@ -482,6 +488,20 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                    "window's nearest views (1 - T_EIS) instead of their own (0: the thesis' "
                    "engines; the product's is its own)")
       ->check(CLI::Range(0.0, 1.0))
+      ->capture_default_str();
+  command
+      ->add_option("--candidates", o->candidates,
+                   "the HMM (and the product) scores only this many objects per frame, proposed "
+                   "by the index from their sector summaries, once the model set holds more than "
+                   "--candidates-above objects (0: the method's own setting; the product's is " +
+                       std::to_string(kProductCandidateObjects) + " above " +
+                       std::to_string(kProductCandidatesAbove) + ")")
+      ->check(CLI::Range(0, kMaxCandidateObjects))
+      ->capture_default_str();
+  command
+      ->add_option("--candidates-above", o->candidates_above,
+                   "with --candidates: the model-set size above which candidates are used")
+      ->check(CLI::Range(0, kMaxCandidatesAbove))
       ->capture_default_str();
   command->add_option("--csv", o->csv,
                       "also write method,variant,distortion,n,trials,hits,hit_rate,ms_per_query");

@@ -18,6 +18,15 @@ if(NOT TARGET flann::flann)
     INTERFACE_LINK_LIBRARIES "${LZ4_LIBRARY}")
 endif()
 
+# hnswlib (header only): the view index's graphs of object summaries, which propose an engine's
+# candidate objects (docs/design.md#object-candidates).
+if(NOT TARGET hnswlib::hnswlib)
+  find_path(HNSWLIB_INCLUDE_DIR hnswlib/hnswlib.h REQUIRED)
+  add_library(hnswlib::hnswlib INTERFACE IMPORTED)
+  set_target_properties(hnswlib::hnswlib PROPERTIES
+    INTERFACE_INCLUDE_DIRECTORIES "${HNSWLIB_INCLUDE_DIR}")
+endif()
+
 find_package(PkgConfig REQUIRED)
 
 # prometheus-cpp: the server's metrics (server/server_metrics.h) and their HTTP endpoint

@@ -13,6 +13,7 @@ packages=(
   libabsl-dev  # thread-safety annotations, header only (core/base/mutex.h)
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
+  libhnswlib-dev  # the view index's graphs of object summaries (core/index/view_index.h)
   libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   libssl-dev  # SHA-256 of the server's tokens (server/token_file.h)

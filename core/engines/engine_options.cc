@@ -52,6 +52,10 @@ void ValidateEngineOptions(const EngineOptions& o, std::string_view p) {
           Integers(2, kMaxAveragedViews), o.averaged_views);
   Require(std::isfinite(o.ambiguity_margin) && o.ambiguity_margin >= 0, p, "ambiguity_margin",
           "[0, inf)", o.ambiguity_margin);
+  Require(o.candidate_objects >= 0 && o.candidate_objects <= kMaxCandidateObjects, p,
+          "candidate_objects", Integers(0, kMaxCandidateObjects), o.candidate_objects);
+  Require(o.candidates_above >= 0 && o.candidates_above <= kMaxCandidatesAbove, p,
+          "candidates_above", Integers(0, kMaxCandidatesAbove), o.candidates_above);
 }
 
 int RankedDepth(const EngineOptions& options) {

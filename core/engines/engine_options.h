@@ -20,6 +20,8 @@ inline constexpr int kMaxHmmSharpness = 5;  // emissions up to the 32nd power
 // larger weights change nothing but can overflow a score to infinity.
 inline constexpr double kMaxOrientationWeight = 1000;
 inline constexpr int kMaxAveragedViews = 360;
+inline constexpr int kMaxCandidateObjects = 4096;
+inline constexpr int kMaxCandidatesAbove = 1'000'000'000;
 
 // Symbols as in docs/design.md; the product's values are in core/engines/product_pipeline.h.
 struct EngineOptions {
@@ -50,6 +52,11 @@ struct EngineOptions {
   // Active vision: never suggest going back to a side the window has seen when the other side
   // is new (false: the thesis' rule alone).
   bool move_prefers_new_side = false;
+  // The HMM on a catalogue of more than candidates_above objects scores only the objects the
+  // view index proposes, candidate_objects per frame (0..kMaxCandidateObjects; 0: every object
+  // at any size; docs/design.md#object-candidates).
+  int candidate_objects = 0;
+  int candidates_above = 0;  // 0..kMaxCandidatesAbove
 };
 
 // Throws std::invalid_argument naming the first option out of its range, as

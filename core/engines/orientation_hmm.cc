@@ -13,6 +13,9 @@
 
 #include "core/base/cpu_dispatch.h"
 #include "core/descriptor/similarity.h"
+#include "core/engines/candidate_hmm.h"
+#include "core/engines/hmm_emissions.h"
+#include "core/engines/hmm_session.h"
 #include "core/engines/sector_similarity_table.h"
 #include "core/engines/windowed_engine.h"
 #include "core/index/similarity_rows.h"
@@ -21,7 +24,6 @@ namespace orbit {
 namespace {
 
 constexpr double kMinusInfinity = -std::numeric_limits<double>::infinity();
-constexpr double kEmissionFloor = 1e-12;
 
 double Log(double p) { return p > 0 ? std::log(p) : kMinusInfinity; }
 
@@ -149,60 +151,6 @@ ViterbiPath Viterbi(std::span<const double> initial,
 
 namespace {
 
-// An unseen object's emissions as a window keeps them (below): the emission is |-1| = 1 in
-// every state (b uniform) and its similarity on any path max(-1, 0) = 0, so that decoding reads
-// both from the kept values alone.
-constexpr float kUnseenEmission = -1.0f;
-
-// In place, values[i * n + o] = TC(S_i, o_t) becomes b_i(o_t) up to a per-frame constant:
-// the similarity floored at 1e-12 of the object's sum over its states (> 0), or
-// kUnseenEmission for every state when that sum is 0 (the object is unseen in the frame).
-// best[o] is the object's highest emission, or 0 when it is unseen (its similarity on any
-// path), so best[o] > 0 exactly when the object is seen. `sum` is scratch of n floats. Called
-// with n = 1 on one object's values, it gives what it gives that object among many.
-ORBIT_HOT_LOOP void EmissionsFromSimilarities(float* __restrict values, int states,
-                                              float* __restrict sum, float* __restrict best,
-                                              std::size_t n) {
-  for (std::size_t o = 0; o < n; ++o) sum[o] = 0.0f;
-  for (int i = 0; i < states; ++i) {
-    const float* row = &values[static_cast<std::size_t>(i) * n];
-    for (std::size_t o = 0; o < n; ++o) sum[o] += row[o];
-  }
-  for (std::size_t o = 0; o < n; ++o) best[o] = 0.0f;
-  for (int i = 0; i < states; ++i) {
-    float* row = &values[static_cast<std::size_t>(i) * n];
-    for (std::size_t o = 0; o < n; ++o) {
-      const float floor = static_cast<float>(kEmissionFloor) * sum[o];
-      row[o] = sum[o] > 0.0f ? std::max(row[o], floor) : kUnseenEmission;
-      best[o] = sum[o] > 0.0f ? std::max(best[o], row[o]) : 0.0f;
-    }
-  }
-}
-
-// An object's best emission in a frame, as the window keeps it for the bounds (Assess): in units
-// of 2^-15, rounded up, so that a sum of them is never below the sum of the emissions, and exact
-// in integers. 16 bits hold up to 2: a Tanimoto coefficient in float is at most 1 and a few ulps.
-constexpr float kBoundUnitsPerOne = 32768.0f;
-
-// units[o] = ceil(best[o] * 2^15): exact, as scaling by a power of two is.
-ORBIT_HOT_LOOP void BoundUnits(const float* __restrict best, std::uint16_t* __restrict units,
-                               std::size_t n) {
-  for (std::size_t o = 0; o < n; ++o) {
-    units[o] = static_cast<std::uint16_t>(std::ceil(best[o] * kBoundUnitsPerOne));
-  }
-}
-
-// bound[o] += units[o], or -= with `subtract`: a window's bounds follow its frames in
-// integers, exactly, as frames enter and leave.
-ORBIT_HOT_LOOP void AddBounds(const std::uint16_t* __restrict units, bool subtract,
-                              std::uint32_t* __restrict bound, std::size_t n) {
-  if (subtract) {
-    for (std::size_t o = 0; o < n; ++o) bound[o] -= units[o];
-  } else {
-    for (std::size_t o = 0; o < n; ++o) bound[o] += units[o];
-  }
-}
-
 // Sets top[0 .. count) to the positions of the `count` highest bounds, ties to the lower
 // position, so that top[count - 1] is the lowest of them. A few (the usual case) are kept
 // sorted as one pass meets them, which costs a comparison per object that rarely succeeds;
@@ -240,24 +188,6 @@ void AppendEmissions(std::span<const float> all, std::size_t objects, int states
     for (std::size_t i = 0; i < static_cast<std::size_t>(states); ++i) {
       kept.push_back(all[i * objects + position]);
     }
-  }
-}
-
-// In place, values[k] = values[k]^(2^squarings) (EngineOptions::hmm_sharpness). At the 32nd
-// power a similarity under about 0.065 underflows to 0: an object that matches a frame that
-// poorly in every state gets an arbitrary path through it and reads 0 there, which changes
-// nothing for the objects that can rank.
-// Values that would fall below FLT_MIN are set to 0 at once: subnormal floats cost the
-// multiplications here and in BatchViterbi tens of cycles each.
-ORBIT_HOT_LOOP void Sharpen(float* __restrict values, std::size_t count, int squarings) {
-  if (squarings == 0) return;
-  // The smallest value whose 2^squarings-th power is a normal float.
-  const float smallest =
-      std::pow(std::numeric_limits<float>::min(), 1.0f / static_cast<float>(1 << squarings));
-  for (std::size_t k = 0; k < count; ++k) {
-    float v = values[k] < smallest ? 0.0f : values[k];
-    for (int s = 0; s < squarings; ++s) v *= v;
-    values[k] = v;
   }
 }
 
@@ -316,14 +246,9 @@ void MoveRuns(std::span<const SnapshotChange::Run> runs, std::size_t before, std
 // "A window of bounds"). An object decoded for the first time gets its emissions for the older
 // frames from its own sector sums (SectorSimilarityTable::ComputeObject: the same values to the
 // last bit).
-class OrientationHmm final : public WindowedEngine {
+class OrientationHmm final : public HmmSession {
  public:
-  explicit OrientationHmm(const EngineOptions& options)
-      : WindowedEngine("hmm", options),
-        states_(options.hmm_states),
-        sectors_(EqualSectors(states_)),
-        unknown_turn_(UnknownTurnTransitions(sectors_)),
-        viterbi_(InitialProbabilities(sectors_)) {}
+  explicit OrientationHmm(const EngineOptions& options) : HmmSession(options) {}
 
  protected:
   void Append(const ViewIndexSnapshot& index, const QueryFrame& frame) override {
@@ -337,15 +262,7 @@ class OrientationHmm final : public WindowedEngine {
     const std::size_t objects = table_->object_count();
     stored.kept.clear();
     AppendEmissions(emissions, objects, states_, kept_, stored.kept);
-    if (previous_) {
-      const std::optional<double> turn = MeasuredTurn(*previous_, frame);
-      if (turn) {
-        MakeSparseTransitions(sectors_, *turn, stored.step);  // in the reused frame's buffers
-      } else {
-        stored.step = unknown_turn_;
-      }
-    }
-    previous_ = frame;
+    StepTo(frame, stored.step);
     bound_.resize(objects, 0);
     RunHotLoop<AddBounds>(stored.best.data(), false, bound_.data(), objects);
     frames_.push_back(std::move(stored));
@@ -358,7 +275,7 @@ class OrientationHmm final : public WindowedEngine {
   void Clear() override {
     frames_.clear();
     bound_.clear();
-    previous_.reset();
+    ForgetSteps();
     table_.reset();
     ForgetKept();
   }
@@ -444,20 +361,7 @@ class OrientationHmm final : public WindowedEngine {
     if (lane == lanes_.end()) {
       throw std::logic_error("HMM: an object the last answer did not decode");
     }
-    const std::span<const std::uint16_t> path =
-        viterbi_.path(static_cast<std::size_t>(lane - lanes_.begin()));
-    const SectorViews& sectors = assessment.object->Sectors(states_);
-    const auto& views = assessment.object->model().views;
-    assessment.matched.clear();
-    for (std::size_t t = 0; t < window.size(); ++t) {
-      MatchedView best{static_cast<int>(t), -1, -1};
-      for (const int v : sectors.views[path[t]]) {
-        const double tc = rows.rows[t][v];
-        if (tc > best.similarity) best = {static_cast<int>(t), v, tc};
-      }
-      assessment.matched.push_back(best);
-    }
-    assessment.latest_azimuth = views[assessment.matched.back().view].azimuth;
+    CompletePath(static_cast<std::size_t>(lane - lanes_.begin()), window, rows, assessment);
   }
 
  private:
@@ -591,59 +495,36 @@ class OrientationHmm final : public WindowedEngine {
     const std::size_t frames = frames_.size();
     const std::size_t lanes = positions.size();
     lanes_.assign(positions.begin(), positions.end());
-    // The decoded objects' emissions, gathered into BatchViterbi's [state][lane] layout and
-    // sharpened as they are copied (the window keeps the similarities themselves). A kept
-    // object's states are adjacent in a window frame. The scratch is the thread's: warm in its
-    // cache whichever session it serves.
+    // A kept object's states are adjacent in a window frame.
     const std::size_t states = static_cast<std::size_t>(states_);
-    const int sharpness = options().hmm_sharpness;
-    thread_local std::vector<float> gathered;  // [frame][state][lane]
-    gathered.resize(frames * states * lanes);
     PrefetchDecoded(positions);
-    std::vector<const float*> emissions;
+    std::vector<const float*> kept(frames * lanes);
     std::vector<const SparseTransitions*> steps;
     for (std::size_t t = 0; t < frames; ++t) {
-      const float* kept = frames_[t].kept.data();
-      float* lanes_of_frame = &gathered[t * states * lanes];
       for (std::size_t j = 0; j < lanes; ++j) {
-        const float* object_states = kept + static_cast<std::size_t>(slot_[positions[j]]) * states;
-        for (std::size_t i = 0; i < states; ++i) {
-          lanes_of_frame[i * lanes + j] = std::abs(object_states[i]);  // kUnseenEmission: 1
-        }
+        kept[t * lanes + j] =
+            &frames_[t].kept[static_cast<std::size_t>(slot_[positions[j]]) * states];
       }
-      RunHotLoop<Sharpen>(lanes_of_frame, states * lanes, sharpness);
-      emissions.push_back(lanes_of_frame);
       if (t > 0) steps.push_back(&frames_[t].step);
     }
-    viterbi_.Decode(emissions, steps, lanes);
-    sums.assign(lanes, 0.0);
-    for (std::size_t j = 0; j < lanes; ++j) {
-      const std::span<const std::uint16_t> path = viterbi_.path(j);
-      const std::size_t slot = static_cast<std::size_t>(slot_[positions[j]]);
-      for (std::size_t t = 0; t < frames; ++t) {
-        // The TC of the path's state, from the kept (unsharpened) emissions; 0 when unseen.
-        sums[j] += std::max(frames_[t].kept[slot * states + path[t]], 0.0f);
-      }
-    }
+    DecodeKept(kept, frames, lanes, steps, sums);
   }
 
-  const int states_;
-  const std::vector<Arc> sectors_;
-  const SparseTransitions unknown_turn_;  // the step to or from a frame without azimuth
-  BatchViterbi viterbi_;                  // holds the last Assess's paths, read by Complete
   std::shared_ptr<const SectorSimilarityTable> table_;  // the current snapshot's, shared
   std::deque<WindowFrame> frames_;
-  std::optional<QueryFrame> previous_;  // the last frame appended, for the next turn
-  std::vector<std::uint32_t> bound_;    // [object]: the sum of its best over the window frames
-  std::vector<std::uint32_t> kept_;     // [slot]: the position of a kept object
-  std::vector<std::int32_t> slot_;      // [object position]: its slot in kept_, or -1
-  std::vector<std::uint32_t> lanes_;    // [lane of viterbi_]: the object position decoded there
+  std::vector<std::uint32_t> bound_;  // [object]: the sum of its best over the window frames
+  std::vector<std::uint32_t> kept_;   // [slot]: the position of a kept object
+  std::vector<std::int32_t> slot_;    // [object position]: its slot in kept_, or -1
+  std::vector<std::uint32_t> lanes_;  // [lane of the last decoding]: the object position there
   WindowFrame spare_;  // the last frame dropped: its buffers are reused by the next Append
 };
 
 }  // namespace
 
 std::unique_ptr<RecognitionEngine> MakeHmmEngine(const EngineOptions& options) {
+  if (options.candidate_objects > 0) {
+    return MakeCandidateHmmEngine(options, std::make_unique<OrientationHmm>(options));
+  }
   return std::make_unique<OrientationHmm>(options);
 }
 

@@ -19,6 +19,12 @@ namespace orbit {
 // The method name `orbit eval` gives the product pipeline.
 inline constexpr std::string_view kProductMethod = "product";
 
+// Above kProductCandidatesAbove objects a session scores only the objects the index proposes,
+// kProductCandidateObjects per frame (EngineOptions::candidate_objects; why these:
+// docs/results/scale.md).
+inline constexpr int kProductCandidateObjects = 8;
+inline constexpr int kProductCandidatesAbove = 5000;
+
 struct ProductPipeline {
   DescriptorVariant variant = DescriptorVariant::kCeddHsvHog;
   std::string_view engine = "hmm";  // one of EngineNames()
@@ -35,6 +41,8 @@ struct ProductPipeline {
     options.nearest_view_weight = 0.5;
     options.rejection = RejectionRule::kCalibrated;
     options.move_prefers_new_side = true;
+    options.candidate_objects = kProductCandidateObjects;
+    options.candidates_above = kProductCandidatesAbove;
     return options;
   }();
 };

@@ -134,41 +134,48 @@ void SectorSimilarityTable::Compute(const DescriptorValues& query,
   }
 }
 
+QueryBins::QueryBins(const DescriptorValues& query) : values(query) {
+  for (int d = 0; d < kDescriptorSize; ++d) {
+    if (query[d] == 0) continue;
+    squared_norm += query[d] * query[d];
+    bins[used++] = static_cast<std::uint16_t>(d);
+  }
+}
+
 void SectorSimilarityTable::ComputeObject(const DescriptorValues& query, const SectorViews& sectors,
+                                          std::span<float> similarity) {
+  ComputeObject(QueryBins(query), sectors, similarity);
+}
+
+void SectorSimilarityTable::ComputeObject(const QueryBins& query, const SectorViews& sectors,
                                           std::span<float> similarity) {
   const std::size_t count = static_cast<std::size_t>(sectors.count);
   if (similarity.size() < count) {
     throw std::invalid_argument("SectorSimilarityTable: result span too small");
   }
   // The same integers as Compute's accumulators (exact, in any order), then the same float
-  // steps through the same function: equal results bit for bit.
+  // steps through the same function: equal results bit for bit. Over the query's non-zero bins
+  // only, as Compute.
   thread_local std::vector<std::int32_t> acc;
   thread_local std::vector<float> inverse_counts, squared_norms;
-  acc.assign(count, 0);
+  acc.resize(count);
   inverse_counts.resize(count);
   squared_norms.resize(count);
-  // Over the query's non-zero bins only, as Compute: a COIL-100 CEDD has about 21 of 144.
-  std::int32_t query_norm = 0;
-  std::array<std::uint16_t, kDescriptorSize> bins;  // the non-zero bins' indices
-  std::size_t used = 0;
-  for (int d = 0; d < kDescriptorSize; ++d) {
-    if (query[d] == 0) continue;
-    query_norm += query[d] * query[d];
-    bins[used++] = static_cast<std::uint16_t>(d);
-  }
   for (std::size_t i = 0; i < count; ++i) {
     const ViewSum& sum = sectors.sum[i];
     std::int32_t dot = 0;
-    for (std::size_t k = 0; k < used; ++k) dot += query[bins[k]] * sum[bins[k]];
+    for (std::size_t k = 0; k < query.used; ++k) {
+      dot += query.values[query.bins[k]] * sum[query.bins[k]];
+    }
     acc[i] = dot;
     inverse_counts[i] = InverseCount(sectors, i);
     squared_norms[i] = SquaredNorm(sectors, i);
   }
   RunHotLoop<TanimotoFromSums>(acc.data(), inverse_counts.data(), squared_norms.data(),
-                               static_cast<float>(query_norm), similarity.data(), count);
+                               static_cast<float>(query.squared_norm), similarity.data(), count);
   for (std::size_t i = 0; i < count; ++i) {
     if (IsWide(sectors, i)) {
-      similarity[i] = static_cast<float>(Tanimoto(query, sectors.descriptor[i]));
+      similarity[i] = static_cast<float>(Tanimoto(query.values, sectors.descriptor[i]));
     }
   }
 }

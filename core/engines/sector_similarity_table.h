@@ -17,6 +17,7 @@
 // Thread safety: immutable after construction; Compute may be called from many threads.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -29,6 +30,16 @@
 #include "core/index/view_index.h"
 
 namespace orbit {
+
+// A query's non-zero bins, found once per frame for the objects scored one by one
+// (SectorSimilarityTable::ComputeObject): a COIL-100 CEDD has about 21 of 144.
+struct QueryBins {
+  explicit QueryBins(const DescriptorValues& query);
+  DescriptorValues values{};
+  std::array<std::uint16_t, kDescriptorSize> bins{};  // [0, used): the non-zero bins, ascending
+  std::size_t used = 0;
+  std::int32_t squared_norm = 0;
+};
 
 class SectorSimilarityTable {
  public:
@@ -57,6 +68,9 @@ class SectorSimilarityTable {
   // from the object's own sums (IndexedObject::Sectors), so it needs no table. Throws
   // std::invalid_argument when `similarity` holds fewer than sectors.count values.
   static void ComputeObject(const DescriptorValues& query, const SectorViews& sectors,
+                            std::span<float> similarity);
+  // The same, for a query whose bins were found already.
+  static void ComputeObject(const QueryBins& query, const SectorViews& sectors,
                             std::span<float> similarity);
 
  private:

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -10,6 +11,7 @@
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU, so no runtime dispatch is needed
 #endif
 
+#include <hnswlib/hnswlib.h>
 #include <flann/flann.hpp>
 
 #include "core/base/cpu_dispatch.h"
@@ -18,6 +20,13 @@
 namespace orbit {
 
 using KdTree = flann::Index<flann::L2<float>>;
+
+// The summary graphs' links per node (hnswlib's M) and breadth of search while building
+// (ef_construction): docs/results/scale.md, "Choosing the candidate index".
+constexpr std::size_t kSummaryGraphLinks = 16;
+constexpr std::size_t kSummaryGraphBuildBreadth = 100;
+// Summaries asked of a graph per object wanted (see ViewIndexSnapshot::CandidatesKdTree).
+constexpr std::size_t kSummaryRowsPerObject = 4;
 
 // Views of some objects in one contiguous block, never modified after BuildSegment.
 struct ViewIndexSnapshot::Segment {
@@ -32,6 +41,13 @@ struct ViewIndexSnapshot::Segment {
   std::vector<std::int32_t> object_of_view;  // local object index per local slot
   std::vector<float> points;                 // the descriptors as floats, for FLANN
   std::unique_ptr<KdTree> kd_tree;           // kKdTree mode only; reads `points`
+  // kKdTree mode only: summary s of local object o is row o * kSummarySectors + s, its sector
+  // mean's first `length` values, and that mean's squared norm; and a graph of the rows in
+  // cosine order (inner products of the rows scaled to length 1), labelled by row.
+  std::vector<float> summaries;
+  std::vector<float> summary_norms;
+  std::unique_ptr<hnswlib::InnerProductSpace> summary_space;
+  std::unique_ptr<hnswlib::HierarchicalNSW<float>> summary_graph;
 };
 
 // A segment as one snapshot sees it: which of its objects are still present.
@@ -142,6 +158,32 @@ std::shared_ptr<const Segment> BuildSegment(
     // measures the spread). Builds in different threads are independent.
     segment->kd_tree->buildIndex();
   }
+  for (const auto& object : segment->objects) {
+    if (options.search != SearchMode::kKdTree) break;  // kExact reads the objects' own sectors
+    const SectorViews& sectors = object->Sectors(kSummarySectors);
+    for (const MeanDescriptor& mean : sectors.descriptor) {
+      float norm = 0;
+      for (int i = 0; i < length; ++i) norm += mean[i] * mean[i];
+      segment->summaries.insert(segment->summaries.end(), mean.begin(), mean.begin() + length);
+      segment->summary_norms.push_back(norm);
+    }
+  }
+  if (options.search == SearchMode::kKdTree && !segment->objects.empty()) {
+    // Inserted in row order from one thread with hnswlib's fixed seed: the same segment gives
+    // the same graph on every build.
+    const std::size_t rows = segment->summary_norms.size();
+    segment->summary_space = std::make_unique<hnswlib::InnerProductSpace>(length);
+    segment->summary_graph = std::make_unique<hnswlib::HierarchicalNSW<float>>(
+        segment->summary_space.get(), rows, kSummaryGraphLinks, kSummaryGraphBuildBreadth);
+    std::vector<float> unit(length);
+    for (std::size_t row = 0; row < rows; ++row) {
+      const float norm = std::sqrt(segment->summary_norms[row]);
+      for (int i = 0; i < length; ++i) {
+        unit[i] = norm > 0 ? segment->summaries[row * length + i] / norm : 0.0f;
+      }
+      segment->summary_graph->addPoint(unit.data(), row);
+    }
+  }
   return segment;
 }
 
@@ -197,12 +239,17 @@ ViewIndexSnapshot::ViewIndexSnapshot(DescriptorVariant variant, ViewIndexOptions
     segment_first_slot_.push_back(slot_count_);
     position_of_slot_.resize(slot_count_ + segment.view_count, -1);
     view_of_slot_.resize(slot_count_ + segment.view_count, 0);
+    std::vector<std::int32_t>& position_of_object = position_of_object_.emplace_back();
+    position_of_object.assign(segment.objects.size(), -1);
+    std::size_t& live_objects = segment_live_objects_.emplace_back(0);
     for (std::size_t o = 0; o < segment.objects.size(); ++o) {
       const std::size_t first = slot_count_ + segment.first_view[o];
       const int views = segment.objects[o]->view_count();
       for (int v = 0; v < views; ++v) view_of_slot_[first + v] = v;
       if (!state.alive[o]) continue;
       const auto position = static_cast<std::int32_t>(objects_.size());
+      position_of_object[o] = position;
+      ++live_objects;
       std::fill_n(position_of_slot_.begin() + static_cast<std::ptrdiff_t>(first), views, position);
       position_of_id_[segment.objects[o]->id()] = objects_.size();
       objects_.push_back({segment.objects[o].get(), first});
@@ -289,6 +336,118 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
     }
   }
   return Best(scored, count);
+}
+
+namespace {
+
+// TC(query, summary) in float over `length` values, with Tanimoto()'s conventions for zero
+// vectors; `summary_norm` is summary . summary.
+float SummaryTanimoto(const std::vector<float>& query, float query_norm, const float* summary,
+                      float summary_norm, int length) {
+  float qc = 0;
+  for (int i = 0; i < length; ++i) qc += query[i] * summary[i];
+  if (query_norm == 0 && summary_norm == 0) return 1.0f;
+  const float denominator = query_norm + summary_norm - qc;
+  return denominator > 0 ? qc / denominator : 0.0f;
+}
+
+// The best `count` of per-object similarities, best first, ties to the lower position.
+std::vector<ObjectCandidate> BestObjects(std::vector<ObjectCandidate> scored, int count) {
+  const auto better = [](const ObjectCandidate& a, const ObjectCandidate& b) {
+    return a.similarity > b.similarity || (a.similarity == b.similarity && a.position < b.position);
+  };
+  const std::size_t kept = std::min(scored.size(), static_cast<std::size_t>(count));
+  std::partial_sort(scored.begin(), scored.begin() + static_cast<std::ptrdiff_t>(kept),
+                    scored.end(), better);
+  scored.resize(kept);
+  return scored;
+}
+
+}  // namespace
+
+std::vector<ObjectCandidate> ViewIndexSnapshot::ObjectCandidates(const DescriptorValues& query,
+                                                                 int count) const {
+  if (count < 1) throw std::invalid_argument("candidate count must be at least 1");
+  if (options_.search == SearchMode::kKdTree && objects_.size() > static_cast<std::size_t>(count)) {
+    return CandidatesKdTree(query, count);
+  }
+  return CandidatesExact(query, count);
+}
+
+std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesExact(const DescriptorValues& query,
+                                                                int count) const {
+  const std::vector<float> point(query.begin(), query.end());
+  float query_norm = 0;
+  for (const float v : point) query_norm += v * v;
+  std::vector<ObjectCandidate> scored;
+  scored.reserve(objects_.size());
+  std::size_t position = 0;
+  for (const SegmentState& state : segments_) {
+    const Segment& segment = *state.segment;
+    for (std::size_t o = 0; o < segment.objects.size(); ++o) {
+      if (!state.alive[o]) continue;
+      const SectorViews& sectors = segment.objects[o]->Sectors(kSummarySectors);
+      float best = 0;
+      for (int s = 0; s < kSummarySectors; ++s) {
+        best = std::max(
+            best, SummaryTanimoto(point, query_norm, sectors.descriptor[s].data(),
+                                  static_cast<float>(sectors.squared_norm[s]), segment.length));
+      }
+      scored.push_back({position++, best});
+    }
+  }
+  return BestObjects(std::move(scored), count);
+}
+
+std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesKdTree(const DescriptorValues& query,
+                                                                 int count) const {
+  std::vector<float> point(query.begin(), query.end());
+  float query_norm = 0;
+  for (const float v : point) query_norm += v * v;
+  // Each object's best summary among those found, by position.
+  std::unordered_map<std::size_t, float> best;
+  // The query scaled to length 1, for the graphs' cosine order.
+  std::vector<float> unit(point);
+  if (query_norm > 0) {
+    const float norm = std::sqrt(query_norm);
+    for (float& v : unit) v /= norm;
+  }
+  for (std::size_t s = 0; s < segments_.size(); ++s) {
+    const Segment& segment = *segments_[s].segment;
+    const std::size_t rows = segment.summary_norms.size();
+    const std::vector<std::int32_t>& position_of = position_of_object_[s];
+    const std::size_t live = segment_live_objects_[s];
+    const std::size_t dead = segment.objects.size() - live;
+    if (live == 0) continue;
+    // An object's summaries are alike, so a list of summaries holds fewer objects: ask for
+    // kSummaryRowsPerObject per object wanted, plus the deleted objects' summaries, doubling
+    // while the list holds fewer live objects than wanted (or than the segment has).
+    const std::size_t objects_wanted = std::min(live, static_cast<std::size_t>(count));
+    std::size_t wanted =
+        std::min(rows, kSummaryRowsPerObject * objects_wanted + dead * kSummarySectors);
+    std::unordered_map<std::size_t, float> found_here;
+    for (;;) {
+      found_here.clear();
+      for (auto found = segment.summary_graph->searchKnn(unit.data(), wanted); !found.empty();
+           found.pop()) {
+        const std::size_t row = found.top().second;
+        const std::int32_t position = position_of[row / kSummarySectors];
+        if (position < 0) continue;
+        const float tc =
+            SummaryTanimoto(point, query_norm, &segment.summaries[row * segment.length],
+                            segment.summary_norms[row], segment.length);
+        float& kept = found_here.try_emplace(static_cast<std::size_t>(position), tc).first->second;
+        kept = std::max(kept, tc);
+      }
+      if (found_here.size() >= objects_wanted || wanted == rows) break;
+      wanted = std::min(rows, 2 * wanted);
+    }
+    best.insert(found_here.begin(), found_here.end());
+  }
+  std::vector<ObjectCandidate> scored;
+  scored.reserve(best.size());
+  for (const auto& [position, similarity] : best) scored.push_back({position, similarity});
+  return BestObjects(std::move(scored), count);
 }
 
 std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored, int count) const {

@@ -22,6 +22,12 @@
 // Remove() never change it. A session takes the current snapshot for each frame, so an object
 // enrolled or deleted is seen from that session's next frame on.
 //
+// Object candidates: ViewIndexSnapshot::ObjectCandidates proposes the objects whose summaries
+// (the means of their views in kSummarySectors equal azimuth sectors, IndexedObject::Sectors)
+// are most like a frame, so that an engine can score a few objects of a large catalogue instead
+// of all (docs/design.md#object-candidates). kExact scans every summary; kKdTree searches a
+// kd-tree of each segment's summaries, built with the segment.
+//
 // Thread safety: ViewIndex is safe for concurrent use from multiple threads (writers are
 // serialised internally; Snapshot() never waits for a segment build). A ViewIndexSnapshot is
 // immutable and safe to share read-only across any number of threads.
@@ -55,6 +61,17 @@ struct ViewIndexOptions {
   int kd_checks =
       256;  // leaves FLANN visits per segment and query (see docs/results/engines-speed.md)
   int kd_candidates = 32;  // views FLANN proposes for re-ranking (at least the count asked)
+};
+
+// The sectors per object of the summaries that ObjectCandidates searches: the product HMM's
+// states, so that its sector sums serve both.
+inline constexpr int kSummarySectors = 8;
+
+// An object proposed by ObjectCandidates: its position in ViewIndexSnapshot::objects() and the
+// Tanimoto coefficient of its summary most like the query (exact, in float).
+struct ObjectCandidate {
+  std::size_t position = 0;
+  float similarity = 0;
 };
 
 // One view found by a search: the object, the position of the view in that object's
@@ -185,6 +202,13 @@ class ViewIndexSnapshot {
   // Throws std::invalid_argument when count < 1.
   std::vector<ViewMatch> Search(const DescriptorValues& query, int count) const;
 
+  // The `count` objects whose best summary is most similar to `query` by Tanimoto, best first
+  // (ties: lower position first), using the snapshot's search mode; every object when the
+  // snapshot holds `count` or fewer. In kKdTree mode the list is approximate (an object that
+  // belongs can be missed) but every similarity returned is exact.
+  // Throws std::invalid_argument when count < 1.
+  std::vector<ObjectCandidate> ObjectCandidates(const DescriptorValues& query, int count) const;
+
   // Exact search regardless of the snapshot's mode (the reference the kd-tree is measured by).
   std::vector<ViewMatch> SearchExact(const DescriptorValues& query, int count) const;
 
@@ -205,6 +229,8 @@ class ViewIndexSnapshot {
 
  private:
   std::vector<ViewMatch> SearchKdTree(const DescriptorValues& query, int count) const;
+  std::vector<ObjectCandidate> CandidatesExact(const DescriptorValues& query, int count) const;
+  std::vector<ObjectCandidate> CandidatesKdTree(const DescriptorValues& query, int count) const;
   std::vector<ViewMatch> Best(const std::vector<std::pair<double, std::size_t>>& scored,
                               int count) const;
 
@@ -216,6 +242,9 @@ class ViewIndexSnapshot {
   std::unordered_map<ObjectId, std::size_t> position_of_id_;
   std::vector<std::int32_t> position_of_slot_;  // object position; -1 for deleted objects
   std::vector<std::int32_t> view_of_slot_;      // view index within its object
+  // [segment][object of the segment]: its position in objects_, -1 when deleted
+  std::vector<std::vector<std::int32_t>> position_of_object_;
+  std::vector<std::size_t> segment_live_objects_;  // [segment]
   std::size_t view_count_ = 0;
   std::size_t slot_count_ = 0;
   std::uint64_t serial_ = 0;

@@ -178,6 +178,65 @@ TEST(ViewIndexTest, KdTreeModeReturnsTheExactListWhenItSeesEveryView) {
   }
 }
 
+// Summaries are sector means (8 sectors of 45 degrees). Object 1's sector 0 holds A alone: TC
+// 0.8. Object 2 has one view, B, which every sector takes: 2/7. Object 3's sector 0 holds A and B,
+// mean (1.5, 0.5, 1) at bins 0-2: q.c = 3, c.c = 3.5, TC = 3 / (4 + 3.5 - 3) = 2/3; its other
+// sectors hold C alone: 0.
+TEST(ViewIndexTest, ObjectCandidatesRankObjectsByTheirBestSummaryWithHandComputedValues) {
+  std::vector<ObjectModel> models = SmallModels();
+  std::vector<std::pair<DescriptorValues, double>> views = {{kA, 0}, {kB, 10}};
+  for (int azimuth = 45; azimuth < 360; azimuth += 45) views.emplace_back(kC, azimuth);
+  models.push_back(Model(3, views));
+  for (const SearchMode mode : {SearchMode::kExact, SearchMode::kKdTree}) {
+    ViewIndex index(models, {.search = mode});
+    const auto snapshot = index.Snapshot();
+    const auto all = snapshot->ObjectCandidates(kQuery, 5);
+    ASSERT_EQ(all.size(), 3u);
+    EXPECT_EQ(all[0].position, 0u);
+    EXPECT_FLOAT_EQ(all[0].similarity, 0.8f);
+    EXPECT_EQ(all[1].position, 2u);
+    EXPECT_FLOAT_EQ(all[1].similarity, 2.0f / 3.0f);
+    EXPECT_EQ(all[2].position, 1u);
+    EXPECT_FLOAT_EQ(all[2].similarity, 2.0f / 7.0f);
+    const auto two = snapshot->ObjectCandidates(kQuery, 2);
+    ASSERT_EQ(two.size(), 2u) << "kd-tree: " << (mode == SearchMode::kKdTree);
+    EXPECT_EQ(two[0].position, 0u);
+    EXPECT_EQ(two[1].position, 2u);
+    index.Remove(1);
+    const auto after = index.Snapshot()->ObjectCandidates(kQuery, 1);
+    ASSERT_EQ(after.size(), 1u);
+    EXPECT_EQ(after[0].position, 1u);  // object 3, now second of two
+    EXPECT_FLOAT_EQ(after[0].similarity, 2.0f / 3.0f);
+    EXPECT_THROW(snapshot->ObjectCandidates(kQuery, 0), std::invalid_argument);
+  }
+}
+
+// Over COIL-100's even views, the kd-tree's candidates for an odd view hold the view's own object
+// and agree with the exact scan's best candidate nearly always.
+TEST(ViewIndexTest, KdTreeCandidatesFindTheQuerysObjectOnCoil) {
+  ViewIndex exact(CoilObjects(1, 100, EvenView), {.search = SearchMode::kExact});
+  ViewIndex kd(CoilObjects(1, 100, EvenView), {.search = SearchMode::kKdTree});
+  const auto exact_snapshot = exact.Snapshot();
+  const auto kd_snapshot = kd.Snapshot();
+  int own_found = 0, same_best = 0, queries = 0;
+  for (int object = 1; object <= 100; object += 3) {
+    for (int azimuth = 5; azimuth < 360; azimuth += 40) {
+      const DescriptorValues& query = CoilView(object, azimuth);
+      const auto candidates = kd_snapshot->ObjectCandidates(query, 16);
+      ASSERT_EQ(candidates.size(), 16u);
+      bool own = false;
+      for (const ObjectCandidate& c : candidates) {
+        own = own || kd_snapshot->objects()[c.position].object->id() == object;
+      }
+      own_found += own;
+      same_best += candidates[0].position == exact_snapshot->ObjectCandidates(query, 1)[0].position;
+      ++queries;
+    }
+  }
+  EXPECT_GE(own_found, queries * 95 / 100) << own_found << " of " << queries;
+  EXPECT_GE(same_best, queries * 95 / 100) << same_best << " of " << queries;
+}
+
 TEST(ViewIndexTest, EqualSimilaritiesKeepTheOrderOfAddition) {
   ViewIndex index({Model(5, {{kA, 10}}), Model(3, {{kA, 20}, {kA, 30}})});
   const auto list = index.Snapshot()->Search(kQuery, 3);
