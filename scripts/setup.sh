@@ -13,6 +13,8 @@ packages=(
   libabsl-dev  # thread-safety annotations, header only (core/base/mutex.h)
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
+  libhnswlib-dev  # HNSW graphs, header only: a candidate index (bench/candidate_search_bench.cc)
+  libfaiss-dev  # faiss's HNSW and IVF indexes: candidate indexes (bench/candidate_search_bench.cc)
   libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   libssl-dev  # SHA-256 of the server's tokens (server/token_file.h)
