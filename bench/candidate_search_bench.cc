@@ -22,13 +22,19 @@
 // Libraries (each index is built once, on first use, and its build timed then):
 //   flann-kd    FLANN's 4 randomised kd-trees, L2 on the raw means, as the view index uses;
 //               knob: checks (leaves visited)
+//   flann-kd-cos
+//               the same on L2-normalised means and queries, whose L2 order is cosine's
 //   hnsw-l2     hnswlib HierarchicalNSW, M = 16, ef_construction = 100, L2 on the raw means;
 //               knob: ef (search list size, at least C)
 //   hnsw-ip     the same with inner product on L2-normalised means and queries (cosine)
 //   faiss-hnsw  faiss IndexHNSWFlat, M = 16, efConstruction = 100, L2; knob: ef (efSearch)
+//   faiss-hnsw-ip
+//               the same with inner product on L2-normalised means and queries (cosine)
 //   faiss-ivf   faiss IndexIVFFlat, L2, round(sqrt(points)) lists trained on 64 points per list;
 //               knob: nprobe (lists scanned)
-// hnswlib and faiss build on every core (2 threads here); FLANN builds on one.
+// The -cos and -ip rows tell the metric's share of a library's recall from the library's own.
+// hnswlib and faiss build on every core (2 threads here); FLANN builds on one. Every search runs
+// on one thread, as a server's frame does.
 //
 // Counters: recall10, the share of the exact top 10 objects that are among the candidates'
 // objects (mean over queries); own, the share of queries whose own object is among them;
@@ -37,13 +43,14 @@
 // them, so they count). The time is one search (the candidate list only; the exact scoring of
 // its objects is the HMM's, unchanged).
 //
-// Run: build/orbit_bench --benchmark_filter='candidates/.*/(1000|10000)/'
+// Run: build/orbit_bench --benchmark_filter='^candidates/[^/]+/(1000|10000)(/|$)'
 #include <benchmark/benchmark.h>
 #include <faiss/IndexFlat.h>
 #include <faiss/IndexHNSW.h>
 #include <faiss/IndexIVFFlat.h>
-#include <flann/flann.hpp>
 #include <hnswlib/hnswlib.h>
+#include <omp.h>
+#include <flann/flann.hpp>
 
 #include <algorithm>
 #include <atomic>
@@ -215,6 +222,13 @@ const PointSet& Set(const std::string& name) {
   return *set;
 }
 
+void Normalise(const float* values, int dim, float* out) {
+  float norm = 0;
+  for (int b = 0; b < dim; ++b) norm += values[b] * values[b];
+  const float scale = norm > 0 ? 1.0f / std::sqrt(norm) : 0.0f;
+  for (int b = 0; b < dim; ++b) out[b] = values[b] * scale;
+}
+
 // A nearest-neighbour index over one set's points.
 class CandidateIndex {
  public:
@@ -229,14 +243,31 @@ class CandidateIndex {
   double build_seconds = 0;
 };
 
+// Every point L2-normalised (a zero point stays zero): under L2 their order from a normalised
+// query is cosine's.
+std::vector<float> NormalisedPoints(const PointSet& set) {
+  std::vector<float> unit(set.points.size());
+  for (std::size_t p = 0; p < set.point_count(); ++p) {
+    Normalise(set.point(p), set.dim, unit.data() + p * set.dim);
+  }
+  return unit;
+}
+
 class FlannKd final : public CandidateIndex {
  public:
-  explicit FlannKd(const PointSet& set)
-      : set_(set),
-        // FLANN's matrices are not const-correct; the index only reads the points.
-        index_(
-            flann::Matrix<float>(const_cast<float*>(set.points.data()), set.point_count(), set.dim),
-            flann::KDTreeIndexParams(4)) {
+  // On the raw means, or on L2-normalised means and queries (cosine's order).
+  FlannKd(const PointSet& set, bool cosine)
+      : dim_(set.dim),
+        cosine_(cosine),
+        unit_points_(cosine ? NormalisedPoints(set) : std::vector<float>()),
+        normalised_(set.dim),
+        // FLANN's matrices are not const-correct; the index only reads the points, which it
+        // does not copy.
+        index_(flann::Matrix<float>(
+                   const_cast<float*>(cosine ? unit_points_.data() : set.points.data()),
+                   set.point_count(), set.dim),
+               flann::KDTreeIndexParams(4)),
+        point_bytes_(set.points.size() * sizeof(float)) {
     index_.buildIndex();
   }
   void SetEffort(int checks) override { checks_ = checks; }
@@ -245,18 +276,26 @@ class FlannKd final : public CandidateIndex {
     distances_.resize(c);
     flann::Matrix<std::size_t> index_matrix(indices_.data(), 1, c);
     flann::Matrix<float> distance_matrix(distances_.data(), 1, c);
-    const flann::Matrix<float> queries(const_cast<float*>(query), 1, set_.dim);
+    if (cosine_) {
+      Normalise(query, dim_, normalised_.data());
+      query = normalised_.data();
+    }
+    const flann::Matrix<float> queries(const_cast<float*>(query), 1, dim_);
     const int found =
         index_.knnSearch(queries, index_matrix, distance_matrix, c, flann::SearchParams(checks_));
     ids.assign(indices_.begin(), indices_.begin() + found);
   }
   double Bytes() const override {
-    return static_cast<double>(index_.usedMemory()) + set_.points.size() * sizeof(float);
+    return static_cast<double>(index_.usedMemory()) + static_cast<double>(point_bytes_);
   }
 
  private:
-  const PointSet& set_;
+  int dim_;
+  bool cosine_;
+  std::vector<float> unit_points_;  // cosine only: the points the index reads
+  std::vector<float> normalised_;
   flann::Index<flann::L2<float>> index_;
+  std::size_t point_bytes_;
   int checks_ = 32;
   std::vector<std::size_t> indices_;
   std::vector<float> distances_;
@@ -273,13 +312,6 @@ void AddInParallel(std::size_t first, std::size_t count, const Add& add) {
     });
   }
   for (std::thread& thread : threads) thread.join();
-}
-
-void Normalise(const float* values, int dim, float* out) {
-  float norm = 0;
-  for (int b = 0; b < dim; ++b) norm += values[b] * values[b];
-  const float scale = norm > 0 ? 1.0f / std::sqrt(norm) : 0.0f;
-  for (int b = 0; b < dim; ++b) out[b] = values[b] * scale;
 }
 
 class Hnsw final : public CandidateIndex {
@@ -342,12 +374,25 @@ using FaissId = faiss::Index::idx_t;
 
 class FaissHnsw final : public CandidateIndex {
  public:
-  explicit FaissHnsw(const PointSet& set) : index_(set.dim, 16) {
+  // L2 on the raw means, or inner product on L2-normalised means and queries (cosine).
+  FaissHnsw(const PointSet& set, bool cosine)
+      : cosine_(cosine),
+        index_(set.dim, 16, cosine ? faiss::METRIC_INNER_PRODUCT : faiss::METRIC_L2),
+        normalised_(set.dim) {
     index_.hnsw.efConstruction = 100;
-    index_.add(static_cast<FaissId>(set.point_count()), set.points.data());
+    const auto n = static_cast<FaissId>(set.point_count());
+    if (cosine) {
+      index_.add(n, NormalisedPoints(set).data());  // faiss keeps its own copy
+    } else {
+      index_.add(n, set.points.data());
+    }
   }
   void SetEffort(int ef) override { index_.hnsw.efSearch = ef; }
   void Search(const float* query, int c, std::vector<std::int64_t>& ids) override {
+    if (cosine_) {
+      Normalise(query, index_.d, normalised_.data());
+      query = normalised_.data();
+    }
     distances_.resize(c);
     labels_.resize(c);
     index_.search(1, query, c, distances_.data(), labels_.data());
@@ -365,7 +410,9 @@ class FaissHnsw final : public CandidateIndex {
   }
 
  private:
+  bool cosine_;
   faiss::IndexHNSWFlat index_;
+  std::vector<float> normalised_;
   std::vector<float> distances_;
   std::vector<FaissId> labels_;
 };
@@ -416,10 +463,12 @@ class FaissIvf final : public CandidateIndex {
 };
 
 std::unique_ptr<CandidateIndex> BuildIndex(const std::string& library, const PointSet& set) {
-  if (library == "flann-kd") return std::make_unique<FlannKd>(set);
+  if (library == "flann-kd") return std::make_unique<FlannKd>(set, false);
+  if (library == "flann-kd-cos") return std::make_unique<FlannKd>(set, true);
   if (library == "hnsw-l2") return std::make_unique<Hnsw>(set, false);
   if (library == "hnsw-ip") return std::make_unique<Hnsw>(set, true);
-  if (library == "faiss-hnsw") return std::make_unique<FaissHnsw>(set);
+  if (library == "faiss-hnsw") return std::make_unique<FaissHnsw>(set, false);
+  if (library == "faiss-hnsw-ip") return std::make_unique<FaissHnsw>(set, true);
   return std::make_unique<FaissIvf>(set);
 }
 
@@ -431,10 +480,15 @@ CandidateIndex& Index(const std::string& library, const std::string& set_name) {
   if (!index || key != library + "/" + set_name) {
     index.reset();
     const PointSet& set = Set(set_name);
+    // faiss builds with an OpenMP team on every core, but searches one query with one thread:
+    // a team's idle member must still reach its barrier, which costs milliseconds per query
+    // when another process holds the cores.
+    omp_set_num_threads(static_cast<int>(std::max(1u, std::thread::hardware_concurrency())));
     const auto start = std::chrono::steady_clock::now();
     index = BuildIndex(library, set);
     index->build_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    omp_set_num_threads(1);
     key = library + "/" + set_name;
   }
   return *index;
@@ -500,14 +554,14 @@ int RegisterCandidateBenchmarks() {
     // COIL-100 has 800 points: shorter lists.
     const std::vector<int> lists =
         set == "coil100" ? std::vector<int>{16, 64} : std::vector<int>{64, 256};
-    for (const std::string library :
-         {"flann-kd", "hnsw-l2", "hnsw-ip", "faiss-hnsw", "faiss-ivf"}) {
+    for (const std::string library : {"flann-kd", "flann-kd-cos", "hnsw-l2", "hnsw-ip", "faiss-ivf",
+                                      "faiss-hnsw", "faiss-hnsw-ip"}) {
       for (const int c : lists) {
         // Efforts: FLANN's checks from 2 to 32 points per candidate; HNSW's ef from C (its
         // least) to 2C; IVF's nprobe of about 1% and 4% of its lists at 100,000 objects.
         std::vector<int> efforts = {c, 2 * c};
         std::string knob = "ef";
-        if (library == "flann-kd") {
+        if (library.starts_with("flann-kd")) {
           efforts = {2 * c, 8 * c, 32 * c};
           knob = "checks";
         } else if (library == "faiss-ivf") {
