@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   libflann-dev liblz4-dev libeigen3-dev zlib1g-dev prometheus-cpp-dev
   libhnswlib-dev  # the view index's graphs of object summaries (core/index/view_index.h)
+  libfaiss-dev  # faiss's HNSW and IVF indexes, measured against hnswlib (bench/candidate_search_bench.cc)
   libgoogle-perftools-dev  # tcmalloc, build/orbit's allocator (cmake/OrbitDeps.cmake)
   libgrpc++-dev libprotobuf-dev protobuf-compiler protobuf-compiler-grpc openssl
   libssl-dev  # SHA-256 of the server's tokens (server/token_file.h)
