@@ -48,7 +48,6 @@
 #include <faiss/IndexFlat.h>
 #include <faiss/IndexHNSW.h>
 #include <faiss/IndexIVFFlat.h>
-#include <hnswlib/hnswlib.h>
 #include <omp.h>
 #include <flann/flann.hpp>
 
@@ -72,6 +71,7 @@
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
 #include "core/index/indexed_object.h"
+#include "core/index/summary_graph.h"
 
 namespace orbit {
 namespace {
@@ -314,59 +314,31 @@ void AddInParallel(std::size_t first, std::size_t count, const Add& add) {
   for (std::thread& thread : threads) thread.join();
 }
 
+// hnswlib through the product's wrapper (core/index/summary_graph.h): a program may include
+// hnswlib's headers in one translation unit only.
 class Hnsw final : public CandidateIndex {
  public:
   // Inner product on L2-normalised vectors (cosine), or L2 on the raw ones.
-  Hnsw(const PointSet& set, bool cosine) : dim_(set.dim), cosine_(cosine), normalised_(set.dim) {
-    if (cosine) {
-      space_ = std::make_unique<hnswlib::InnerProductSpace>(dim_);
-    } else {
-      space_ = std::make_unique<hnswlib::L2Space>(dim_);
-    }
+  Hnsw(const PointSet& set, bool cosine)
+      : graph_(set.dim, set.point_count(),
+               {.metric = cosine ? SummaryGraph::Metric::kCosine : SummaryGraph::Metric::kEuclidean,
+                .links = 16,
+                .build_breadth = 100}) {
     const std::size_t n = set.point_count();
-    index_ = std::make_unique<hnswlib::HierarchicalNSW<float>>(space_.get(), n, 16, 100);
-    const auto add = [&](std::size_t p) {
-      if (cosine) {
-        std::vector<float> unit(dim_);
-        Normalise(set.point(p), dim_, unit.data());
-        index_->addPoint(unit.data(), p);
-      } else {
-        index_->addPoint(set.point(p), p);
-      }
-    };
+    const auto add = [&](std::size_t p) { graph_.Add(set.point(p), p); };
     add(0);  // the entry point, before the threads race to link to it
     AddInParallel(1, n, add);
   }
-  void SetEffort(int ef) override { index_->setEf(ef); }
+  void SetEffort(int ef) override { graph_.SetBreadth(static_cast<std::size_t>(ef)); }
   void Search(const float* query, int c, std::vector<std::int64_t>& ids) override {
-    if (cosine_) {
-      Normalise(query, dim_, normalised_.data());
-      query = normalised_.data();
-    }
-    auto nearest = index_->searchKnn(query, c);
-    ids.clear();
-    for (; !nearest.empty(); nearest.pop()) ids.push_back(nearest.top().second);
+    graph_.Search(query, static_cast<std::size_t>(c), labels_);
+    ids.assign(labels_.begin(), labels_.end());
   }
-  double Bytes() const override {
-    const hnswlib::HierarchicalNSW<float>& h = *index_;
-    double bytes = static_cast<double>(h.max_elements_) * h.size_data_per_element_;
-    for (std::size_t i = 0; i < h.cur_element_count; ++i) {
-      bytes += static_cast<double>(h.element_levels_[i]) * h.size_links_per_element_;
-    }
-    // Per element: its lock, level, upper-link pointer and visited mark, and its label's hash
-    // table node (about 4 words).
-    bytes +=
-        static_cast<double>(h.max_elements_) * (sizeof(std::mutex) + sizeof(int) + sizeof(char*) +
-                                                sizeof(unsigned short) + 4 * sizeof(void*));
-    return bytes;
-  }
+  double Bytes() const override { return graph_.Bytes(); }
 
  private:
-  int dim_;
-  bool cosine_;
-  std::vector<float> normalised_;
-  std::unique_ptr<hnswlib::SpaceInterface<float>> space_;
-  std::unique_ptr<hnswlib::HierarchicalNSW<float>> index_;
+  SummaryGraph graph_;
+  std::vector<std::size_t> labels_;
 };
 
 // faiss 1.7.3 names its id type inside Index (later releases: faiss::idx_t).

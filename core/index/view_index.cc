@@ -11,11 +11,11 @@
 #include <emmintrin.h>  // SSE2: part of every x86-64 CPU, so no runtime dispatch is needed
 #endif
 
-#include <hnswlib/hnswlib.h>
 #include <flann/flann.hpp>
 
 #include "core/base/cpu_dispatch.h"
 #include "core/descriptor/similarity.h"
+#include "core/index/summary_graph.h"
 
 namespace orbit {
 
@@ -46,8 +46,7 @@ struct ViewIndexSnapshot::Segment {
   // cosine order (inner products of the rows scaled to length 1), labelled by row.
   std::vector<float> summaries;
   std::vector<float> summary_norms;
-  std::unique_ptr<hnswlib::InnerProductSpace> summary_space;
-  std::unique_ptr<hnswlib::HierarchicalNSW<float>> summary_graph;
+  std::unique_ptr<SummaryGraph> summary_graph;
 };
 
 // A segment as one snapshot sees it: which of its objects are still present.
@@ -172,16 +171,12 @@ std::shared_ptr<const Segment> BuildSegment(
     // Inserted in row order from one thread with hnswlib's fixed seed: the same segment gives
     // the same graph on every build.
     const std::size_t rows = segment->summary_norms.size();
-    segment->summary_space = std::make_unique<hnswlib::InnerProductSpace>(length);
-    segment->summary_graph = std::make_unique<hnswlib::HierarchicalNSW<float>>(
-        segment->summary_space.get(), rows, kSummaryGraphLinks, kSummaryGraphBuildBreadth);
-    std::vector<float> unit(length);
+    segment->summary_graph = std::make_unique<SummaryGraph>(
+        length, rows,
+        SummaryGraph::Options{.links = kSummaryGraphLinks,
+                              .build_breadth = kSummaryGraphBuildBreadth});
     for (std::size_t row = 0; row < rows; ++row) {
-      const float norm = std::sqrt(segment->summary_norms[row]);
-      for (int i = 0; i < length; ++i) {
-        unit[i] = norm > 0 ? segment->summaries[row * length + i] / norm : 0.0f;
-      }
-      segment->summary_graph->addPoint(unit.data(), row);
+      segment->summary_graph->Add(&segment->summaries[row * length], row);
     }
   }
   return segment;
@@ -406,12 +401,7 @@ std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesKdTree(const Descripto
   for (const float v : point) query_norm += v * v;
   // Each object's best summary among those found, by position.
   std::unordered_map<std::size_t, float> best;
-  // The query scaled to length 1, for the graphs' cosine order.
-  std::vector<float> unit(point);
-  if (query_norm > 0) {
-    const float norm = std::sqrt(query_norm);
-    for (float& v : unit) v /= norm;
-  }
+  std::vector<std::size_t> found;  // summary rows, from a segment's graph
   for (std::size_t s = 0; s < segments_.size(); ++s) {
     const Segment& segment = *segments_[s].segment;
     const std::size_t rows = segment.summary_norms.size();
@@ -428,9 +418,8 @@ std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesKdTree(const Descripto
     std::unordered_map<std::size_t, float> found_here;
     for (;;) {
       found_here.clear();
-      for (auto found = segment.summary_graph->searchKnn(unit.data(), wanted); !found.empty();
-           found.pop()) {
-        const std::size_t row = found.top().second;
+      segment.summary_graph->Search(point.data(), wanted, found);
+      for (const std::size_t row : found) {
         const std::int32_t position = position_of[row / kSummarySectors];
         if (position < 0) continue;
         const float tc =
