@@ -31,6 +31,10 @@ std::string DescribeProduct() {
          << kGradientOrientations << " gradient orientations";
   }
   text << ")";
+  if (p.options.candidate_objects > 0) {
+    text << "; above " << p.options.candidates_above << " objects, each frame scores the "
+         << p.options.candidate_objects << " objects whose sector summaries are most like it";
+  }
   return text.str();
 }
 

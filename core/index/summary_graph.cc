@@ -71,9 +71,9 @@ double SummaryGraph::Bytes() const {
   }
   // Per element: its lock, level, upper-link pointer and visited mark, and its label's hash
   // table node (about 4 words).
-  bytes += static_cast<double>(h.max_elements_) * (sizeof(std::mutex) + sizeof(int) +
-                                                   sizeof(char*) + sizeof(unsigned short) +
-                                                   4 * sizeof(void*));
+  bytes +=
+      static_cast<double>(h.max_elements_) * (sizeof(std::mutex) + sizeof(int) + sizeof(char*) +
+                                              sizeof(unsigned short) + 4 * sizeof(void*));
   return bytes;
 }
 

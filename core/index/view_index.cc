@@ -453,6 +453,23 @@ std::vector<ViewMatch> ViewIndexSnapshot::Best(const std::vector<Scored>& scored
   return matches;
 }
 
+std::shared_ptr<const ViewIndexSnapshot> ViewIndexSnapshot::With(
+    std::vector<ObjectModel> models) const {
+  std::vector<SegmentState> segments = segments_;
+  if (!models.empty()) {
+    std::vector<std::shared_ptr<const IndexedObject>> objects;
+    std::unordered_set<ObjectId> ids;
+    for (ObjectModel& model : models) {
+      if (position_of_id_.contains(model.id) || !ids.insert(model.id).second) {
+        throw std::invalid_argument("two models share the id " + std::to_string(model.id));
+      }
+      objects.push_back(Prepare(std::move(model), variant_));
+    }
+    segments.push_back(FreshState(BuildSegment(std::move(objects), options_)));
+  }
+  return std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
+}
+
 std::shared_ptr<const void> ViewIndexSnapshot::Derived(
     DerivedKey key, const std::function<std::shared_ptr<const void>()>& build) const {
   MutexLock lock(&derived_mutex_);

@@ -218,6 +218,13 @@ class ViewIndexSnapshot {
   void SimilarityToEveryView(const DescriptorValues& query, std::vector<float>& similarities) const;
   std::size_t slot_count() const { return slot_count_; }
 
+  // A snapshot holding this one's objects and `models`, built as one new segment of `models`
+  // alone: a large model set shared by many slightly different ones (an evaluation's trials
+  // among the same distractor objects) costs each only its own objects. Not part of any
+  // ViewIndex. Throws std::invalid_argument as the ViewIndex constructor for `models`, and when
+  // a model's id is this snapshot's.
+  std::shared_ptr<const ViewIndexSnapshot> With(std::vector<ObjectModel> models) const;
+
   // Data derived from this snapshot once and shared by all its readers (the HMM's sector table,
   // SectorSimilarityTable::Of): the first call with `key` runs `build` and keeps its result for
   // the snapshot's life; every later call returns the same object. A caller that arrives during

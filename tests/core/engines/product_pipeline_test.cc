@@ -34,6 +34,8 @@ TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
   EXPECT_THAT(text, HasSubstr("then a 12 x 4 x 4 hue-saturation-value histogram of the object's "
                               "colours, its background's taken off, and 4 x 4 cells of 9 "
                               "gradient orientations)"));
+  EXPECT_THAT(text, HasSubstr("; above 5000 objects, each frame scores the 8 objects whose sector "
+                              "summaries are most like it"));
 }
 
 // Objects 41-48, 3 trials per object and n, n = 1 and 4: 24 queries per cell, so one query is

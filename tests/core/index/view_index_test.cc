@@ -237,6 +237,25 @@ TEST(ViewIndexTest, KdTreeCandidatesFindTheQuerysObjectOnCoil) {
   EXPECT_GE(same_best, queries * 95 / 100) << same_best << " of " << queries;
 }
 
+// With() adds a segment of its own models to a copy of the snapshot's: the base is unchanged,
+// the new snapshot searches both, and a model whose id the base holds is refused.
+TEST(ViewIndexTest, WithAddsModelsToACopyOfTheSnapshot) {
+  ViewIndex index(SmallModels());
+  const auto base = index.Snapshot();
+  const auto more = base->With({Model(3, {{kQuery, 10}})});
+  EXPECT_EQ(base->object_count(), 2u);
+  ASSERT_EQ(more->object_count(), 3u);
+  const auto list = more->Search(kQuery, 2);
+  ASSERT_EQ(list.size(), 2u);
+  EXPECT_EQ(list[0].object, 3);
+  EXPECT_EQ(list[0].similarity, 1.0);
+  EXPECT_EQ(list[1].object, 1);
+  EXPECT_EQ(base->Search(kQuery, 1)[0].object, 1);
+  EXPECT_THROW(base->With({Model(2, {{kA, 0}})}), std::invalid_argument);
+  EXPECT_THROW(base->With({Model(4, {{kA, 0}}, DescriptorVariant::kCeddFull)}),
+               std::invalid_argument);
+}
+
 TEST(ViewIndexTest, EqualSimilaritiesKeepTheOrderOfAddition) {
   ViewIndex index({Model(5, {{kA, 10}}), Model(3, {{kA, 20}, {kA, 30}})});
   const auto list = index.Snapshot()->Search(kQuery, 3);
