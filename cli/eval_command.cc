@@ -24,6 +24,7 @@
 #include "core/engines/product_pipeline.h"
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
+#include "evaluation/distractor_objects.h"
 #include "evaluation/evaluation_plot.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
@@ -86,6 +87,7 @@ struct EvalOptions {
   double nearest_view_weight = EngineOptions{}.nearest_view_weight;
   int candidates = 0;
   int candidates_above = 0;
+  int distractors = 0;
   std::string csv;
   std::string plot;
   int threads = EvaluationOptions{}.threads;
@@ -132,6 +134,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.nearest_view_weight = o.nearest_view_weight;
   options.engine.candidate_objects = o.candidates;
   options.engine.candidates_above = o.candidates_above;
+  options.distractors = o.distractors;
   options.threads = o.threads;
   return options;
 }
@@ -181,7 +184,7 @@ const std::map<std::string, std::string>& ServerRefusalReasons() {
          {"--methods", "--variant", "--index", "--kd-trees", "--kd-checks", "--kd-candidates",
           "--threshold", "--rejection", "--false-accept-rate", "--orientation-weight",
           "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight",
-          "--candidates", "--candidates-above"}) {
+          "--candidates", "--candidates-above", "--distractors"}) {
       r[flag] = "the server recognises with its own variant, engine and session defaults";
     }
     for (const char* flag : {"--distortions", "--sweep", "--sweep-steps"}) {
@@ -497,6 +500,14 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                        std::to_string(kProductCandidateObjects) + " above " +
                        std::to_string(kProductCandidatesAbove) + ")")
       ->check(CLI::Range(0, kMaxCandidateObjects))
+      ->capture_default_str();
+  command
+      ->add_option("--distractors", o->distractors,
+                   "add this many generated objects (random textured boxes and cylinders, " +
+                       std::to_string(kDistractorViews) +
+                       " views each) to every model set, never queried: recognition among many "
+                       "other objects")
+      ->check(CLI::Range(0, kMaxDistractors))
       ->capture_default_str();
   command
       ->add_option("--candidates-above", o->candidates_above,

@@ -22,6 +22,7 @@
 #include "core/descriptor/cedd.h"
 #include "core/descriptor/view_description.h"
 #include "core/engines/product_pipeline.h"
+#include "evaluation/distractor_objects.h"
 
 // gperftools' malloc_extension_c.h, when tcmalloc is linked (HeapBytesInUse).
 extern "C" int MallocExtension_GetNumericProperty(const char* property, std::size_t* value)
@@ -112,6 +113,9 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   }
   require(options.trials >= 1, "trials must be at least 1");
   require(options.threads >= 0, "threads must be >= 0");
+  require(options.distractors >= 0 && options.distractors <= kMaxDistractors,
+          "distractors must be in 0.." + std::to_string(kMaxDistractors) + ", got " +
+              std::to_string(options.distractors));
   ValidateEngineOptions(options.engine);
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
 }
@@ -215,6 +219,9 @@ DescribedImages DescribeImages(const EvaluationDataset& dataset, const Evaluatio
 // The model set of one variant.
 struct VariantModels {
   std::vector<ObjectModel> models;  // one per known object, ids = positions + 1
+  // The distractors' index (EvaluationOptions::distractors; null for none), which the full index
+  // and every trial's extend with the known objects (ViewIndexSnapshot::With).
+  std::shared_ptr<const ViewIndexSnapshot> distractors;
   // The index of all of them, which unknown objects are queried against (immutable, shared by
   // all threads).
   std::shared_ptr<const ViewIndexSnapshot> full_index;
@@ -224,13 +231,28 @@ struct VariantModels {
   ModelMemory memory;
 };
 
-// Step 2: for each variant (in the options' order), the known objects' models made of their
-// images' model views, then the full index and its memory. Single-threaded, so the heap growth
+// Step 2: for each variant (in the options' order), the distractors (on `threads` threads), the
+// known objects' models made of their images' model views, then the full index and its memory
+// (the known objects' alone). Single-threaded, so the heap growth
 // across an index's construction is that index's memory.
 std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
                                        const DescribedImages& described,
-                                       const EvaluationOptions& options) {
+                                       const EvaluationOptions& options, int threads) {
   std::vector<VariantModels> variants(options.variants.size());
+  for (std::size_t v = 0; v < variants.size() && options.distractors > 0; ++v) {
+    const auto progress = [&](int done, int count) {
+      if (options.progress) {
+        options.progress("distractors", v * static_cast<std::size_t>(count) + done,
+                         variants.size() * static_cast<std::size_t>(count));
+      }
+    };
+    variants[v].distractors =
+        ViewIndex(MakeDistractors(options.distractors, options.variants[v],
+                                  static_cast<ObjectId>(dataset.known.size() + 1), options.seed,
+                                  threads, progress),
+                  options.index)
+            .Snapshot();
+  }
   for (std::size_t v = 0; v < variants.size(); ++v) {
     for (std::size_t o = 0; o < dataset.known.size(); ++o) {
       ObjectModel model;
@@ -248,8 +270,9 @@ std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
     for (const ObjectModel& model : variants[v].models) memory.views += model.views.size();
     memory.descriptor_bytes = memory.views * kDescriptorSize;
     const std::size_t before = HeapBytesInUse();
-    const ViewIndex index(variants[v].models, options.index);
-    variants[v].full_index = index.Snapshot();
+    variants[v].full_index = variants[v].distractors
+                                 ? variants[v].distractors->With(variants[v].models)
+                                 : ViewIndex(variants[v].models, options.index).Snapshot();
     const std::size_t after = HeapBytesInUse();
     memory.index_bytes = after > before ? after - before : 0;
     variants[v].calibration = std::make_shared<const RejectionCalibration>(
@@ -360,10 +383,11 @@ class EnginePool {
 };
 
 // The index a trial of known object `object` queries: every model, the object's own without
-// the views near its query (query.removed_views).
-std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectModel>& models,
+// the views near its query (query.removed_views), beside the distractors when there are any.
+std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const VariantModels& variant,
                                                     std::size_t object, const TrialQuery& query,
                                                     const ViewIndexOptions& options) {
+  const std::vector<ObjectModel>& models = variant.models;
   std::vector<ObjectModel> trial_models;
   trial_models.reserve(models.size());
   for (std::size_t o = 0; o < models.size(); ++o) {
@@ -376,6 +400,7 @@ std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectMode
     // absent from this trial's model set and the query cannot hit.
     if (!reduced.views.empty()) trial_models.push_back(std::move(reduced));
   }
+  if (variant.distractors) return variant.distractors->With(std::move(trial_models));
   return ViewIndex(std::move(trial_models), options).Snapshot();
 }
 
@@ -385,8 +410,8 @@ std::shared_ptr<const ViewIndexSnapshot> TrialIndex(const std::vector<ObjectMode
 // k-th frame's draw the same on every path). Returns the last update and sets `latest_view` to
 // the view of the last frame.
 struct ActiveQueryInput {
-  const std::vector<ObjectModel>* models = nullptr;  // the variant's known objects
-  std::size_t object = 0;                            // the target's position
+  const VariantModels* models = nullptr;  // the variant's known objects
+  std::size_t object = 0;                 // the target's position
   bool known = true;
   ObjectId expected = 0;                                // the target's id; 0 for unknown
   std::shared_ptr<const ViewIndexSnapshot> full_index;  // for unknown targets
@@ -549,7 +574,7 @@ TaskQuery ProtocolQuery(const TrialGrid::Task& t, const EvaluationDataset& datas
   const bool is_known = dataset.is_known(t.object);
   const ObjectId object_id = static_cast<ObjectId>(t.object + 1);
   const std::shared_ptr<const ViewIndexSnapshot> snapshot =
-      is_known ? TrialIndex(models[t.variant].models, t.object, trial, options.index)
+      is_known ? TrialIndex(models[t.variant], t.object, trial, options.index)
                : models[t.variant].full_index;
   const DescriptorVariant variant = options.variants[t.variant];
   // The frame of view `view` (a position in the object's images) under distortion d.
@@ -565,7 +590,7 @@ TaskQuery ProtocolQuery(const TrialGrid::Task& t, const EvaluationDataset& datas
     int latest_view = trial.views.back();
     Answer answer;
     if (options.active_step > 0) {
-      ActiveQueryInput active{&models[t.variant].models,
+      ActiveQueryInput active{&models[t.variant],
                               t.object,
                               is_known,
                               is_known ? object_id : 0,
@@ -721,13 +746,15 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   EvaluationReport report = ReportOf(options);
   report.known_objects = dataset.known.size();
   report.unknown_objects = dataset.unknown.size();
+  report.distractors = static_cast<std::size_t>(options.distractors);
   report.images = dataset.images.size();
 
   const Clock::time_point descriptor_start = Clock::now();
   const DescribedImages described = DescribeImages(dataset, options, report.threads);
   report.descriptor_seconds = SecondsSince(descriptor_start);
 
-  const std::vector<VariantModels> models = BuildModels(dataset, described, options);
+  const std::vector<VariantModels> models =
+      BuildModels(dataset, described, options, report.threads);
   for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
 
   const TrialGrid grid{options.variants.size(),      dataset.object_count(),
@@ -796,7 +823,8 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
              }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);
-  const std::vector<VariantModels> models = BuildModels(dataset, described, options);
+  const std::vector<VariantModels> models =
+      BuildModels(dataset, described, options, report.threads);
   for (const VariantModels& variant : models) report.memory.push_back(variant.memory);
 
   // Step 3: one task per (variant, sequence, n): the sequence's first n frames, asked against

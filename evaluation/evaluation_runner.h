@@ -93,8 +93,11 @@ struct EvaluationOptions {
   // With active_step: which way each step goes (ActivePolicy).
   ActivePolicy active_policy = ActivePolicy::kFollowMoves;
   ViewIndexOptions index;  // search mode (exact or kd-tree) and FLANN's parameters
-  EngineOptions engine;    // the engines' options; the window is raised to the largest n
-  int threads = 0;         // worker threads; 0: every CPU this process may run on
+  // Generated objects added to every model set (evaluation/distractor_objects.h), never queried:
+  // recognition among this many other objects (0..kMaxDistractors).
+  int distractors = 0;
+  EngineOptions engine;  // the engines' options; the window is raised to the largest n
+  int threads = 0;       // worker threads; 0: every CPU this process may run on
   // Called from the worker threads (never concurrently) as work completes: the stage
   // ("descriptors" or "trials"), tasks done and tasks in the stage. May be empty.
   std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;
@@ -183,6 +186,7 @@ struct EvaluationReport {
   std::vector<ModelMemory> memory;  // one per variant
   std::size_t known_objects = 0;
   std::size_t unknown_objects = 0;
+  std::size_t distractors = 0;  // EvaluationOptions::distractors
   std::size_t images = 0;
   // RunCaptureEvaluation: the captured query sequences and their frames (0 for the protocol).
   std::size_t query_sequences = 0;

@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "core/base/seeded_random.h"
+
 namespace orbit {
 namespace {
 
@@ -212,6 +214,36 @@ std::vector<SyntheticObject> DemoObjects() {
                       Zigzag(yellow, blue, 24), Label(teal, white, "42")};
   objects[2].top_colour = cv::Scalar(60, 100, 140);
   return objects;
+}
+
+SyntheticObject RandomSyntheticObject(std::uint64_t seed, std::string name) {
+  SeededRandom random(MixSeed(seed, 0x6f626a656374ULL /* "object" */));
+  const auto uniform = [&](int low, int high) {  // an integer in [low, high]
+    return low + static_cast<int>(random.UniformInt(static_cast<std::uint64_t>(high - low + 1)));
+  };
+  const auto colour = [&] { return cv::Scalar(uniform(0, 255), uniform(0, 255), uniform(0, 255)); };
+  const auto pattern = [&] {
+    const cv::Scalar a = colour(), b = colour();
+    switch (uniform(0, 4)) {
+      case 0: return Stripes(a, b, uniform(8, 48), uniform(0, 179));
+      case 1: return Checker(a, b, uniform(8, 64));
+      case 2: return Dots(a, b, uniform(20, 64), uniform(4, 9));
+      case 3: return Rings(a, b, uniform(12, 48));
+      default: return Zigzag(a, b, uniform(12, 40));
+    }
+  };
+  SyntheticObject object;
+  object.name = std::move(name);
+  object.shape =
+      uniform(0, 1) == 0 ? SyntheticObject::Shape::kBox : SyntheticObject::Shape::kCylinder;
+  if (object.shape == SyntheticObject::Shape::kBox) {
+    for (cv::Mat& face : object.faces) face = pattern();
+  } else {
+    object.faces = {Wrap({pattern(), pattern(), pattern(), pattern()}), cv::Mat(), cv::Mat(),
+                    cv::Mat()};
+  }
+  object.top_colour = colour();
+  return object;
 }
 
 cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size) {

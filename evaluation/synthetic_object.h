@@ -9,6 +9,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -28,6 +29,12 @@ struct SyntheticObject {
 
 // The demo's objects: "demo-box", "demo-can", "demo-crate", with fixed textures.
 std::vector<SyntheticObject> DemoObjects();
+
+// An object drawn from `seed` alone: a box or a cylinder, each face (or the label's four panels)
+// a pattern of stripes, checks, dots, rings or zigzags in two random colours with random sizes
+// and angles, and a random lid. Different seeds give objects that differ in colour and pattern
+// from every side; the same seed gives the same object on every platform.
+SyntheticObject RandomSyntheticObject(std::uint64_t seed, std::string name);
 
 // The object seen from `azimuth_deg`, as a `size` x `size` BGR image (CV_8UC3).
 cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size = 128);

@@ -15,6 +15,7 @@
 #include "core/descriptor/distortion.h"
 #include "core/descriptor/view_description.h"
 #include "core/engines/product_pipeline.h"
+#include "evaluation/distractor_objects.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -168,6 +169,31 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   }
   ASSERT_EQ(report.memory.size(), 2u);
   EXPECT_EQ(report.memory[1].variant, Product().variant);
+}
+
+// --distractors: the queries are the dataset's alone (the same counts per cell), the report
+// says how many objects joined the model set, and the product still finds COIL-100's objects
+// among them on clean frames.
+TEST(RunEvaluationTest, DistractorsJoinTheModelSetButNotTheQueries) {
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod)};
+  options.variants = {Product().variant};
+  options.distortions = {ParseDistortionSpec("df")};
+  options.query_lengths = {4};
+  options.trials = 2;
+  options.distractors = 4;
+  const EvaluationReport report =
+      RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3}), {}, options);
+  EXPECT_EQ(report.distractors, 4u);
+  ASSERT_EQ(report.cells.size(), 1u);
+  EXPECT_EQ(report.cells[0].trials, 3 * 2);
+  EXPECT_EQ(report.cells[0].hits, 3 * 2);
+  EXPECT_EQ(report.memory[0].objects, 3u);  // the known objects' memory alone
+  options.distractors = kMaxDistractors + 1;
+  EXPECT_EQ(testing::ErrorMessageOf([&] {
+              RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1}), {}, options);
+            }),
+            "distractors must be in 0..100000, got 100001");
 }
 
 // --active: the same queries count (objects x trials per cell), frames come in capture order
