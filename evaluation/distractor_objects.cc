@@ -25,18 +25,20 @@ std::vector<ObjectModel> MakeDistractors(int count, DescriptorVariant variant, O
   ParallelFor(
       models.size(), threads > 0 ? threads : AvailableCpus(),
       [&](std::size_t k) {
-    const std::string name = "distractor" + std::to_string(k + 1);
-    const SyntheticObject object = RandomSyntheticObject(MixSeed(objects_seed, k), name);
-    ObjectModel& model = models[k];
-    model.id = first_id + static_cast<ObjectId>(k);
-    model.name = name;
-    model.variant = variant;
-    for (int v = 0; v < kDistractorViews; ++v) {
-      const double azimuth = v * 360.0 / kDistractorViews;
-      const ViewDescription description = DescribeView(RenderView(object, azimuth), variant, seed);
-      model.views.push_back({description.descriptor, azimuth, {}, description.typical_distance});
-    }
-  },
+        const std::string name = "distractor" + std::to_string(k + 1);
+        const SyntheticObject object = RandomSyntheticObject(MixSeed(objects_seed, k), name);
+        ObjectModel& model = models[k];
+        model.id = first_id + static_cast<ObjectId>(k);
+        model.name = name;
+        model.variant = variant;
+        for (int v = 0; v < kDistractorViews; ++v) {
+          const double azimuth = v * 360.0 / kDistractorViews;
+          const ViewDescription description =
+              DescribeView(RenderView(object, azimuth), variant, seed);
+          model.views.push_back(
+              {description.descriptor, azimuth, {}, description.typical_distance});
+        }
+      },
       on_done);
   return models;
 }

@@ -49,7 +49,8 @@ TEST(DistractorObjectsTest, EachLooksLikeItselfMoreThanLikeTheOthers) {
       double other = 0;
       for (std::size_t p = 0; p < models.size(); ++p) {
         if (p == o) continue;
-        for (const ModelView& w : models[p].views) other = std::max(other, Tanimoto(view, w.descriptor));
+        for (const ModelView& w : models[p].views)
+          other = std::max(other, Tanimoto(view, w.descriptor));
       }
       own_closer += own > other;
       ++views;
