@@ -10,7 +10,7 @@
 #         (their test suites are read from the sources) and the Python client.
 #
 # The flags go in through CMAKE_CXX_FLAGS and the linker flags: CMakeLists.txt is the normal
-# build's. Every process a test starts (orbit serve, orbit import, ...) is the sanitized build's
+# build's, without bench/'s measuring programs (ORBIT_BENCH=OFF), which no test runs. Every process a test starts (orbit serve, orbit import, ...) is the sanitized build's
 # `orbit` (tests/CMakeLists.txt compiles its path into the tests). ASan, LSan and TSan write their
 # reports to build-<name>/sanitizer-reports/<name>.<pid> instead of stderr, so that a finding in a
 # server that a test only stops at the end is not lost. UBSan writes to stderr (GCC's UBSan
@@ -59,7 +59,7 @@ run() {
   start=$(date +%s)
   cmake -S . -B "$build" -G Ninja -DCMAKE_CXX_COMPILER=g++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
     -DCMAKE_CXX_FLAGS="${flags[$name]}" -DCMAKE_EXE_LINKER_FLAGS="${flags[$name]}" \
-    -DCMAKE_SHARED_LINKER_FLAGS="${flags[$name]}" >/dev/null
+    -DCMAKE_SHARED_LINKER_FLAGS="${flags[$name]}" -DORBIT_BENCH=OFF >/dev/null
   local targets=()
   # tsan runs only the GoogleTest suite (with the PostgreSQL fixture its *Postgres* tests need)
   # and the Python client: no benchmarks, no fuzz replays.
