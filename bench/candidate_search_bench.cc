@@ -27,6 +27,8 @@
 //   hnsw-l2     hnswlib HierarchicalNSW, M = 16, ef_construction = 100, L2 on the raw means;
 //               knob: ef (search list size, at least C)
 //   hnsw-ip     the same with inner product on L2-normalised means and queries (cosine)
+//   hnsw-ip8    the same on the normalised means and queries rounded to a signed byte per value
+//               (SummaryGraph's kCosineBytes, what the view index uses)
 //   faiss-hnsw  faiss IndexHNSWFlat, M = 16, efConstruction = 100, L2; knob: ef (efSearch)
 //   faiss-hnsw-ip
 //               the same with inner product on L2-normalised means and queries (cosine)
@@ -318,12 +320,8 @@ void AddInParallel(std::size_t first, std::size_t count, const Add& add) {
 // hnswlib's headers in one translation unit only.
 class Hnsw final : public CandidateIndex {
  public:
-  // Inner product on L2-normalised vectors (cosine), or L2 on the raw ones.
-  Hnsw(const PointSet& set, bool cosine)
-      : graph_(set.dim, set.point_count(),
-               {.metric = cosine ? SummaryGraph::Metric::kCosine : SummaryGraph::Metric::kEuclidean,
-                .links = 16,
-                .build_breadth = 100}) {
+  Hnsw(const PointSet& set, SummaryGraph::Metric metric)
+      : graph_(set.dim, set.point_count(), {.metric = metric, .links = 16, .build_breadth = 100}) {
     const std::size_t n = set.point_count();
     const auto add = [&](std::size_t p) { graph_.Add(set.point(p), p); };
     add(0);  // the entry point, before the threads race to link to it
@@ -437,8 +435,9 @@ class FaissIvf final : public CandidateIndex {
 std::unique_ptr<CandidateIndex> BuildIndex(const std::string& library, const PointSet& set) {
   if (library == "flann-kd") return std::make_unique<FlannKd>(set, false);
   if (library == "flann-kd-cos") return std::make_unique<FlannKd>(set, true);
-  if (library == "hnsw-l2") return std::make_unique<Hnsw>(set, false);
-  if (library == "hnsw-ip") return std::make_unique<Hnsw>(set, true);
+  if (library == "hnsw-l2") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kEuclidean);
+  if (library == "hnsw-ip") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kCosine);
+  if (library == "hnsw-ip8") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kCosineBytes);
   if (library == "faiss-hnsw") return std::make_unique<FaissHnsw>(set, false);
   if (library == "faiss-hnsw-ip") return std::make_unique<FaissHnsw>(set, true);
   return std::make_unique<FaissIvf>(set);
@@ -526,8 +525,8 @@ int RegisterCandidateBenchmarks() {
     // COIL-100 has 800 points: shorter lists.
     const std::vector<int> lists =
         set == "coil100" ? std::vector<int>{16, 64} : std::vector<int>{64, 256};
-    for (const std::string library : {"flann-kd", "flann-kd-cos", "hnsw-l2", "hnsw-ip", "faiss-ivf",
-                                      "faiss-hnsw", "faiss-hnsw-ip"}) {
+    for (const std::string library : {"flann-kd", "flann-kd-cos", "hnsw-l2", "hnsw-ip", "hnsw-ip8",
+                                      "faiss-ivf", "faiss-hnsw", "faiss-hnsw-ip"}) {
       for (const int c : lists) {
         // Efforts: FLANN's checks from 2 to 32 points per candidate; HNSW's ef from C (its
         // least) to 2C; IVF's nprobe of about 1% and 4% of its lists at 100,000 objects.

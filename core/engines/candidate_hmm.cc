@@ -25,6 +25,9 @@ namespace {
 // The fewest objects a frame asks the index for: enough for the ranking and its runner-up.
 constexpr int kFewestCandidates = 8;
 
+// The most candidates an answer decodes in one pass before it prunes by bound.
+constexpr std::size_t kDecodedAtOnce = 64;
+
 // The HMM over candidates. Per frame (Append) it asks the index for candidates, computes their
 // emissions from their own sector sums (SectorSimilarityTable::ComputeObject, as the HMM over
 // every object reads back the objects it decodes) and tallies each candidate's best emission in
@@ -97,7 +100,13 @@ class CandidateHmm final : public HmmSession {
     const std::size_t objects = bounds.size();
     const std::size_t shown =
         std::min<std::size_t>(objects, static_cast<std::size_t>(RankedDepth(options())));
-    std::size_t decoded = std::min(objects, std::max<std::size_t>(shown + 3, 8));
+    // The window's candidates sit close to its floors, so their bounds seldom stop the doubling
+    // before it reaches them all (docs/design.md#object-candidates): up to kDecodedAtOnce of them
+    // are decoded in one pass rather than in rounds of 8, 16, 32, ...
+    std::size_t decoded =
+        objects <= kDecodedAtOnce
+            ? objects
+            : std::min(objects, std::max<std::size_t>(shown + 3, kFewestCandidates));
     std::vector<double> sums;
     std::vector<const IndexedObject*> chosen;
     for (;;) {

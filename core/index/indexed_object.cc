@@ -141,10 +141,13 @@ int IndexedObject::NearestView(double azimuth) const {
 }
 
 const SectorViews& IndexedObject::Sectors(int count) const {
+  const SectorViews* latest = latest_sectors_.load(std::memory_order_acquire);
+  if (latest != nullptr && latest->count == count) return *latest;
   if (count < 1) throw std::invalid_argument("sector count must be at least 1");
   MutexLock lock(&sectors_mutex_);
   std::unique_ptr<const SectorViews>& entry = sectors_[count];
   if (!entry) entry = std::make_unique<const SectorViews>(ComputeSectorViews(model_, count));
+  latest_sectors_.store(entry.get(), std::memory_order_release);
   return *entry;
 }
 

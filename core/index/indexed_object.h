@@ -8,6 +8,7 @@
 #pragma once
 
 #include <array>
+#include <atomic>
 #include <cstdint>
 #include <map>
 #include <memory>
@@ -95,6 +96,9 @@ class IndexedObject {
   // An entry, once made, is never changed nor removed: Sectors() returns it unlocked.
   mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_
       ABSL_GUARDED_BY(sectors_mutex_);
+  // The entry Sectors() returned last, published after it was made: a session's every frame
+  // asks for the same count, which is then read without the lock.
+  mutable std::atomic<const SectorViews*> latest_sectors_{nullptr};
 };
 
 }  // namespace orbit

@@ -17,7 +17,11 @@ namespace orbit {
 class SummaryGraph {
  public:
   enum class Metric {
-    kCosine,     // inner product of the vectors scaled to length 1 (Tanimoto's order, nearly)
+    kCosine,  // inner product of the vectors scaled to length 1 (Tanimoto's order, nearly)
+    // kCosine on the unit vectors each stored as one scale and a signed byte per value (the
+    // value over the vector's largest magnitude, times 127, rounded): a quarter of the memory,
+    // and integer products the CPU does 16 at a time (docs/design.md#object-candidates).
+    kCosineBytes,
     kEuclidean,  // L2 on the vectors as given
   };
   struct Options {
@@ -46,8 +50,16 @@ class SummaryGraph {
   // The memory the graph holds, vectors included.
   double Bytes() const;
 
+  // The distance Search orders by, between two vectors of `dimensions` values as given (the
+  // metric's scaling and rounding applied to both): 1 - cosine for the cosine metrics, the
+  // squared L2 distance for kEuclidean.
+  double Distance(const float* a, const float* b) const;
+
  private:
   struct Graph;
+  // `point` as the graph stores it, in `stored` (the space's data size in bytes).
+  void Store(const float* point, std::vector<char>& stored) const;
+
   std::unique_ptr<Graph> graph_;
   std::size_t dimensions_;
   Metric metric_;

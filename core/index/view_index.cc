@@ -41,11 +41,10 @@ struct ViewIndexSnapshot::Segment {
   std::vector<std::int32_t> object_of_view;  // local object index per local slot
   std::vector<float> points;                 // the descriptors as floats, for FLANN
   std::unique_ptr<KdTree> kd_tree;           // kKdTree mode only; reads `points`
-  // kKdTree mode only: summary s of local object o is row o * kSummarySectors + s, its sector
-  // mean's first `length` values, and that mean's squared norm; and a graph of the rows in
-  // cosine order (inner products of the rows scaled to length 1), labelled by row.
-  std::vector<float> summaries;
-  std::vector<float> summary_norms;
+  // kKdTree mode only: a graph of the objects' summaries in cosine order, summary s of local
+  // object o (its sector mean's first `length` values) labelled o * kSummarySectors + s. The
+  // graph keeps them only rounded (SummaryGraph::Metric::kCosineBytes); the exact values are
+  // the objects' own sectors.
   std::unique_ptr<SummaryGraph> summary_graph;
 };
 
@@ -157,26 +156,19 @@ std::shared_ptr<const Segment> BuildSegment(
     // measures the spread). Builds in different threads are independent.
     segment->kd_tree->buildIndex();
   }
-  for (const auto& object : segment->objects) {
-    if (options.search != SearchMode::kKdTree) break;  // kExact reads the objects' own sectors
-    const SectorViews& sectors = object->Sectors(kSummarySectors);
-    for (const MeanDescriptor& mean : sectors.descriptor) {
-      float norm = 0;
-      for (int i = 0; i < length; ++i) norm += mean[i] * mean[i];
-      segment->summaries.insert(segment->summaries.end(), mean.begin(), mean.begin() + length);
-      segment->summary_norms.push_back(norm);
-    }
-  }
   if (options.search == SearchMode::kKdTree && !segment->objects.empty()) {
     // Inserted in row order from one thread with hnswlib's fixed seed: the same segment gives
     // the same graph on every build.
-    const std::size_t rows = segment->summary_norms.size();
     segment->summary_graph = std::make_unique<SummaryGraph>(
-        length, rows,
-        SummaryGraph::Options{.links = kSummaryGraphLinks,
+        length, segment->objects.size() * kSummarySectors,
+        SummaryGraph::Options{.metric = SummaryGraph::Metric::kCosineBytes,
+                              .links = kSummaryGraphLinks,
                               .build_breadth = kSummaryGraphBuildBreadth});
-    for (std::size_t row = 0; row < rows; ++row) {
-      segment->summary_graph->Add(&segment->summaries[row * length], row);
+    std::size_t row = 0;
+    for (const auto& object : segment->objects) {
+      for (const MeanDescriptor& mean : object->Sectors(kSummarySectors).descriptor) {
+        segment->summary_graph->Add(mean.data(), row++);
+      }
     }
   }
   return segment;
@@ -404,7 +396,7 @@ std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesKdTree(const Descripto
   std::vector<std::size_t> found;  // summary rows, from a segment's graph
   for (std::size_t s = 0; s < segments_.size(); ++s) {
     const Segment& segment = *segments_[s].segment;
-    const std::size_t rows = segment.summary_norms.size();
+    const std::size_t rows = segment.objects.size() * kSummarySectors;
     const std::vector<std::int32_t>& position_of = position_of_object_[s];
     const std::size_t live = segment_live_objects_[s];
     const std::size_t dead = segment.objects.size() - live;
@@ -420,11 +412,14 @@ std::vector<ObjectCandidate> ViewIndexSnapshot::CandidatesKdTree(const Descripto
       found_here.clear();
       segment.summary_graph->Search(point.data(), wanted, found);
       for (const std::size_t row : found) {
-        const std::int32_t position = position_of[row / kSummarySectors];
+        const std::size_t local = row / kSummarySectors;
+        const std::int32_t position = position_of[local];
         if (position < 0) continue;
+        const SectorViews& sectors = segment.objects[local]->Sectors(kSummarySectors);
+        const std::size_t sector = row % kSummarySectors;
         const float tc =
-            SummaryTanimoto(point, query_norm, &segment.summaries[row * segment.length],
-                            segment.summary_norms[row], segment.length);
+            SummaryTanimoto(point, query_norm, sectors.descriptor[sector].data(),
+                            static_cast<float>(sectors.squared_norm[sector]), segment.length);
         float& kept = found_here.try_emplace(static_cast<std::size_t>(position), tc).first->second;
         kept = std::max(kept, tc);
       }

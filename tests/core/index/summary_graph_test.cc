@@ -69,8 +69,7 @@ TEST(SummaryGraphTest, ByteDistancesAreTheSameOnBothHotLoopPaths) {
 }
 
 // Sector-mean-like points: non-negative, most values small, a few large.
-std::vector<std::vector<float>> Points(std::size_t count, std::size_t dimensions,
-                                       unsigned seed) {
+std::vector<std::vector<float>> Points(std::size_t count, std::size_t dimensions, unsigned seed) {
   std::mt19937 random(seed);
   std::exponential_distribution<float> value(1.0f);
   std::vector<std::vector<float>> points(count, std::vector<float>(dimensions));
