@@ -104,20 +104,28 @@ cv::Mat MotionBlur(const cv::Mat& image, double length, double angle_degrees) {
       if (w != 0) taps.push_back({r - anchor_y, c - anchor_x, w});
     }
   }
+  // Row by row, tap by tap: each value's sum still adds its taps in the kernel's order (a tap
+  // beyond the image adds nothing), so the sums are those of the pixel-by-pixel correlation
+  // to the last bit, while the inner loop runs over a whole row without a bounds check.
   const int channels = image.channels();
+  const int row_values = image.cols * channels;
+  std::vector<double> sums(static_cast<std::size_t>(row_values));
   cv::Mat result(image.size(), image.type());
   for (int y = 0; y < image.rows; ++y) {
+    std::fill(sums.begin(), sums.end(), 0.0);
+    for (const Tap& tap : taps) {
+      const int yy = y + tap.dy;
+      if (yy < 0 || yy >= image.rows) continue;  // zero pad
+      const std::uint8_t* in = image.ptr<std::uint8_t>(yy);
+      const int shift = tap.dx * channels;
+      const int begin = std::max(0, -tap.dx) * channels;
+      const int end = std::min(image.cols, image.cols - tap.dx) * channels;
+      const double weight = tap.weight;
+      for (int i = begin; i < end; ++i) sums[i] += weight * in[i + shift];
+    }
     std::uint8_t* out = result.ptr<std::uint8_t>(y);
-    for (int x = 0; x < image.cols; ++x) {
-      for (int ch = 0; ch < channels; ++ch) {
-        double sum = 0;
-        for (const Tap& tap : taps) {  // correlation: image(y + dy, x + dx) * kernel(dy, dx)
-          const int yy = y + tap.dy, xx = x + tap.dx;
-          if (yy < 0 || yy >= image.rows || xx < 0 || xx >= image.cols) continue;  // zero pad
-          sum += tap.weight * image.ptr<std::uint8_t>(yy)[xx * channels + ch];
-        }
-        out[x * channels + ch] = cv::saturate_cast<std::uint8_t>(std::round(sum));
-      }
+    for (int i = 0; i < row_values; ++i) {
+      out[i] = cv::saturate_cast<std::uint8_t>(std::round(sums[i]));
     }
   }
   return result;
