@@ -26,6 +26,7 @@
 #include "core/descriptor/view_description.h"
 #include "core/engines/product_pipeline.h"
 #include "evaluation/dataset.h"
+#include "evaluation/distractor_objects.h"
 #include "storage/model_validation.h"
 #include "storage/sqlite_model_store.h"
 #include "storage/view_index_loading.h"
@@ -138,16 +139,60 @@ ImportTarget ServerTarget(const ImportOptions& options) {
   return target;
 }
 
+// One object to import: its name, and how its views are computed in a variant.
+struct ImportObject {
+  std::string name;
+  std::function<std::vector<ModelView>(DescriptorVariant)> views;
+};
+
+// The objects of a dataset on disk (--layout coil100 or manifest), every name and every box
+// checked before anything is computed or written.
+std::vector<ImportObject> DatasetObjects(const ImportOptions& options) {
+  auto images = std::make_shared<std::vector<DatasetImage>>(
+      SelectDataset({options.layout, options.data, options.manifest, options.objects, ""}).known);
+  if (!options.boxes.empty()) AttachBoxes(*images, ReadBoxes(options.boxes), options.box_margin);
+  SetBoxMargin(*images, options.box_margin);
+  std::vector<ImportObject> objects;
+  for (DatasetObject& object : GroupByObject(*images)) {
+    ValidateObjectName(object.name);
+    auto grouped = std::make_shared<DatasetObject>(std::move(object));
+    objects.push_back({grouped->name, [images, grouped, &options](DescriptorVariant variant) {
+                         return ComputeViews(*images, *grouped, variant, options.seed,
+                                             options.threads);
+                       }});
+  }
+  CheckBoxes(*images);
+  return objects;
+}
+
+// The generated objects --objects selects (--layout distractors): distractor<k> of the
+// distractors drawn from --seed, as `orbit eval --distractors` adds them.
+std::vector<ImportObject> GeneratedObjects(const ImportOptions& options) {
+  if (options.objects.empty()) {
+    throw std::invalid_argument("--layout distractors needs --objects, e.g. 1-10000 (at most " +
+                                std::to_string(kMaxDistractors) + ")");
+  }
+  const std::vector<int> numbers = ParseObjectRange(options.objects);
+  if (numbers.back() > kMaxDistractors) {
+    throw std::invalid_argument("--objects: distractor numbers are 1.." +
+                                std::to_string(kMaxDistractors) + ", got " +
+                                std::to_string(numbers.back()));
+  }
+  auto distractors =
+      std::make_shared<const DistractorObjects>(options.seed, static_cast<int>(options.threads));
+  std::vector<ImportObject> objects;
+  for (const int k : numbers) {
+    objects.push_back({DistractorObjects::Name(k), [distractors, k, &options](DescriptorVariant v) {
+                         return distractors->Views(k, v, static_cast<int>(options.threads));
+                       }});
+  }
+  return objects;
+}
+
 int RunImport(const ImportOptions& options) {
   const bool remote = UsesServer(options.db, options.network);
-  std::vector<DatasetImage> images =
-      SelectDataset({options.layout, options.data, options.manifest, options.objects, ""}).known;
-  if (!options.boxes.empty()) AttachBoxes(images, ReadBoxes(options.boxes), options.box_margin);
-  SetBoxMargin(images, options.box_margin);
-  const std::vector<DatasetObject> objects = GroupByObject(images);
-  // Every name and every box is checked before anything is computed or written.
-  for (const DatasetObject& object : objects) ValidateObjectName(object.name);
-  CheckBoxes(images);
+  const std::vector<ImportObject> objects =
+      options.layout == "distractors" ? GeneratedObjects(options) : DatasetObjects(options);
   const ImportTarget target = remote ? ServerTarget(options) : StoreTarget(options);
   const DescriptorVariant variant = target.variant;
 
@@ -156,7 +201,7 @@ int RunImport(const ImportOptions& options) {
   std::size_t enrolled = 0;
   std::size_t skipped = 0;
   for (std::size_t i = 0; i < objects.size(); ++i) {
-    const DatasetObject& object = objects[i];
+    const ImportObject& object = objects[i];
     progress.Update("import", i, objects.size());
     if (std::optional<ObjectId> existing = target.find(object.name)) {
       // An import that was interrupted carries on where it stopped.
@@ -168,7 +213,7 @@ int RunImport(const ImportOptions& options) {
     Enrollment enrollment;
     enrollment.name = object.name;
     enrollment.variant = variant;
-    enrollment.views = ComputeViews(images, object, variant, options.seed, options.threads);
+    enrollment.views = object.views(variant);
     const auto [id, report] = target.enroll(enrollment);
     // Printed only once the object is durable: a line here is a promise.
     std::cout << "enrolled " << object.name << " (id " << id << ", " << enrollment.views.size()
@@ -197,13 +242,16 @@ void AddImportCommand(CLI::App& app, int& exit_code) {
   command
       ->add_option("--layout", options->layout,
                    "coil100: objN__A.png files in --data;\n"
-                   "manifest: a CSV file (--manifest)")
+                   "manifest: a CSV file (--manifest);\n"
+                   "distractors: generated boxes and cylinders with patterned faces, 72 views\n"
+                   "each (the objects `orbit eval --distractors` adds; --objects selects them)")
       ->required()
-      ->check(CLI::IsMember({"coil100", "manifest"}));
+      ->check(CLI::IsMember({"coil100", "manifest", "distractors"}));
   command->add_option("--data", options->data, "folder of COIL-100 images (--layout coil100)");
   command->add_option("--objects", options->objects,
                       "objects to import, e.g. 1-20 or 1-5,9 (coil100: object numbers;\n"
-                      "manifest: order of first appearance); default: all");
+                      "manifest: order of first appearance; distractors: their numbers,\n"
+                      "required); default: all");
   command->add_option("--manifest", options->manifest,
                       "CSV with columns path,object,azimuth[,elevation][,x,y,w,h: the object's "
                       "box] (--layout manifest)");

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 #include <optional>
+#include <stdexcept>
+#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -99,10 +101,13 @@ cv::Mat Wrap(const std::array<cv::Mat, 4>& panels) {
 
 // --- Ray casting -------------------------------------------------------------------------
 
+constexpr int kLid = 4;  // a Hit's surface: 0-3 the side faces (a box's) or the label, 4 the lid
+
 struct Hit {
   double distance;
   cv::Vec3d normal;  // object coordinates
-  cv::Vec3b colour;  // texture colour before shading
+  int surface;       // 0-3: faces[surface] at (u, v); kLid: top_colour
+  double u = 0, v = 0;
 };
 
 cv::Vec3b Sample(const cv::Mat& texture, double u, double v) {
@@ -116,7 +121,7 @@ cv::Vec3b Colour(cv::Scalar s) {
 }
 
 // The nearest face of the box [-a, a] x [-h, h] x [-a, a] that the ray o + t d enters.
-std::optional<Hit> HitBox(const SyntheticObject& object, cv::Vec3d o, cv::Vec3d d) {
+std::optional<Hit> HitBox(cv::Vec3d o, cv::Vec3d d) {
   const cv::Vec3d half(kHalfWidth, kHalfHeight, kHalfWidth);
   double enter = -1e300, leave = 1e300;
   int axis = -1;
@@ -137,7 +142,7 @@ std::optional<Hit> HitBox(const SyntheticObject& object, cv::Vec3d o, cv::Vec3d 
   const cv::Vec3d p = o + enter * d;
   cv::Vec3d n(0, 0, 0);
   n[axis] = d[axis] < 0 ? 1 : -1;
-  if (axis == 1) return Hit{enter, n, Colour(object.top_colour)};
+  if (axis == 1) return Hit{enter, n, kLid};
   // Side faces in order around the box: +z, +x, -z, -x; u runs counter-clockwise seen from above.
   const double v = (kHalfHeight - p[1]) / (2 * kHalfHeight);
   const double width = 2 * kHalfWidth;
@@ -153,11 +158,11 @@ std::optional<Hit> HitBox(const SyntheticObject& object, cv::Vec3d o, cv::Vec3d 
     face = 2;
     u = (kHalfWidth - p[0]) / width;
   }
-  return Hit{enter, n, Sample(object.faces[face], u, v)};
+  return Hit{enter, n, face, u, v};
 }
 
 // The cylinder x^2 + z^2 <= r^2, |y| <= h: its side (the label) or its lid.
-std::optional<Hit> HitCylinder(const SyntheticObject& object, cv::Vec3d o, cv::Vec3d d) {
+std::optional<Hit> HitCylinder(cv::Vec3d o, cv::Vec3d d) {
   const double r = kHalfWidth;
   const double a = d[0] * d[0] + d[2] * d[2];
   const double b = 2 * (o[0] * d[0] + o[2] * d[2]);
@@ -169,14 +174,14 @@ std::optional<Hit> HitCylinder(const SyntheticObject& object, cv::Vec3d o, cv::V
     if (t > 0 && std::abs(p[1]) <= kHalfHeight) {
       const double u = (std::atan2(p[0], p[2]) + std::numbers::pi) / (2 * std::numbers::pi);
       const double v = (kHalfHeight - p[1]) / (2 * kHalfHeight);
-      return Hit{t, cv::Vec3d(p[0] / r, 0, p[2] / r), Sample(object.faces[0], u, v)};
+      return Hit{t, cv::Vec3d(p[0] / r, 0, p[2] / r), 0, u, v};
     }
   }
   if (std::abs(d[1]) > 1e-12) {
     const double t = (kHalfHeight - o[1]) / d[1];
     const cv::Vec3d p = o + t * d;
     if (t > 0 && p[0] * p[0] + p[2] * p[2] <= r * r) {
-      return Hit{t, cv::Vec3d(0, 1, 0), Colour(object.top_colour)};
+      return Hit{t, cv::Vec3d(0, 1, 0), kLid};
     }
   }
   return std::nullopt;
@@ -246,7 +251,10 @@ SyntheticObject RandomSyntheticObject(std::uint64_t seed, std::string name) {
   return object;
 }
 
-cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size) {
+ViewRays CastViewRays(SyntheticObject::Shape shape, double azimuth_deg, int size) {
+  ViewRays rays;
+  rays.shape = shape;
+  rays.size = size;
   const int big = size * kSupersampling;
   const double elevation = kElevationDeg * std::numbers::pi / 180;
   const double azimuth = azimuth_deg * std::numbers::pi / 180;
@@ -258,26 +266,44 @@ cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size) 
   const cv::Vec3d forward = cv::normalize(-eye);
   const cv::Vec3d right = cv::normalize(forward.cross(cv::Vec3d(0, 1, 0)));
   const cv::Vec3d up = right.cross(forward);
-
-  cv::Mat image(big, big, CV_8UC3, cv::Scalar(0, 0, 0));
   for (int row = 0; row < big; ++row) {
     for (int col = 0; col < big; ++col) {
       const double x = (col + 0.5 - big / 2.0) / focal;
       const double y = -(row + 0.5 - big / 2.0) / focal;
       const cv::Vec3d ray = cv::normalize(forward + x * right + y * up);
-      const std::optional<Hit> hit = object.shape == SyntheticObject::Shape::kBox
-                                         ? HitBox(object, eye, ray)
-                                         : HitCylinder(object, eye, ray);
+      const std::optional<Hit> hit =
+          shape == SyntheticObject::Shape::kBox ? HitBox(eye, ray) : HitCylinder(eye, ray);
       if (!hit) continue;
       // Lit from the camera: faces turned away are darker, as on a turntable with a key light.
       const double light = 0.35 + 0.65 * std::max(0.0, -hit->normal.dot(ray));
-      cv::Vec3b& pixel = image.at<cv::Vec3b>(row, col);
-      for (int k = 0; k < 3; ++k) pixel[k] = cv::saturate_cast<uchar>(hit->colour[k] * light);
+      rays.hits.push_back({row * big + col, hit->surface, hit->u, hit->v, light});
     }
   }
+  return rays;
+}
+
+cv::Mat RenderView(const SyntheticObject& object, const ViewRays& rays) {
+  if (rays.shape != object.shape) {
+    throw std::invalid_argument("RenderView: rays cast for another shape than " + object.name +
+                                "'s");
+  }
+  const int big = rays.size * kSupersampling;
+  cv::Mat image(big, big, CV_8UC3, cv::Scalar(0, 0, 0));
+  auto* pixels = image.ptr<cv::Vec3b>(0);  // continuous: allocated whole
+  const cv::Vec3b lid = Colour(object.top_colour);
+  for (const ViewRays::Hit& hit : rays.hits) {
+    const cv::Vec3b colour =
+        hit.surface == kLid ? lid : Sample(object.faces[hit.surface], hit.u, hit.v);
+    cv::Vec3b& pixel = pixels[hit.pixel];
+    for (int k = 0; k < 3; ++k) pixel[k] = cv::saturate_cast<uchar>(colour[k] * hit.light);
+  }
   cv::Mat view;
-  cv::resize(image, view, cv::Size(size, size), 0, 0, cv::INTER_AREA);
+  cv::resize(image, view, cv::Size(rays.size, rays.size), 0, 0, cv::INTER_AREA);
   return view;
+}
+
+cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size) {
+  return RenderView(object, CastViewRays(object.shape, azimuth_deg, size));
 }
 
 }  // namespace orbit

@@ -36,7 +36,29 @@ std::vector<SyntheticObject> DemoObjects();
 // from every side; the same seed gives the same object on every platform.
 SyntheticObject RandomSyntheticObject(std::uint64_t seed, std::string name);
 
-// The object seen from `azimuth_deg`, as a `size` x `size` BGR image (CV_8UC3).
+// The object seen from `azimuth_deg`, as a `size` x `size` BGR image (CV_8UC3): its rays cast
+// (CastViewRays) and painted (RenderView below).
 cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size = 128);
+
+// What the rays of one view hit, whatever the textures. Every object of one shape has the same
+// geometry (only its textures and lid colour are its own), so a caller that renders many objects
+// (MakeDistractors) casts each shape's rays once per azimuth and paints every object with them:
+// the same pixels as RenderView(object, azimuth, size), for a fraction of the work.
+struct ViewRays {
+  struct Hit {
+    int pixel;     // row-major, in the supersampled image
+    int surface;   // 0-3: the object's faces[surface] at (u, v); 4: its lid
+    double u, v;   // texture coordinates in [0, 1]
+    double light;  // the shading factor
+  };
+  SyntheticObject::Shape shape = SyntheticObject::Shape::kBox;
+  int size = 0;           // the view's side, pixels
+  std::vector<Hit> hits;  // the pixels that see the object, in row-major order
+};
+ViewRays CastViewRays(SyntheticObject::Shape shape, double azimuth_deg, int size = 128);
+
+// `object` painted along `rays`. Throws std::invalid_argument when the rays were cast for
+// another shape.
+cv::Mat RenderView(const SyntheticObject& object, const ViewRays& rays);
 
 }  // namespace orbit

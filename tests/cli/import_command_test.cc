@@ -17,6 +17,7 @@
 #include "client/models_client.h"
 #include "core/descriptor/view_description.h"
 #include "core/engines/product_pipeline.h"
+#include "evaluation/distractor_objects.h"
 #include "storage/sqlite_model_store.h"
 #include "tests/support/client_test_support.h"
 #include "tests/support/server_process.h"
@@ -292,6 +293,48 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-hsv-hog)"),
             std::string::npos)
       << variant.err;
+}
+
+// Generated objects import as a dataset's do: one line per durable object, a second run
+// carries on where the first stopped, and the views are those `orbit eval --distractors` adds
+// (DistractorObjects of the import's seed). Without a selection, or beyond the generator's
+// range, nothing is written.
+TEST(ImportCommandTest, DistractorsImportGeneratedObjectsAndResume) {
+  const ScratchDir scratch;
+  const std::string db = (scratch.path() / "catalogue.db").string();
+  const std::string import = "import --db " + db + " --layout distractors --threads 2";
+  const auto first = RunOrbit(import + " --objects 1-2");
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_EQ(UnindentedLines(first.out),
+            (std::vector<std::string>{"enrolled distractor1 (id 1, 72 views)",
+                                      "enrolled distractor2 (id 2, 72 views)"}));
+  const auto resumed = RunOrbit(import + " --objects 2-3");
+  ASSERT_EQ(resumed.exit_code, 0) << resumed.err;
+  EXPECT_EQ(UnindentedLines(resumed.out),
+            (std::vector<std::string>{"skipped distractor2 (already in the store as id 2)",
+                                      "enrolled distractor3 (id 3, 72 views)"}));
+  {
+    SqliteModelStore store(db);
+    const std::optional<StoredObject> third = store.Get(3);
+    ASSERT_TRUE(third.has_value());
+    const std::vector<ModelView> generated =
+        DistractorObjects(kDefaultViewNoiseSeed, 1).Views(3, Product().variant, 1);
+    ASSERT_EQ(third->views.size(), generated.size());
+    for (std::size_t f = 0; f < generated.size(); ++f) {
+      EXPECT_EQ(third->views[f].descriptor, generated[f].descriptor) << "view " << f;
+      EXPECT_EQ(third->views[f].azimuth, generated[f].azimuth);
+      EXPECT_DOUBLE_EQ(third->views[f].typical_distance, generated[f].typical_distance);
+    }
+  }
+  const std::string none = (scratch.path() / "none.db").string();
+  const auto unselected = RunOrbit("import --db " + none + " --layout distractors");
+  EXPECT_EQ(unselected.exit_code, 1);
+  EXPECT_THAT(unselected.err, HasSubstr("--layout distractors needs --objects, e.g. 1-10000"));
+  const auto beyond =
+      RunOrbit("import --db " + none + " --layout distractors --objects 99999-100001");
+  EXPECT_EQ(beyond.exit_code, 1);
+  EXPECT_THAT(beyond.err, HasSubstr("distractor numbers are 1..100000, got 100001"));
+  EXPECT_FALSE(std::filesystem::exists(none));
 }
 
 }  // namespace

@@ -34,6 +34,12 @@ TEST(DistractorObjectsTest, AreDrawnFromTheSeedAloneWithTheirIdsNamesAndViews) {
   EXPECT_NE(MakeDistractors(1, DescriptorVariant::kCeddLire, 1, 8, 1, {})[0].views[0],
             first[0].views[0]);
   EXPECT_TRUE(MakeDistractors(0, DescriptorVariant::kCeddLire, 1, 7, 1, {}).empty());
+  // Distractor 2 alone, as `orbit import --layout distractors --objects 2` makes it.
+  const DistractorObjects seven(7, 1);
+  EXPECT_EQ(seven.Views(2, DescriptorVariant::kCeddLire, 2), first[1].views);
+  EXPECT_THROW(seven.Views(0, DescriptorVariant::kCeddLire, 1), std::invalid_argument);
+  EXPECT_THROW(seven.Views(kMaxDistractors + 1, DescriptorVariant::kCeddLire, 1),
+               std::invalid_argument);
 }
 
 // Each distractor is its own object: a view is more like its own object's next view than like
