@@ -45,25 +45,52 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
       feedback.redundant_azimuths.push_back(NormaliseAzimuth(object.views[order[k]].azimuth));
   }
 
-  // Every other object's best TC with each view.
+  // Other objects' best TC with each view: every object's from one scan of every view per view,
+  // or, in a large index, the candidates' only (the header's contract).
   const std::vector<ObjectSlot>& objects = index.objects();
   std::vector<double> similarity_sum(objects.size(), 0);
   std::vector<int> closer(objects.size(), 0);
-  std::vector<float> similarities;
-  for (std::size_t v = 0; v < object.views.size(); ++v) {
-    index.SimilarityToEveryView(object.views[v].descriptor, similarities);
-    for (std::size_t p = 0; p < objects.size(); ++p) {
-      if (objects[p].object->id() == object.id) continue;
-      float best = 0;
-      for (int w = 0; w < objects[p].object->view_count(); ++w) {
-        best = std::max(best, similarities[objects[p].first_slot + w]);
+  std::vector<bool> scored(objects.size(), false);
+  if (objects.size() <= kConfusableAmongCandidatesAbove) {
+    std::fill(scored.begin(), scored.end(), true);
+    std::vector<float> similarities;
+    for (std::size_t v = 0; v < object.views.size(); ++v) {
+      index.SimilarityToEveryView(object.views[v].descriptor, similarities);
+      for (std::size_t p = 0; p < objects.size(); ++p) {
+        float best = 0;
+        for (int w = 0; w < objects[p].object->view_count(); ++w) {
+          best = std::max(best, similarities[objects[p].first_slot + w]);
+        }
+        similarity_sum[p] += best;
+        closer[p] += object.views.size() > 1 && best > own_best[v];
       }
-      similarity_sum[p] += best;
-      closer[p] += object.views.size() > 1 && best > own_best[v];
+    }
+  } else {
+    // Probes spread round the object: every step-th view in azimuth order.
+    const std::size_t step =
+        std::max<std::size_t>(1, order.size() / static_cast<std::size_t>(kConfusableProbes));
+    for (std::size_t k = 0; k < order.size(); k += step) {
+      for (const ObjectCandidate& candidate : index.ObjectCandidates(
+               object.views[order[k]].descriptor, kConfusableCandidatesPerProbe)) {
+        scored[candidate.position] = true;
+      }
+    }
+    for (std::size_t p = 0; p < objects.size(); ++p) {
+      if (!scored[p]) continue;
+      const ObjectModel& other = objects[p].object->model();
+      for (std::size_t v = 0; v < object.views.size(); ++v) {
+        float best = 0;
+        for (const ModelView& w : other.views) {
+          best = std::max(best,
+                          static_cast<float>(Tanimoto(object.views[v].descriptor, w.descriptor)));
+        }
+        similarity_sum[p] += best;
+        closer[p] += object.views.size() > 1 && best > own_best[v];
+      }
     }
   }
   for (std::size_t p = 0; p < objects.size(); ++p) {
-    if (objects[p].object->id() == object.id) continue;
+    if (!scored[p] || objects[p].object->id() == object.id) continue;
     feedback.confusable.push_back({objects[p].object->id(),
                                    similarity_sum[p] / static_cast<double>(object.views.size()),
                                    closer[p]});

@@ -25,6 +25,12 @@ ObjectModel Object(ObjectId id, std::vector<std::pair<double, DescriptorValues>>
   return model;
 }
 
+void ExpectConfusion(const Confusion& confusion, ObjectId object, double similarity, int closer) {
+  EXPECT_EQ(confusion.object, object);
+  EXPECT_DOUBLE_EQ(confusion.similarity, similarity) << "object " << object;
+  EXPECT_EQ(confusion.closer_views, closer) << "object " << object;
+}
+
 TEST(EnrollmentFeedbackTest, FindsGapsAcrossZeroAndRepeatedViews) {
   // Views at 350, 10, 20 and 120: gaps 20 -> 120 (100) and 120 -> 350 (230); 350 -> 10 is 20.
   // The view at 20 equals the one at 10: a repeat (the earlier one in azimuth order stays).
@@ -56,17 +62,35 @@ TEST(EnrollmentFeedbackTest, RanksTheObjectsItCouldBeTakenFor) {
                          Object(4, {{0, Bins({{2, 4}})}}), object});
   const EnrollmentFeedback feedback = AssessEnrollment(object, *index.Snapshot());
   ASSERT_EQ(feedback.confusable.size(), 3u);  // the object itself is not among them
-  EXPECT_EQ(feedback.confusable[0].object, 1);
-  EXPECT_DOUBLE_EQ(feedback.confusable[0].similarity, 0.5);
-  EXPECT_EQ(feedback.confusable[0].closer_views, 1);
-  EXPECT_EQ(feedback.confusable[1].object, 2);
-  EXPECT_DOUBLE_EQ(feedback.confusable[1].similarity, 0.5);
-  EXPECT_EQ(feedback.confusable[1].closer_views, 2);
-  EXPECT_EQ(feedback.confusable[2].object, 4);
-  EXPECT_DOUBLE_EQ(feedback.confusable[2].similarity, 0);
-  EXPECT_EQ(feedback.confusable[2].closer_views, 0);
+  ExpectConfusion(feedback.confusable[0], 1, 0.5, 1);
+  ExpectConfusion(feedback.confusable[1], 2, 0.5, 2);
+  ExpectConfusion(feedback.confusable[2], 4, 0, 0);
   // Two views 180 apart: both gaps are 180 wide.
   EXPECT_EQ(feedback.gaps.size(), 2u);
+}
+
+// Above kConfusableAmongCandidatesAbove objects the confusable ones come from candidates, and
+// are still the right ones, scored exactly. The new object's 8 views, 45 degrees apart, are bins
+// {v: 4} for v = 0..7 (no two alike). obj1 holds views 0 and 1 exactly: (1 + 1) / 8 = 0.25, 2
+// views closer. obj2 holds view 2: 1 / 8 = 0.125, 1 closer. obj3 holds {3: 4, 4: 4}, TC
+// 16 / (16 + 32 - 16) = 0.5 with views 3 and 4: 1 / 8 = 0.125, 2 closer (after obj2, the lower
+// id). 998 other objects share no bin with it.
+TEST(EnrollmentFeedbackTest, ALargeCatalogueStillNamesTheObjectsItCouldBeTakenFor) {
+  std::vector<std::pair<double, DescriptorValues>> views;
+  for (int v = 0; v < 8; ++v) views.push_back({45.0 * v, Bins({{v, 4}})});
+  const ObjectModel object = Object(5000, views);
+  std::vector<ObjectModel> catalogue = {Object(1, {{0, Bins({{0, 4}})}, {45, Bins({{1, 4}})}}),
+                                        Object(2, {{90, Bins({{2, 4}})}}),
+                                        Object(3, {{135, Bins({{3, 4}, {4, 4}})}})};
+  for (ObjectId id = 4; catalogue.size() <= kConfusableAmongCandidatesAbove; ++id) {
+    catalogue.push_back(Object(id, {{0, Bins({{8 + static_cast<int>(id % 136), 3}})}}));
+  }
+  const ViewIndex index(catalogue);
+  const EnrollmentFeedback feedback = AssessEnrollment(object, *index.Snapshot());
+  ASSERT_EQ(feedback.confusable.size(), 3u);
+  ExpectConfusion(feedback.confusable[0], 1, 0.25, 2);
+  ExpectConfusion(feedback.confusable[1], 2, 0.125, 1);
+  ExpectConfusion(feedback.confusable[2], 3, 0.125, 2);
 }
 
 TEST(EnrollmentFeedbackTest, OneViewLeavesTheWholeCircleOpen) {
