@@ -27,6 +27,7 @@ log=$(mktemp)
 trap 'kill "$server_pid" 2>/dev/null || true; rm -f "$log"' EXIT
 
 start=$(date +%s.%N)
+serve_wait_seconds=600  # a large store's server may say where it listens only once it has loaded
 serve_in_background "$build/orbit" "$log" --db "$store" "$@"
 answer=""
 for _ in $(seq 3000); do
