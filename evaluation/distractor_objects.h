@@ -33,8 +33,8 @@ class DistractorObjects {
   // "distractor<k>".
   static std::string Name(int k);
 
-  // Distractor k's model (id unset), its views described in `variant` with `seed` as the base
-  // of the noisy copies' seed rule, on `threads` threads (the numbers do not depend on them).
+  // Distractor k's views, described in `variant` with the constructor's seed as the base of
+  // the noisy copies' seed rule, on `threads` threads (the numbers do not depend on them).
   // Throws std::invalid_argument when k is outside 1..kMaxDistractors.
   std::vector<ModelView> Views(int k, DescriptorVariant variant, int threads) const;
 

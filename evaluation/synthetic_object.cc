@@ -101,7 +101,7 @@ cv::Mat Wrap(const std::array<cv::Mat, 4>& panels) {
 
 // --- Ray casting -------------------------------------------------------------------------
 
-constexpr int kLid = 4;  // a Hit's surface: 0-3 the side faces (a box's) or the label, 4 the lid
+constexpr int kLid = ViewRays::kLid;
 
 struct Hit {
   double distance;

@@ -45,9 +45,10 @@ cv::Mat RenderView(const SyntheticObject& object, double azimuth_deg, int size =
 // (MakeDistractors) casts each shape's rays once per azimuth and paints every object with them:
 // the same pixels as RenderView(object, azimuth, size), for a fraction of the work.
 struct ViewRays {
+  static constexpr int kLid = 4;  // a hit's surface when it sees the lid
   struct Hit {
     int pixel;     // row-major, in the supersampled image
-    int surface;   // 0-3: the object's faces[surface] at (u, v); 4: its lid
+    int surface;   // 0-3: the object's faces[surface] at (u, v); kLid: its lid
     double u, v;   // texture coordinates in [0, 1]
     double light;  // the shading factor
   };

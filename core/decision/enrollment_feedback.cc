@@ -51,6 +51,10 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
   std::vector<double> similarity_sum(objects.size(), 0);
   std::vector<int> closer(objects.size(), 0);
   std::vector<bool> scored(objects.size(), false);
+  const auto add = [&](std::size_t p, std::size_t v, float best) {  // object p's best with view v
+    similarity_sum[p] += best;
+    closer[p] += object.views.size() > 1 && best > own_best[v];
+  };
   if (objects.size() <= kConfusableAmongCandidatesAbove) {
     std::fill(scored.begin(), scored.end(), true);
     std::vector<float> similarities;
@@ -61,8 +65,7 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
         for (int w = 0; w < objects[p].object->view_count(); ++w) {
           best = std::max(best, similarities[objects[p].first_slot + w]);
         }
-        similarity_sum[p] += best;
-        closer[p] += object.views.size() > 1 && best > own_best[v];
+        add(p, v, best);
       }
     }
   } else {
@@ -84,8 +87,7 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
           best = std::max(best,
                           static_cast<float>(Tanimoto(object.views[v].descriptor, w.descriptor)));
         }
-        similarity_sum[p] += best;
-        closer[p] += object.views.size() > 1 && best > own_best[v];
+        add(p, v, best);
       }
     }
   }
