@@ -18,7 +18,8 @@
 # or, for a server, tests/support/server_process.cc fails the test with the server's log.
 # A part fails when a test fails or a report was written; the reports are printed then.
 # Suppressions (scripts/sanitizers/*.supp) are for third-party libraries only, each with its
-# reason. Ends with how long each part took.
+# reason. Ends with how long each part took. With stop_on_failure set in the environment, ctest
+# stops at the first failing test (CI, whose deadline may cut a part short, sets it).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -91,7 +92,8 @@ run() {
     # libraries make through TSan's interceptors (their memcpy, malloc) are not checked; every
     # access of our own code still is.
     export TSAN_OPTIONS="halt_on_error=0:second_deadlock_stack=1:ignore_noninstrumented_modules=1:suppressions=$supp/tsan.supp:log_path=$reports/tsan"
-    nice -n 10 ctest --output-on-failure --parallel "$(nproc)" --timeout 900 "${select[@]}"
+    nice -n 10 ctest --output-on-failure --parallel "$(nproc)" --timeout 900 "${select[@]}" \
+      ${stop_on_failure:+--stop-on-failure}
   ) || status=$?
   took[$name tests]=$(($(date +%s) - start))
 
