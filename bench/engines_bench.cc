@@ -17,7 +17,12 @@
 //   frame-after-model-change/<engine>/<objects>[/first-session]
 //                                    the same, on a snapshot that gained or lost a 72-view object
 //                                    since the session's previous frame (BM_FrameAfterModelChange)
-//   rejection-calibration/<objects>  RejectionCalibration::FromIndex of the whole model set
+//   rejection-calibration/<objects>  RejectionCalibration::FromIndex of the whole model set,
+//                                    kd-tree index, one thread (the server's background
+//                                    recalibration; above 1000 objects from object candidates)
+//   rejection-calibration-every-object/<objects>
+//                                    the same, every left-out object scored against every object
+//                                    (the reference the candidates are measured by)
 //   kd-search/coil100, exact-search/coil100
 //                                    one retrieval list (N_L = 4) over COIL-100's views at
 //                                    multiples of 10 degrees, queried with the views in between;
@@ -87,11 +92,13 @@ void BM_ExactScan(benchmark::State& state, int objects) {
 
 // The calibrated rejection rule's calibration of the whole model set (what the server redoes in
 // the background after each enrollment).
-void BM_RejectionCalibration(benchmark::State& state, int objects) {
-  SyntheticSet& set = Synthetic(objects, SearchMode::kExact);
+void BM_RejectionCalibration(benchmark::State& state, int objects, bool every_object) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
   const auto snapshot = set.index->Snapshot();
+  CalibrationOptions options;
+  if (every_object) options.scan_every_object_up_to = snapshot->object_count();
   for (auto _ : state) {
-    const RejectionCalibration calibration = RejectionCalibration::FromIndex(*snapshot);
+    const RejectionCalibration calibration = RejectionCalibration::FromIndex(*snapshot, options);
     benchmark::DoNotOptimize(calibration.NullThreshold(8, 0.15));
     state.counters["sampled_views"] = calibration.sampled_views();
   }
@@ -287,11 +294,14 @@ int RegisterEngineBenchmarks() {
                                  objects)
         ->Unit(benchmark::kMicrosecond);
   }
-  for (const int objects : {100, 1000}) {
+  for (const int objects : {100, 1000, 2000, 10000}) {
     benchmark::RegisterBenchmark(("rejection-calibration/" + std::to_string(objects)).c_str(),
-                                 BM_RejectionCalibration, objects)
+                                 BM_RejectionCalibration, objects, false)
         ->Unit(benchmark::kMillisecond);
   }
+  benchmark::RegisterBenchmark("rejection-calibration-every-object/2000", BM_RejectionCalibration,
+                               2000, true)
+      ->Unit(benchmark::kMillisecond);
   for (const char* engine :
        {"vci", "hmm", "product", "product-every-object", "product-candidates:8",
         "product-candidates:16", "product-candidates:32"}) {

@@ -233,8 +233,8 @@ struct VariantModels {
 
 // Step 2: for each variant (in the options' order), the distractors (on `threads` threads), the
 // known objects' models made of their images' model views, then the full index and its memory
-// (the known objects' alone). Single-threaded, so the heap growth
-// across an index's construction is that index's memory.
+// (the known objects' alone), and its calibration (on `threads` threads). The index is built on
+// one thread, so the heap growth across its construction is that index's memory.
 std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
                                        const DescribedImages& described,
                                        const EvaluationOptions& options, int threads) {
@@ -276,7 +276,7 @@ std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
     const std::size_t after = HeapBytesInUse();
     memory.index_bytes = after > before ? after - before : 0;
     variants[v].calibration = std::make_shared<const RejectionCalibration>(
-        RejectionCalibration::FromIndex(*variants[v].full_index));
+        RejectionCalibration::FromIndex(*variants[v].full_index, {.threads = threads}));
   }
   return variants;
 }

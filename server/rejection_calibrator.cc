@@ -3,15 +3,25 @@
 #include <algorithm>
 #include <utility>
 
+#include "core/base/parallel_for.h"
 #include "server/thread_priority.h"
 
 namespace orbit::server {
+namespace {
+
+// The first calibration runs before the server serves, when nothing else needs the CPUs.
+CalibrationOptions OnEveryCpu(CalibrationOptions options) {
+  options.threads = AvailableCpus();
+  return options;
+}
+
+}  // namespace
 
 RejectionCalibrator::RejectionCalibrator(std::shared_ptr<const ViewIndexSnapshot> initial,
                                          CalibrationOptions options)
     : options_(options),
       calibration_(std::make_shared<const RejectionCalibration>(
-          RejectionCalibration::FromIndex(*initial, options))),
+          RejectionCalibration::FromIndex(*initial, OnEveryCpu(options)))),
       calibrated_serial_(initial->serial()),
       calibrated_objects_(static_cast<int>(initial->object_count())),
       thread_([this] { Run(); }) {}

@@ -41,7 +41,9 @@ bool RecalibrationDue(std::uint64_t changes, int calibrated_objects, double wait
 
 class RejectionCalibrator {
  public:
-  // Calibrates `initial` before returning and starts the background thread.
+  // Calibrates `initial` before returning, on every CPU the process may use (whatever
+  // `options.threads` says), and starts the background thread, whose recalibrations use
+  // `options` as given, at idle priority.
   explicit RejectionCalibrator(std::shared_ptr<const ViewIndexSnapshot> initial,
                                CalibrationOptions options = {});
   // Stops the background thread (a recalibration under way is finished first).

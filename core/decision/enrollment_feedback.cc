@@ -55,7 +55,7 @@ EnrollmentFeedback AssessEnrollment(const ObjectModel& object, const ViewIndexSn
     similarity_sum[p] += best;
     closer[p] += object.views.size() > 1 && best > own_best[v];
   };
-  if (objects.size() <= kConfusableAmongCandidatesAbove) {
+  if (objects.size() <= kScanEveryObjectUpTo) {
     std::fill(scored.begin(), scored.end(), true);
     std::vector<float> similarities;
     for (std::size_t v = 0; v < object.views.size(); ++v) {

@@ -30,14 +30,13 @@ inline constexpr double kCoverageGapDegrees = 30;
 // 0.995 and above is a repeat.
 inline constexpr double kRedundantSimilarity = 0.995;
 inline constexpr int kConfusableObjects = 3;
-// In an index of more objects than this, the confusable objects are looked for among candidates
-// instead of in every object: the kConfusableCandidatesPerProbe objects whose summaries are most
-// like each of kConfusableProbes views spread round the object (ViewIndexSnapshot::
-// ObjectCandidates), each then scored exactly as above. Scanning every view for each of an
-// object's views costs an enrollment time in proportion to the catalogue (seconds at ten
-// thousand objects of 72 views); an object no probe proposes is taken to be less confusable
-// than those that are (docs/design.md#enrollment-feedback).
-inline constexpr std::size_t kConfusableAmongCandidatesAbove = 1000;
+// In an index of more than kScanEveryObjectUpTo objects, the confusable objects are looked for
+// among candidates instead of in every object: the kConfusableCandidatesPerProbe objects whose
+// summaries are most like each of kConfusableProbes views spread round the object
+// (ViewIndexSnapshot::ObjectCandidates), each then scored exactly as above. Scanning every view
+// for each of an object's views costs an enrollment time in proportion to the catalogue (seconds
+// at ten thousand objects of 72 views); an object no probe proposes is taken to be less
+// confusable than those that are (docs/design.md#enrollment-feedback).
 inline constexpr int kConfusableProbes = 8;
 inline constexpr int kConfusableCandidatesPerProbe = 32;
 

@@ -7,70 +7,172 @@
 #include <string>
 
 #include "core/base/angles.h"
+#include "core/base/parallel_for.h"
 #include "core/base/seeded_random.h"
 #include "core/decision/unknown_statistic.h"
+#include "core/descriptor/similarity.h"
 
 namespace orbit {
 namespace {
 
-// One sampled view against every object of the index: per object, the view's best similarity
-// to it and the Ttyp of that best view. Its own object's entry is -1 (never a winner).
+// One sampled view against the objects its left-out object is compared with (its columns: every
+// object of the index, or its candidates in a large one): per column, the view's best similarity
+// to that object and the Ttyp of that best view. A column of its own object holds -1 (never a
+// winner).
 struct SampledView {
-  std::size_t object = 0;           // position in index.objects()
-  std::vector<float> best;          // [objects]
-  std::vector<float> best_typical;  // [objects]
+  std::size_t left_out = 0;         // position in the left-out objects
+  std::vector<float> best;          // [columns]
+  std::vector<float> best_typical;  // [columns]
   // Its best similarity to its own object's views outside kOwnNeighbourhoodDegrees, and that
   // view's Ttyp; own_best is -1 when the object has no such view.
   float own_best = -1.0f;
   float own_typical = 0.0f;
 };
 
-// Which views of each object to sample: `per_object` of them, evenly spread over its views in
-// azimuth order.
-std::vector<SampledView> SampleViews(const ViewIndexSnapshot& index, int per_object) {
-  const std::vector<ObjectSlot>& objects = index.objects();
-  std::vector<SampledView> sampled;
-  std::vector<float> similarities;
-  for (std::size_t o = 0; o < objects.size(); ++o) {
-    const IndexedObject& object = *objects[o].object;
-    const std::vector<int>& by_azimuth = object.views_by_azimuth();
-    const int count = std::min<int>(per_object, static_cast<int>(by_azimuth.size()));
-    for (int i = 0; i < count; ++i) {
-      const int view = by_azimuth[static_cast<std::size_t>(i) * by_azimuth.size() / count];
-      index.SimilarityToEveryView(object.model().views[view].descriptor, similarities);
-      SampledView sample{o, std::vector<float>(objects.size(), -1.0f),
-                         std::vector<float>(objects.size(), 0.0f)};
-      const double azimuth = object.model().views[view].azimuth;
-      for (int v = 0; v < object.view_count(); ++v) {
-        const float similarity = similarities[objects[o].first_slot + v];
-        if (std::abs(AzimuthChange(azimuth, object.model().views[v].azimuth)) >
-                kOwnNeighbourhoodDegrees &&
-            similarity > sample.own_best) {
-          sample.own_best = similarity;
-          sample.own_typical = static_cast<float>(object.model().views[v].typical_distance);
-        }
-      }
-      for (std::size_t p = 0; p < objects.size(); ++p) {
-        if (p == o) continue;
-        const IndexedObject& other = *objects[p].object;
-        for (int v = 0; v < other.view_count(); ++v) {
-          const float similarity = similarities[objects[p].first_slot + v];
-          if (similarity > sample.best[p]) {
-            sample.best[p] = similarity;
-            sample.best_typical[p] = static_cast<float>(other.model().views[v].typical_distance);
-          }
-        }
-      }
-      sampled.push_back(std::move(sample));
+// An object that plays an unknown one, and its sampled views (positions in the sampled views).
+struct LeftOutObject {
+  std::size_t position = 0;  // in index.objects()
+  std::vector<int> views;
+};
+
+// The objects that play unknown ones: every object, or `max_sampled_views` of them spread evenly
+// over the index's order when it holds more; each with `per_object` views.
+std::vector<LeftOutObject> LeftOutObjects(const ViewIndexSnapshot& index, int max_sampled_views,
+                                          int per_object) {
+  const std::size_t objects = index.object_count();
+  const std::size_t count = std::min<std::size_t>(objects, max_sampled_views);
+  std::vector<LeftOutObject> left_out(count);
+  int next = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    left_out[i].position = i * objects / count;
+    const int views =
+        std::min<int>(per_object, index.objects()[left_out[i].position].object->view_count());
+    for (int k = 0; k < views; ++k) left_out[i].views.push_back(next++);
+  }
+  return left_out;
+}
+
+// The views of `object` to sample: `count` of them, evenly spread over its views in azimuth
+// order.
+int SampledViewOf(const IndexedObject& object, int count, int k) {
+  const std::vector<int>& by_azimuth = object.views_by_azimuth();
+  return by_azimuth[static_cast<std::size_t>(k) * by_azimuth.size() / count];
+}
+
+// The sampled view's best similarity to its own object's views outside its neighbourhood, from
+// `similarity(v)` to each view v of the object.
+template <typename Similarity>
+void MatchOwnViews(const IndexedObject& object, int view, const Similarity& similarity,
+                   SampledView& sample) {
+  const double azimuth = object.model().views[view].azimuth;
+  for (int v = 0; v < object.view_count(); ++v) {
+    if (std::abs(AzimuthChange(azimuth, object.model().views[v].azimuth)) <=
+        kOwnNeighbourhoodDegrees)
+      continue;
+    const float value = similarity(v);
+    if (value > sample.own_best) {
+      sample.own_best = value;
+      sample.own_typical = static_cast<float>(object.model().views[v].typical_distance);
     }
   }
+}
+
+// Every object of the index as the columns: one exact scan of every view per sampled view.
+void CompareWithEveryObject(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
+                            std::vector<SampledView>& sampled) {
+  const std::vector<ObjectSlot>& objects = index.objects();
+  const std::size_t o = left_out.position;
+  const IndexedObject& object = *objects[o].object;
+  std::vector<float> similarities;
+  for (std::size_t k = 0; k < left_out.views.size(); ++k) {
+    const int view =
+        SampledViewOf(object, static_cast<int>(left_out.views.size()), static_cast<int>(k));
+    index.SimilarityToEveryView(object.model().views[view].descriptor, similarities);
+    SampledView& sample = sampled[left_out.views[k]];
+    sample.best.assign(objects.size(), -1.0f);
+    sample.best_typical.assign(objects.size(), 0.0f);
+    MatchOwnViews(
+        object, view, [&](int v) { return similarities[objects[o].first_slot + v]; }, sample);
+    for (std::size_t p = 0; p < objects.size(); ++p) {
+      if (p == o) continue;
+      const IndexedObject& other = *objects[p].object;
+      for (int v = 0; v < other.view_count(); ++v) {
+        const float similarity = similarities[objects[p].first_slot + v];
+        if (similarity > sample.best[p]) {
+          sample.best[p] = similarity;
+          sample.best_typical[p] = static_cast<float>(other.model().views[v].typical_distance);
+        }
+      }
+    }
+  }
+}
+
+// The candidates of the object's sampled views as the columns (the objects ObjectCandidates
+// proposes for any of them, the object itself left out), each scored exactly.
+void CompareWithCandidates(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
+                           std::vector<SampledView>& sampled) {
+  const std::vector<ObjectSlot>& objects = index.objects();
+  const IndexedObject& object = *objects[left_out.position].object;
+  const int count = static_cast<int>(left_out.views.size());
+  std::vector<int> views;
+  std::vector<std::size_t> columns;
+  for (int k = 0; k < count; ++k) {
+    views.push_back(SampledViewOf(object, count, k));
+    for (const ObjectCandidate& candidate : index.ObjectCandidates(
+             object.model().views[views.back()].descriptor, kLeftOutCandidatesPerView + 1)) {
+      if (candidate.position != left_out.position) columns.push_back(candidate.position);
+    }
+  }
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  for (int k = 0; k < count; ++k) {
+    const DescriptorValues& query = object.model().views[views[k]].descriptor;
+    SampledView& sample = sampled[left_out.views[k]];
+    sample.best.assign(columns.size(), -1.0f);
+    sample.best_typical.assign(columns.size(), 0.0f);
+    MatchOwnViews(
+        object, views[k],
+        [&](int v) {
+          return static_cast<float>(Tanimoto(query, object.model().views[v].descriptor));
+        },
+        sample);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      for (const ModelView& view : objects[columns[c]].object->model().views) {
+        const float similarity = static_cast<float>(Tanimoto(query, view.descriptor));
+        if (similarity > sample.best[c]) {
+          sample.best[c] = similarity;
+          sample.best_typical[c] = static_cast<float>(view.typical_distance);
+        }
+      }
+    }
+  }
+}
+
+// The sampled views of every left-out object, compared with their columns on `options.threads`
+// threads.
+std::vector<SampledView> SampleViews(const ViewIndexSnapshot& index,
+                                     const std::vector<LeftOutObject>& left_out,
+                                     const CalibrationOptions& options) {
+  std::vector<SampledView> sampled;
+  for (std::size_t i = 0; i < left_out.size(); ++i) {
+    for (std::size_t k = 0; k < left_out[i].views.size(); ++k) sampled.push_back({i, {}, {}});
+  }
+  const bool candidates = index.object_count() > options.scan_every_object_up_to;
+  ParallelFor(left_out.size(), options.threads, [&](std::size_t i) {
+    if (candidates) {
+      CompareWithCandidates(index, left_out[i], sampled);
+    } else {
+      CompareWithEveryObject(index, left_out[i], sampled);
+    }
+  });
   return sampled;
 }
 
-// Per object, the summed best similarity of the frames `frames` to it, into `sums`.
+// Per column, the summed best similarity of the frames `frames` (sampled views of one object) to
+// it, into `sums`.
 void SumBest(const std::vector<SampledView>& sampled, const std::vector<int>& frames,
              std::vector<double>& sums) {
-  std::fill(sums.begin(), sums.end(), 0.0);
+  sums.assign(sampled[frames[0]].best.size(), 0.0);
   for (const int f : frames) {
     const std::vector<float>& best = sampled[f].best;
     for (std::size_t p = 0; p < sums.size(); ++p) sums[p] += best[p];
@@ -105,10 +207,9 @@ double WindowStatistic(const std::vector<SampledView>& sampled, const std::vecto
 double KnownWindowStatistic(const std::vector<SampledView>& sampled, const std::vector<int>& frames,
                             std::vector<double>& sums) {
   SumBest(sampled, frames, sums);
-  const std::size_t own = sampled[frames[0]].object;
   std::size_t runner_up = sums.size();
   for (std::size_t p = 0; p < sums.size(); ++p) {
-    if (p == own) continue;
+    if (sampled[frames[0]].best[p] < 0) continue;  // its own object
     if (runner_up == sums.size() || sums[p] > sums[runner_up]) runner_up = p;
   }
   double d1 = 0, d2 = 0, typical = 0;
@@ -161,9 +262,9 @@ std::vector<double> NullShareBounds(const std::vector<NullWindow>& windows, std:
 
 RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& index,
                                                      const CalibrationOptions& options) {
-  if (options.max_sampled_views < 1 || options.windows_per_length < 1) {
+  if (options.max_sampled_views < 1 || options.windows_per_length < 1 || options.threads < 1) {
     throw std::invalid_argument(
-        "calibration needs max_sampled_views >= 1 and windows_per_length >= 1");
+        "calibration needs max_sampled_views >= 1, windows_per_length >= 1 and threads >= 1");
   }
   RejectionCalibration calibration;
   const std::size_t objects = index.object_count();
@@ -171,27 +272,25 @@ RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& in
   const int per_object =
       std::max(1, options.max_sampled_views /
                       static_cast<int>(std::min<std::size_t>(objects, options.max_sampled_views)));
-  const std::vector<SampledView> sampled = SampleViews(index, per_object);
+  const std::vector<LeftOutObject> left_out =
+      LeftOutObjects(index, options.max_sampled_views, per_object);
+  const std::vector<SampledView> sampled = SampleViews(index, left_out, options);
 
-  // The sampled views of each object, by position in `sampled`.
-  // The sampled views of each object, and those of them with an own view outside their
-  // neighbourhood, by position in `sampled`.
-  std::vector<std::vector<int>> of_object(objects);
-  std::vector<std::vector<int>> matched_of_object(objects);
+  // The sampled views of each left-out object with an own view outside their neighbourhood.
+  std::vector<std::vector<int>> matched_of_object(left_out.size());
   for (std::size_t i = 0; i < sampled.size(); ++i) {
-    of_object[sampled[i].object].push_back(static_cast<int>(i));
     if (sampled[i].own_best >= 0)
-      matched_of_object[sampled[i].object].push_back(static_cast<int>(i));
+      matched_of_object[sampled[i].left_out].push_back(static_cast<int>(i));
   }
   std::vector<std::size_t> matched_objects;
-  for (std::size_t o = 0; o < objects; ++o) {
+  for (std::size_t o = 0; o < left_out.size(); ++o) {
     if (!matched_of_object[o].empty()) matched_objects.push_back(o);
   }
-  calibration.sampled_objects_ = static_cast<int>(objects);
+  calibration.sampled_objects_ = static_cast<int>(left_out.size());
   calibration.sampled_views_ = static_cast<int>(sampled.size());
 
   SeededRandom random(options.seed);
-  std::vector<double> sums(objects);
+  std::vector<double> sums;
   std::vector<int> frames;
   calibration.null_.resize(kCalibratedWindowLengths);
   calibration.null_bound_.resize(kCalibratedWindowLengths);
@@ -199,8 +298,8 @@ RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& in
   for (int n = 1; n <= kCalibratedWindowLengths; ++n) {
     windows.clear();
     for (int w = 0; w < options.windows_per_length; ++w) {
-      const std::size_t object = random.UniformInt(objects);
-      const std::vector<int>& pool = of_object[object];
+      const std::size_t object = random.UniformInt(left_out.size());
+      const std::vector<int>& pool = left_out[object].views;
       frames.clear();
       for (int k = 0; k < n; ++k) frames.push_back(pool[random.UniformInt(pool.size())]);
       windows.push_back({WindowStatistic(sampled, frames, sums), object});
@@ -209,7 +308,7 @@ RejectionCalibration RejectionCalibration::FromIndex(const ViewIndexSnapshot& in
               [](const NullWindow& a, const NullWindow& b) { return a.statistic < b.statistic; });
     std::vector<double>& null = calibration.null_[n - 1];
     for (const NullWindow& w : windows) null.push_back(w.statistic);
-    calibration.null_bound_[n - 1] = NullShareBounds(windows, objects);
+    calibration.null_bound_[n - 1] = NullShareBounds(windows, left_out.size());
   }
   if (matched_objects.empty()) return calibration;
   calibration.known_.resize(kCalibratedWindowLengths);

@@ -34,13 +34,17 @@
 // (docs/design.md#known-ceiling).
 //
 // Sampling keeps the cost bounded: at most `max_sampled_views` views (spread evenly in azimuth
-// over every object), each compared with every view of the index once; windows draw their frames
-// from the sampled views of one object, with replacement. A sampled view costs one exact scan of
-// the index, plus the window draws (docs/results/recognition.md, "Cost", times a calibration).
+// over every object, or one view of each of `max_sampled_views` objects spread evenly over a
+// larger index); windows draw their frames from the sampled views of one object, with
+// replacement. Up to kScanEveryObjectUpTo objects a sampled view is compared with every view of
+// the index (one exact scan); above, with the views of the objects ObjectCandidates proposes for
+// its object's sampled views, each scored exactly, and an object no view proposes is taken to
+// answer a window less well than those that are (docs/design.md#calibrated-rule).
 //
 // Immutable after construction; thread-safe.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <vector>
 
@@ -64,10 +68,18 @@ inline constexpr double kNullShareBoundSigmas = 1.2816;
 inline constexpr double kKnownWindowsAccepted = 0.99;
 inline constexpr double kKnownCeilingMargin = 1.5;
 
+// In an index of more than kScanEveryObjectUpTo objects, the objects proposed for each sampled
+// view that its object's views are scored against.
+inline constexpr int kLeftOutCandidatesPerView = 32;
+
 struct CalibrationOptions {
-  int max_sampled_views = 2048;   // views compared with the whole index (>= 1)
+  int max_sampled_views = 2048;   // views compared with the index (>= 1)
   int windows_per_length = 2000;  // null values drawn per window length (>= 1)
   std::uint64_t seed = 1;         // the window draws
+  int threads = 1;                // the sampled views are compared on this many (>= 1)
+  // Above this many objects, candidates only (the exact reference they are measured by: any
+  // number at or above the index's objects).
+  std::size_t scan_every_object_up_to = kScanEveryObjectUpTo;
 };
 
 class RejectionCalibration {

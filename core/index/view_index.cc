@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <atomic>
 #include <cmath>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <unordered_set>
@@ -39,8 +40,30 @@ struct ViewIndexSnapshot::Segment {
   std::vector<std::uint8_t> descriptors;     // local slot s: [s * length, (s + 1) * length)
   std::vector<std::int32_t> squared_norms;   // c.c per local slot
   std::vector<std::int32_t> object_of_view;  // local object index per local slot
-  std::vector<float> points;                 // the descriptors as floats, for FLANN
-  std::unique_ptr<KdTree> kd_tree;           // kKdTree mode only; reads `points`
+  // kKdTree mode only, built by the first view search that needs it (ViewTree): the product's
+  // engine never searches views, so a server pays for the trees (their float copy of every
+  // descriptor, and the build's time before serving) only when a session of a thesis' engine
+  // asks (docs/design.md#view-index).
+  mutable std::once_flag kd_tree_built;
+  mutable std::vector<float> points;        // the descriptors as floats, for FLANN
+  mutable std::unique_ptr<KdTree> kd_tree;  // reads `points`
+
+  // The segment's kd-trees, built on the first call; every later or concurrent call returns the
+  // same trees once built.
+  const KdTree& ViewTree(int trees) const {
+    std::call_once(kd_tree_built, [&] {
+      points.assign(descriptors.begin(), descriptors.end());
+      flann::Matrix<float> matrix(points.data(), view_count, length);
+      kd_tree = std::make_unique<KdTree>(matrix, flann::KDTreeIndexParams(trees));
+      // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
+      // std::random_device, so two builds over the same views give different trees (and
+      // kd-tree searches can return slightly different lists;
+      // docs/results/coil100-reproduction.md measures the spread). Builds in different
+      // threads are independent.
+      kd_tree->buildIndex();
+    });
+    return *kd_tree;
+  }
   // kKdTree mode only: a graph of the objects' summaries in cosine order, summary s of local
   // object o (its sector mean's first `length` values) labelled o * kSummarySectors + s. The
   // graph keeps them only rounded (SummaryGraph::Metric::kCosineBytes); the exact values are
@@ -146,16 +169,6 @@ std::shared_ptr<const Segment> BuildSegment(
     }
   }
   segment->objects = std::move(objects);
-  if (options.search == SearchMode::kKdTree && segment->view_count > 0) {
-    segment->points.assign(segment->descriptors.begin(), segment->descriptors.end());
-    flann::Matrix<float> points(segment->points.data(), segment->view_count, length);
-    segment->kd_tree = std::make_unique<KdTree>(points, flann::KDTreeIndexParams(options.kd_trees));
-    // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
-    // std::random_device, so two builds over the same views give different trees (and kd-tree
-    // searches can return slightly different lists; docs/results/coil100-reproduction.md
-    // measures the spread). Builds in different threads are independent.
-    segment->kd_tree->buildIndex();
-  }
   if (options.search == SearchMode::kKdTree && !segment->objects.empty()) {
     // Inserted in row order from one thread with hnswlib's fixed seed: the same segment gives
     // the same graph on every build.
@@ -311,8 +324,9 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
     flann::Matrix<std::size_t> index_matrix(indices.data(), 1, wanted);
     flann::Matrix<float> distance_matrix(distances.data(), 1, wanted);
     const flann::Matrix<float> queries(point.data(), 1, segment.length);  // the segment's dims
-    const int found = segment.kd_tree->knnSearch(queries, index_matrix, distance_matrix, wanted,
-                                                 flann::SearchParams(options_.kd_checks));
+    const int found = segment.ViewTree(options_.kd_trees)
+                          .knnSearch(queries, index_matrix, distance_matrix, wanted,
+                                     flann::SearchParams(options_.kd_checks));
     for (int i = 0; i < found; ++i) {
       const std::size_t local = indices[i];
       if (local >= segment.view_count || !state.alive[segment.object_of_view[local]]) continue;

@@ -63,6 +63,12 @@ struct ViewIndexOptions {
   int kd_candidates = 32;  // views FLANN proposes for re-ranking (at least the count asked)
 };
 
+// Work that compares an object with the whole catalogue (an enrollment's confusable objects, the
+// calibrated rule's left-out objects) scans every object up to this many objects, and above it
+// scores only the objects ObjectCandidates proposes, each exactly: a scan of every view per view
+// costs in proportion to the catalogue (docs/design.md#object-candidates).
+inline constexpr std::size_t kScanEveryObjectUpTo = 1000;
+
 // The sectors per object of the summaries that ObjectCandidates searches: the product HMM's
 // states, so that its sector sums serve both.
 inline constexpr int kSummarySectors = 8;

@@ -69,7 +69,7 @@ TEST(EnrollmentFeedbackTest, RanksTheObjectsItCouldBeTakenFor) {
   EXPECT_EQ(feedback.gaps.size(), 2u);
 }
 
-// Above kConfusableAmongCandidatesAbove objects the confusable ones come from candidates, and
+// Above kScanEveryObjectUpTo objects the confusable ones come from candidates, and
 // are still the right ones, scored exactly. The new object's 8 views, 45 degrees apart, are bins
 // {v: 4} for v = 0..7 (no two alike). obj1 holds views 0 and 1 exactly: (1 + 1) / 8 = 0.25, 2
 // views closer. obj2 holds view 2: 1 / 8 = 0.125, 1 closer. obj3 holds {3: 4, 4: 4}, TC
@@ -82,7 +82,7 @@ TEST(EnrollmentFeedbackTest, ALargeCatalogueStillNamesTheObjectsItCouldBeTakenFo
   std::vector<ObjectModel> catalogue = {Object(1, {{0, Bins({{0, 4}})}, {45, Bins({{1, 4}})}}),
                                         Object(2, {{90, Bins({{2, 4}})}}),
                                         Object(3, {{135, Bins({{3, 4}, {4, 4}})}})};
-  for (ObjectId id = 4; catalogue.size() <= kConfusableAmongCandidatesAbove; ++id) {
+  for (ObjectId id = 4; catalogue.size() <= kScanEveryObjectUpTo; ++id) {
     catalogue.push_back(Object(id, {{0, Bins({{8 + static_cast<int>(id % 136), 3}})}}));
   }
   const ViewIndex index(catalogue);

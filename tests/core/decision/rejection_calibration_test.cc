@@ -3,6 +3,8 @@
 #include "core/decision/rejection_calibration.h"
 
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 #include <gtest/gtest.h>
 
@@ -13,6 +15,7 @@
 namespace orbit {
 namespace {
 
+using testing::CoilObject;
 using testing::CoilObjects;
 using testing::CoilView;
 using testing::EvenView;
@@ -105,6 +108,68 @@ TEST(RejectionCalibrationTest, IsTheSameForTheSameSeed) {
   const RejectionCalibration other = RejectionCalibration::FromIndex(
       *KnownIndex(), {.max_sampled_views = 2048, .windows_per_length = 2000, .seed = 2});
   EXPECT_NE(other.NullThreshold(8, 0.15), KnownCalibration().NullThreshold(8, 0.15));
+}
+
+// A catalogue of 1,001 look-alike objects, above kScanEveryObjectUpTo: object k (0..1000) holds
+// COIL-100 object k % 100 + 1's views at 5 * (k / 100) + 0, 90, 180 and 270 degrees, so each
+// COIL-100 object stands for 10 or 11 objects whose views lie 5 to 50 degrees apart.
+std::shared_ptr<const ViewIndexSnapshot> LargeIndex() {
+  static const auto index = [] {
+    std::vector<ObjectModel> models;
+    for (int k = 0; k <= static_cast<int>(kScanEveryObjectUpTo); ++k) {
+      const int offset = 5 * (k / 100);
+      ObjectModel model = CoilObject(k % 100 + 1);
+      model.id = k + 1;
+      model.name = "look-alike" + std::to_string(k);
+      std::erase_if(model.views, [&](const ModelView& v) {
+        return (static_cast<int>(v.azimuth) - offset) % 90 != 0;
+      });
+      models.push_back(std::move(model));
+    }
+    return ViewIndex(std::move(models)).Snapshot();
+  }();
+  return index;
+}
+
+const RejectionCalibration& LargeCalibration() {
+  static const RejectionCalibration calibration = RejectionCalibration::FromIndex(*LargeIndex());
+  return calibration;
+}
+
+// Above kScanEveryObjectUpTo objects a left-out object's views are scored against the objects its
+// views propose, not against every object; among look-alikes the winner and the runner-up of its
+// windows are among them, so the rule's thresholds are the ones a scan of every object gives.
+TEST(RejectionCalibrationTest, ALargeCatalogueCalibratesFromCandidatesAsFromEveryObject) {
+  const RejectionCalibration& candidates = LargeCalibration();
+  const RejectionCalibration every = RejectionCalibration::FromIndex(
+      *LargeIndex(), {.scan_every_object_up_to = LargeIndex()->object_count()});
+  // 2048 / 1001 objects: two views of each.
+  EXPECT_EQ(candidates.sampled_objects(), 1001);
+  EXPECT_EQ(candidates.sampled_views(), 2002);
+  for (const int n : {1, 4, 16}) {
+    EXPECT_NEAR(candidates.NullThreshold(n, 0.17), every.NullThreshold(n, 0.17), 1e-6) << n;
+    EXPECT_NEAR(candidates.NullThreshold(n, 0.05), every.NullThreshold(n, 0.05), 1e-6) << n;
+    EXPECT_NEAR(candidates.KnownCeiling(n), every.KnownCeiling(n), 1e-6) << n;
+    // Look-alikes 5 degrees apart: an unknown window looks nearly as known as a known one.
+    EXPECT_LT(candidates.NullThreshold(n, 0.17), 1) << n;
+  }
+}
+
+TEST(RejectionCalibrationTest, ThreadsChangeNothingAndManyObjectsSampleOneViewOfSome) {
+  const RejectionCalibration& one = LargeCalibration();
+  const RejectionCalibration two = RejectionCalibration::FromIndex(*LargeIndex(), {.threads = 2});
+  for (const int n : {1, 8}) {
+    EXPECT_EQ(one.NullThreshold(n, 0.17), two.NullThreshold(n, 0.17)) << n;
+    EXPECT_EQ(one.KnownCeiling(n), two.KnownCeiling(n)) << n;
+  }
+  // More objects than sampled views: one view of each of 500 objects spread over the index.
+  const RejectionCalibration some =
+      RejectionCalibration::FromIndex(*LargeIndex(), {.max_sampled_views = 500});
+  EXPECT_EQ(some.sampled_objects(), 500);
+  EXPECT_EQ(some.sampled_views(), 500);
+  EXPECT_TRUE(some.calibrated());
+  EXPECT_THROW(RejectionCalibration::FromIndex(*LargeIndex(), {.threads = 0}),
+               std::invalid_argument);
 }
 
 // 4-frame sweeps (views 15, 35, 55, 75 degrees on, never enrolled) of every known object and of

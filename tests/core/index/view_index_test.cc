@@ -4,6 +4,7 @@
 #include <memory>
 #include <set>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -176,6 +177,34 @@ TEST(ViewIndexTest, KdTreeModeReturnsTheExactListWhenItSeesEveryView) {
     EXPECT_EQ(kd[i].view, exact[i].view);
     EXPECT_EQ(kd[i].similarity, exact[i].similarity);
   }
+}
+
+// A segment's kd-trees are built by the first view search that reaches it; sessions that search
+// a new snapshot at once all get the exact list (the trees see every view of these few), and
+// an object added later is found in the segment that then holds it.
+TEST(ViewIndexTest, KdTreesBuiltOnFirstSearchServeConcurrentSearches) {
+  ViewIndex index(SmallModels(), {.search = SearchMode::kKdTree});
+  const auto snapshot = index.Snapshot();
+  const auto exact = snapshot->SearchExact(kQuery, 2);
+  std::vector<std::vector<ViewMatch>> found(4);
+  std::vector<std::thread> sessions;
+  for (auto& list : found) sessions.emplace_back([&] { list = snapshot->Search(kQuery, 2); });
+  for (std::thread& session : sessions) session.join();
+  for (const auto& list : found) {
+    ASSERT_EQ(list.size(), 2u);
+    for (int i = 0; i < 2; ++i) {
+      EXPECT_EQ(list[i].object, exact[i].object);
+      EXPECT_EQ(list[i].view, exact[i].view);
+    }
+  }
+  ObjectModel added = CoilObjects(1, 1, EvenView)[0];
+  added.id = 3;
+  index.Add(added);
+  const auto list = index.Snapshot()->Search(added.views[5].descriptor, 1);
+  ASSERT_EQ(list.size(), 1u);
+  EXPECT_EQ(list[0].object, 3);
+  EXPECT_EQ(list[0].view, 5);
+  EXPECT_EQ(list[0].similarity, 1);
 }
 
 // Summaries are sector means (8 sectors of 45 degrees). Object 1's sector 0 holds A alone: TC
