@@ -101,6 +101,9 @@ void BM_RejectionCalibration(benchmark::State& state, int objects, bool every_ob
     const RejectionCalibration calibration = RejectionCalibration::FromIndex(*snapshot, options);
     benchmark::DoNotOptimize(calibration.NullThreshold(8, 0.15));
     state.counters["sampled_views"] = calibration.sampled_views();
+    // The thresholds, to compare the candidates with the every-object reference.
+    state.counters["threshold_n1"] = calibration.NullThreshold(1, 0.17);
+    state.counters["threshold_n8"] = calibration.NullThreshold(8, 0.17);
   }
 }
 

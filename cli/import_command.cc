@@ -96,8 +96,12 @@ ImportTarget StoreTarget(const ImportOptions& options) {
     if (std::optional<ObjectSummary> existing = store->Find(name)) return existing->id;
     return std::nullopt;
   };
-  // The store's objects indexed, to report on each new one against those before it.
-  std::shared_ptr<ViewIndex> index = LoadViewIndex(*store, target.variant, {});
+  // The store's objects indexed, to report on each new one against those before it, in the
+  // server's search mode: a large store's report then comes from the candidates a server would
+  // propose, found by the summary graphs instead of a scan of every summary
+  // (docs/design.md#enrollment-feedback).
+  std::shared_ptr<ViewIndex> index =
+      LoadViewIndex(*store, target.variant, {.search = SearchMode::kKdTree});
   target.enroll = [store, index](const Enrollment& enrollment) {
     ObjectModel model{store->Enroll(enrollment), enrollment.name, enrollment.variant,
                       enrollment.views};
