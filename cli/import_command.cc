@@ -100,8 +100,8 @@ ImportTarget StoreTarget(const ImportOptions& options) {
   // server's search mode: a large store's report then comes from the candidates a server would
   // propose, found by the summary graphs instead of a scan of every summary
   // (docs/design.md#enrollment-feedback).
-  std::shared_ptr<ViewIndex> index =
-      LoadViewIndex(*store, target.variant, {.search = SearchMode::kKdTree});
+  std::shared_ptr<ViewIndex> index = LoadViewIndex(
+      *store, target.variant, {.search = SearchMode::kKdTree, .build_threads = AvailableCpus()});
   target.enroll = [store, index](const Enrollment& enrollment) {
     ObjectModel model{store->Enroll(enrollment), enrollment.name, enrollment.variant,
                       enrollment.views};

@@ -1,5 +1,6 @@
 #include "server/orbit_server.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 #include <stdexcept>
@@ -76,11 +77,15 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
     store_ = OpenSqliteStore(config_);
   }
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
-  catalogue_ = std::make_unique<ModelCatalogue>(*store_, *config_.variant, config_.index,
-                                                metrics_->store_writes());
+  const int cpus = AvailableCpus();
+  // The store's load (and a replica's reload) builds the index on every CPU: a server serves
+  // nothing before its first load ends (docs/design.md#view-index).
+  ViewIndexOptions index = config_.index;
+  index.build_threads = std::max(index.build_threads, cpus);
+  catalogue_ =
+      std::make_unique<ModelCatalogue>(*store_, *config_.variant, index, metrics_->store_writes());
   catalogue_->PrepareSnapshotsWith(PrepareForSessions(config_.session_defaults));
   calibrator_ = std::make_unique<RejectionCalibrator>(catalogue_->Snapshot());
-  const int cpus = AvailableCpus();
   pool_ = std::make_unique<WorkerPool>(config_.worker_threads > 0 ? config_.worker_threads : cpus,
                                        0, config_.limits.max_queued_calls);
   bulk_pool_ = std::make_unique<WorkerPool>(

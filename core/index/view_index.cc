@@ -15,6 +15,7 @@
 #include <flann/flann.hpp>
 
 #include "core/base/cpu_dispatch.h"
+#include "core/base/parallel_for.h"
 #include "core/descriptor/similarity.h"
 #include "core/index/summary_graph.h"
 
@@ -37,9 +38,32 @@ struct ViewIndexSnapshot::Segment {
   // Values per view: the variant's DescriptorLength (the rest of every descriptor is 0), so a
   // CEDD segment scans 144 values, not 480.
   int length = kDescriptorSize;
-  std::vector<std::uint8_t> descriptors;     // local slot s: [s * length, (s + 1) * length)
+  // kExact mode: every view's descriptor side by side, local slot s at [s * length, (s + 1) *
+  // length), the stream the exact scan reads. kKdTree mode: empty, and each view is read in its
+  // object's model, which the segment keeps alive: a catalogue searched through its summary
+  // graphs does not hold every descriptor twice (docs/design.md#view-index).
+  std::vector<std::uint8_t> descriptors;
   std::vector<std::int32_t> squared_norms;   // c.c per local slot
   std::vector<std::int32_t> object_of_view;  // local object index per local slot
+
+  // Where local object o's views are: its first view's descriptor, and the bytes from one view's
+  // to the next.
+  struct Views {
+    const std::uint8_t* first;
+    std::size_t stride;
+  };
+  Views ObjectViews(std::size_t o) const {
+    if (!descriptors.empty()) {
+      return {&descriptors[first_view[o] * length], static_cast<std::size_t>(length)};
+    }
+    return {objects[o]->model().views.front().descriptor.data(), sizeof(ModelView)};
+  }
+  // Local slot s's descriptor (its first `length` values).
+  const std::uint8_t* View(std::size_t s) const {
+    if (!descriptors.empty()) return &descriptors[s * length];
+    const std::size_t o = object_of_view[s];
+    return objects[o]->model().views[s - first_view[o]].descriptor.data();
+  }
   // kKdTree mode only, built by the first view search that needs it (ViewTree): the product's
   // engine never searches views, so a server pays for the trees (their float copy of every
   // descriptor, and the build's time before serving) only when a session of a thesis' engine
@@ -52,7 +76,10 @@ struct ViewIndexSnapshot::Segment {
   // same trees once built.
   const KdTree& ViewTree(int trees) const {
     std::call_once(kd_tree_built, [&] {
-      points.assign(descriptors.begin(), descriptors.end());
+      points.resize(view_count * length);
+      for (std::size_t s = 0; s < view_count; ++s) {
+        std::copy_n(View(s), length, points.begin() + static_cast<std::ptrdiff_t>(s * length));
+      }
       flann::Matrix<float> matrix(points.data(), view_count, length);
       kd_tree = std::make_unique<KdTree>(matrix, flann::KDTreeIndexParams(trees));
       // Not reproducible: Debian's FLANN 1.9.2 shuffles the points of each tree with a
@@ -147,8 +174,11 @@ bool Better(const Scored& a, const Scored& b) {
   return a.first > b.first || (a.first == b.first && a.second < b.second);
 }
 
+// A segment of `objects`, built on `threads` threads when it holds more than
+// kOneThreadBuildsUpTo objects.
 std::shared_ptr<const Segment> BuildSegment(
-    std::vector<std::shared_ptr<const IndexedObject>> objects, const ViewIndexOptions& options) {
+    std::vector<std::shared_ptr<const IndexedObject>> objects, const ViewIndexOptions& options,
+    int threads = 1) {
   auto segment = std::make_shared<Segment>();
   static_assert(kCeddSize % 16 == 0 && kDescriptorSize % 16 == 0);
   if (!objects.empty()) segment->length = DescriptorLength(objects.front()->model().variant);
@@ -157,11 +187,14 @@ std::shared_ptr<const Segment> BuildSegment(
     segment->first_view.push_back(segment->view_count);
     segment->view_count += object->view_count();
   }
-  segment->descriptors.reserve(segment->view_count * length);
+  const bool copy = options.search == SearchMode::kExact;
+  if (copy) segment->descriptors.reserve(segment->view_count * length);
   for (std::size_t o = 0; o < objects.size(); ++o) {
     for (const ModelView& view : objects[o]->model().views) {
-      segment->descriptors.insert(segment->descriptors.end(), view.descriptor.begin(),
-                                  view.descriptor.begin() + length);
+      if (copy) {
+        segment->descriptors.insert(segment->descriptors.end(), view.descriptor.begin(),
+                                    view.descriptor.begin() + length);
+      }
       std::int32_t norm = 0;
       for (const std::uint8_t value : view.descriptor) norm += value * value;
       segment->squared_norms.push_back(norm);
@@ -170,19 +203,23 @@ std::shared_ptr<const Segment> BuildSegment(
   }
   segment->objects = std::move(objects);
   if (options.search == SearchMode::kKdTree && !segment->objects.empty()) {
-    // Inserted in row order from one thread with hnswlib's fixed seed: the same segment gives
-    // the same graph on every build.
+    const auto& built = segment->objects;
+    if (built.size() <= kOneThreadBuildsUpTo) threads = 1;
     segment->summary_graph = std::make_unique<SummaryGraph>(
-        length, segment->objects.size() * kSummarySectors,
+        length, built.size() * kSummarySectors,
         SummaryGraph::Options{.metric = SummaryGraph::Metric::kCosineBytes,
                               .links = kSummaryGraphLinks,
                               .build_breadth = kSummaryGraphBuildBreadth});
-    std::size_t row = 0;
-    for (const auto& object : segment->objects) {
-      for (const MeanDescriptor& mean : object->Sectors(kSummarySectors).descriptor) {
-        segment->summary_graph->Add(mean.data(), row++);
-      }
-    }
+    SummaryGraph& graph = *segment->summary_graph;
+    const auto add = [&](std::size_t row) {
+      const SectorViews& sectors = built[row / kSummarySectors]->Sectors(kSummarySectors);
+      graph.Add(sectors.descriptor[row % kSummarySectors].data(), row);
+    };
+    // On one thread, rows are inserted in order with hnswlib's fixed seed: the same segment
+    // gives the same graph on every build. On several, the first row is the entry point that
+    // the others link to; then they race (hnswlib locks each node it links).
+    add(0);
+    ParallelFor(built.size() * kSummarySectors - 1, threads, [&](std::size_t i) { add(i + 1); });
   }
   return segment;
 }
@@ -213,6 +250,7 @@ void ValidateOptions(const ViewIndexOptions& options) {
   if (options.kd_trees < 1) throw std::invalid_argument("kd_trees must be at least 1");
   if (options.kd_checks < 1) throw std::invalid_argument("kd_checks must be at least 1");
   if (options.kd_candidates < 1) throw std::invalid_argument("kd_candidates must be at least 1");
+  if (options.build_threads < 1) throw std::invalid_argument("build_threads must be at least 1");
 }
 
 std::shared_ptr<const IndexedObject> Prepare(ObjectModel model, DescriptorVariant variant) {
@@ -286,9 +324,10 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchExact(const DescriptorValues& qu
       if (!segments_[s].alive[o]) continue;
       const std::size_t first = segment.first_view[o];
       const std::size_t end = first + segment.objects[o]->view_count();
+      const Segment::Views views = segment.ObjectViews(o);
       for (std::size_t v = first; v < end; ++v) {
         const double tc =
-            TanimotoFromDot(Dot(wide, &segment.descriptors[v * segment.length], segment.length),
+            TanimotoFromDot(Dot(wide, views.first + (v - first) * views.stride, segment.length),
                             wide.squared_norm, segment.squared_norms[v]);
         if (static_cast<int>(best.size()) < count) {
           best.emplace_back(tc, segment_first_slot_[s] + v);
@@ -330,9 +369,8 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
     for (int i = 0; i < found; ++i) {
       const std::size_t local = indices[i];
       if (local >= segment.view_count || !state.alive[segment.object_of_view[local]]) continue;
-      const double tc =
-          TanimotoFromDot(Dot(wide, &segment.descriptors[local * segment.length], segment.length),
-                          wide.squared_norm, segment.squared_norms[local]);
+      const double tc = TanimotoFromDot(Dot(wide, segment.View(local), segment.length),
+                                        wide.squared_norm, segment.squared_norms[local]);
       scored.emplace_back(tc, segment_first_slot_[s] + local);
     }
   }
@@ -532,11 +570,15 @@ void ViewIndexSnapshot::SimilarityToEveryView(const DescriptorValues& query,
   for (std::size_t s = 0; s < segments_.size(); ++s) {
     const Segment& segment = *segments_[s].segment;
     float* out = similarities.data() + segment_first_slot_[s];
-    const std::uint8_t* views = segment.descriptors.data();
-    for (std::size_t v = 0; v < segment.view_count; ++v) {
-      out[v] =
-          static_cast<float>(TanimotoFromDot(Dot(wide, views + v * segment.length, segment.length),
-                                             wide.squared_norm, segment.squared_norms[v]));
+    for (std::size_t o = 0; o < segment.objects.size(); ++o) {
+      const Segment::Views views = segment.ObjectViews(o);
+      const std::size_t first = segment.first_view[o];
+      const std::size_t end = first + segment.objects[o]->view_count();
+      for (std::size_t v = first; v < end; ++v) {
+        out[v] = static_cast<float>(
+            TanimotoFromDot(Dot(wide, views.first + (v - first) * views.stride, segment.length),
+                            wide.squared_norm, segment.squared_norms[v]));
+      }
     }
   }
 }
@@ -570,15 +612,21 @@ std::shared_ptr<const ViewIndexSnapshot> ViewIndex::BuildAll(
     std::vector<ObjectModel> models) const {
   std::vector<SegmentState> segments;
   if (!models.empty()) {
-    std::vector<std::shared_ptr<const IndexedObject>> objects;
     std::unordered_set<ObjectId> ids;
-    for (ObjectModel& model : models) {
+    for (const ObjectModel& model : models) {
       if (!ids.insert(model.id).second) {
         throw std::invalid_argument("two models share the id " + std::to_string(model.id));
       }
-      objects.push_back(Prepare(std::move(model), variant_));
     }
-    segments.push_back(FreshState(BuildSegment(std::move(objects), options_)));
+    // Each object's preparation is its own: on every build thread (the first invalid model in
+    // the list is not necessarily the one reported then).
+    std::vector<std::shared_ptr<const IndexedObject>> objects(models.size());
+    const int threads = models.size() > kOneThreadBuildsUpTo ? options_.build_threads : 1;
+    ParallelFor(models.size(), threads, [&](std::size_t i) {
+      objects[i] = Prepare(std::move(models[i]), variant_);
+      if (options_.search == SearchMode::kKdTree) objects[i]->Sectors(kSummarySectors);
+    });
+    segments.push_back(FreshState(BuildSegment(std::move(objects), options_, threads)));
   }
   return std::make_shared<const ViewIndexSnapshot>(variant_, options_, std::move(segments));
 }

@@ -61,7 +61,18 @@ struct ViewIndexOptions {
   int kd_checks =
       256;  // leaves FLANN visits per segment and query (see docs/results/engines-speed.md)
   int kd_candidates = 32;  // views FLANN proposes for re-ranking (at least the count asked)
+  // Threads that build an index in one pass (the constructor of models, ReplaceAll: a server
+  // loading its store); Add, Replace and Remove build on the writer's thread alone, so that an
+  // enrollment never takes every CPU from the sessions. Above one, a segment of more than
+  // kOneThreadBuildsUpTo objects links its summary graph from every thread at once, and the
+  // links then depend on the threads' timing: two builds may propose slightly different
+  // candidates, as two builds of FLANN's trees do (docs/design.md#view-index).
+  int build_threads = 1;
 };
+
+// A segment of at most this many objects is built on one thread whatever build_threads says:
+// its summary graph is then the same on every build, and it builds in well under a second.
+inline constexpr std::size_t kOneThreadBuildsUpTo = 1000;
 
 // Work that compares an object with the whole catalogue (an enrollment's confusable objects, the
 // calibrated rule's left-out objects) scans every object up to this many objects, and above it
@@ -96,7 +107,7 @@ class ViewIndex {
  public:
   // An empty index of one descriptor variant.
   // Throws std::invalid_argument when an option is out of range (kd_trees, kd_checks,
-  // kd_candidates < 1).
+  // kd_candidates, build_threads < 1).
   explicit ViewIndex(DescriptorVariant variant, ViewIndexOptions options = {});
 
   // An index of `models`, built in one pass (one segment).

@@ -61,4 +61,23 @@ inline const DescriptorValues& CoilView(int number, int azimuth) {
   return CoilObject(number).views[azimuth / 5].descriptor;
 }
 
+// `count` look-alike objects made of COIL-100's, for catalogues larger than COIL-100: object k
+// (id k + 1, name look-alikeK) is COIL-100's object k % 100 + 1 with four views, those at
+// 5 * (k / 100) degrees plus multiples of 90. Objects 100 apart are the same object seen 5
+// degrees further round: alike, but no two share a view (up to 1,800 objects).
+inline std::vector<ObjectModel> CoilLookAlikes(int count) {
+  std::vector<ObjectModel> models;
+  for (int k = 0; k < count; ++k) {
+    const int offset = 5 * (k / 100);
+    ObjectModel model = CoilObject(k % 100 + 1);
+    model.id = k + 1;
+    model.name = "look-alike" + std::to_string(k);
+    std::erase_if(model.views, [&](const ModelView& v) {
+      return (static_cast<int>(v.azimuth) - offset) % 90 != 0;
+    });
+    models.push_back(std::move(model));
+  }
+  return models;
+}
+
 }  // namespace orbit::testing

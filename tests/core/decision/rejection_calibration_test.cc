@@ -114,20 +114,8 @@ TEST(RejectionCalibrationTest, IsTheSameForTheSameSeed) {
 // COIL-100 object k % 100 + 1's views at 5 * (k / 100) + 0, 90, 180 and 270 degrees, so each
 // COIL-100 object stands for 10 or 11 objects whose views lie 5 to 50 degrees apart.
 std::shared_ptr<const ViewIndexSnapshot> LargeIndex() {
-  static const auto index = [] {
-    std::vector<ObjectModel> models;
-    for (int k = 0; k <= static_cast<int>(kScanEveryObjectUpTo); ++k) {
-      const int offset = 5 * (k / 100);
-      ObjectModel model = CoilObject(k % 100 + 1);
-      model.id = k + 1;
-      model.name = "look-alike" + std::to_string(k);
-      std::erase_if(model.views, [&](const ModelView& v) {
-        return (static_cast<int>(v.azimuth) - offset) % 90 != 0;
-      });
-      models.push_back(std::move(model));
-    }
-    return ViewIndex(std::move(models)).Snapshot();
-  }();
+  static const auto index =
+      ViewIndex(testing::CoilLookAlikes(static_cast<int>(kScanEveryObjectUpTo) + 1)).Snapshot();
   return index;
 }
 

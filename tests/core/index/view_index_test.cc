@@ -383,21 +383,65 @@ TEST(ViewIndexTest, IncrementalUpdatesAnswerLikeAFreshBuildOnCoil) {
   }
 }
 
+// In both modes: the kd-tree mode's segments read each view in its object's model instead of a
+// copy of their own.
 TEST(ViewIndexTest, SimilarityToEveryViewIsTanimotoPerSlot) {
-  ViewIndex index(CoilObjects(1, 3, EvenView));
-  index.Add(CoilObjects(4, 4, EvenView)[0]);
-  const auto snapshot = index.Snapshot();
-  std::vector<float> similarities;
-  const DescriptorValues& query = CoilView(2, 35);
-  snapshot->SimilarityToEveryView(query, similarities);
-  ASSERT_EQ(snapshot->objects().size(), 4u);
-  for (const ObjectSlot& slot : snapshot->objects()) {
-    for (int v = 0; v < slot.object->view_count(); ++v) {
-      EXPECT_FLOAT_EQ(
-          similarities[slot.first_slot + v],
-          static_cast<float>(Tanimoto(query, slot.object->model().views[v].descriptor)));
+  for (const SearchMode mode : {SearchMode::kExact, SearchMode::kKdTree}) {
+    ViewIndex index(CoilObjects(1, 3, EvenView), {.search = mode});
+    index.Add(CoilObjects(4, 4, EvenView)[0]);
+    const auto snapshot = index.Snapshot();
+    std::vector<float> similarities;
+    const DescriptorValues& query = CoilView(2, 35);
+    snapshot->SimilarityToEveryView(query, similarities);
+    ASSERT_EQ(snapshot->objects().size(), 4u);
+    for (const ObjectSlot& slot : snapshot->objects()) {
+      for (int v = 0; v < slot.object->view_count(); ++v) {
+        EXPECT_FLOAT_EQ(
+            similarities[slot.first_slot + v],
+            static_cast<float>(Tanimoto(query, slot.object->model().views[v].descriptor)))
+            << "kd-tree: " << (mode == SearchMode::kKdTree);
+      }
     }
+    // The exact search reads the same views: its best match is the query's own view.
+    const std::vector<ViewMatch> best = snapshot->SearchExact(CoilView(3, 40), 1);
+    ASSERT_EQ(best.size(), 1u);
+    EXPECT_EQ(best[0].object, 3);
+    EXPECT_EQ(best[0].azimuth, 40);
+    EXPECT_EQ(best[0].similarity, 1.0);
   }
+}
+
+// A load of more than kOneThreadBuildsUpTo objects on two threads links the summary graph from
+// both at once: the graph differs from one thread's, but what it proposes is as good. Queries:
+// a view of every seventh object, which is one of its summaries (each sector holds one view).
+TEST(ViewIndexTest, ALargeLoadOnTwoThreadsProposesAsOneThreadDoes) {
+  const std::vector<ObjectModel> models =
+      testing::CoilLookAlikes(static_cast<int>(kOneThreadBuildsUpTo) + 1);
+  const ViewIndex one(models, {.search = SearchMode::kKdTree});
+  const ViewIndex two(models, {.search = SearchMode::kKdTree, .build_threads = 2});
+  const auto one_snapshot = one.Snapshot();
+  const auto two_snapshot = two.Snapshot();
+  ASSERT_EQ(two_snapshot->object_count(), models.size());
+  int queries = 0, own_one = 0, own_two = 0, same_best = 0;
+  for (std::size_t k = 0; k < models.size(); k += 7) {
+    const DescriptorValues& query = models[k].views[1].descriptor;
+    const auto a = one_snapshot->ObjectCandidates(query, 16);
+    const auto b = two_snapshot->ObjectCandidates(query, 16);
+    ASSERT_EQ(b.size(), 16u);
+    const auto own = [&](const ViewIndexSnapshot& snapshot, const ObjectCandidate& c) {
+      return snapshot.objects()[c.position].object->id() == models[k].id;
+    };
+    // The query is one of its object's summaries: found, it is first, with similarity 1.
+    own_one += own(*one_snapshot, a[0]) && a[0].similarity == 1.0f;
+    own_two += own(*two_snapshot, b[0]) && b[0].similarity == 1.0f;
+    same_best += one_snapshot->objects()[a[0].position].object->id() ==
+                 two_snapshot->objects()[b[0].position].object->id();
+    ++queries;
+  }
+  EXPECT_GE(own_one, queries * 97 / 100) << own_one << " of " << queries;
+  EXPECT_GE(own_two, queries * 97 / 100) << own_two << " of " << queries;
+  EXPECT_GE(same_best, queries * 97 / 100) << same_best << " of " << queries;
+  EXPECT_THROW(ViewIndex(models, {.build_threads = 0}), std::invalid_argument);
 }
 
 // Recall@4 of the kd-tree against exact search on COIL-100 (objects 1-30, model = views at
