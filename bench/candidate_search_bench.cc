@@ -29,6 +29,8 @@
 //   hnsw-ip     the same with inner product on L2-normalised means and queries (cosine)
 //   hnsw-ip8    the same on the normalised means and queries rounded to a signed byte per value
 //               (SummaryGraph's kCosineBytes, what the view index uses)
+//   hnsw-ip8-b50
+//               the same built with ef_construction = 50 (the build's cost against its recall)
 //   faiss-hnsw  faiss IndexHNSWFlat, M = 16, efConstruction = 100, L2; knob: ef (efSearch)
 //   faiss-hnsw-ip
 //               the same with inner product on L2-normalised means and queries (cosine)
@@ -320,8 +322,9 @@ void AddInParallel(std::size_t first, std::size_t count, const Add& add) {
 // hnswlib's headers in one translation unit only.
 class Hnsw final : public CandidateIndex {
  public:
-  Hnsw(const PointSet& set, SummaryGraph::Metric metric)
-      : graph_(set.dim, set.point_count(), {.metric = metric, .links = 16, .build_breadth = 100}) {
+  Hnsw(const PointSet& set, SummaryGraph::Metric metric, std::size_t build_breadth = 100)
+      : graph_(set.dim, set.point_count(),
+               {.metric = metric, .links = 16, .build_breadth = build_breadth}) {
     const std::size_t n = set.point_count();
     const auto add = [&](std::size_t p) { graph_.Add(set.point(p), p); };
     add(0);  // the entry point, before the threads race to link to it
@@ -438,6 +441,9 @@ std::unique_ptr<CandidateIndex> BuildIndex(const std::string& library, const Poi
   if (library == "hnsw-l2") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kEuclidean);
   if (library == "hnsw-ip") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kCosine);
   if (library == "hnsw-ip8") return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kCosineBytes);
+  if (library == "hnsw-ip8-b50") {
+    return std::make_unique<Hnsw>(set, SummaryGraph::Metric::kCosineBytes, 50);
+  }
   if (library == "faiss-hnsw") return std::make_unique<FaissHnsw>(set, false);
   if (library == "faiss-hnsw-ip") return std::make_unique<FaissHnsw>(set, true);
   return std::make_unique<FaissIvf>(set);
@@ -526,7 +532,7 @@ int RegisterCandidateBenchmarks() {
     const std::vector<int> lists =
         set == "coil100" ? std::vector<int>{16, 64} : std::vector<int>{64, 256};
     for (const std::string library : {"flann-kd", "flann-kd-cos", "hnsw-l2", "hnsw-ip", "hnsw-ip8",
-                                      "faiss-ivf", "faiss-hnsw", "faiss-hnsw-ip"}) {
+                                      "hnsw-ip8-b50", "faiss-ivf", "faiss-hnsw", "faiss-hnsw-ip"}) {
       for (const int c : lists) {
         // Efforts: FLANN's checks from 2 to 32 points per candidate; HNSW's ef from C (its
         // least) to 2C; IVF's nprobe of about 1% and 4% of its lists at 100,000 objects.

@@ -10,7 +10,7 @@
 #include "core/base/parallel_for.h"
 #include "core/base/seeded_random.h"
 #include "core/decision/unknown_statistic.h"
-#include "core/descriptor/similarity.h"
+#include "core/index/similarity_rows.h"
 
 namespace orbit {
 namespace {
@@ -130,18 +130,18 @@ void CompareWithCandidates(const ViewIndexSnapshot& index, const LeftOutObject& 
     SampledView& sample = sampled[left_out.views[k]];
     sample.best.assign(columns.size(), -1.0f);
     sample.best_typical.assign(columns.size(), 0.0f);
+    // Rows from the objects' bin-major views: the Tanimoto coefficients, rounded once to float
+    // as every other path here rounds them.
+    const std::vector<float> own = SimilarityRow(query, object);
     MatchOwnViews(
-        object, views[k],
-        [&](int v) {
-          return static_cast<float>(Tanimoto(query, object.model().views[v].descriptor));
-        },
-        sample);
+        object, views[k], [&](int v) { return own[v]; }, sample);
     for (std::size_t c = 0; c < columns.size(); ++c) {
-      for (const ModelView& view : objects[columns[c]].object->model().views) {
-        const float similarity = static_cast<float>(Tanimoto(query, view.descriptor));
-        if (similarity > sample.best[c]) {
-          sample.best[c] = similarity;
-          sample.best_typical[c] = static_cast<float>(view.typical_distance);
+      const IndexedObject& column = *objects[columns[c]].object;
+      const std::vector<float> row = SimilarityRow(query, column);
+      for (std::size_t v = 0; v < row.size(); ++v) {
+        if (row[v] > sample.best[c]) {
+          sample.best[c] = row[v];
+          sample.best_typical[c] = static_cast<float>(column.model().views[v].typical_distance);
         }
       }
     }
