@@ -3,19 +3,65 @@
 #include <pthread.h>
 #include <signal.h>
 
+#include <cstdlib>
+#include <future>
 #include <iostream>
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <thread>
 
 #include "api/engines/engine_names.h"
 #include "cli/commands.h"
 #include "cli/store_choice.h"
+#include "core/base/mutex.h"
 #include "core/engines/product_pipeline.h"
 #include "server/orbit_server.h"
 
 namespace orbit::cli {
 namespace {
+
+// What the signal thread and the thread that runs the server share.
+struct SignalState {
+  Mutex mutex;
+  server::OrbitServer* server ABSL_GUARDED_BY(mutex) = nullptr;  // set once it serves
+  bool reload_when_serving ABSL_GUARDED_BY(mutex) = false;       // a SIGHUP while it loaded
+  std::promise<int> stop;  // the signal that stops a serving server, set once
+};
+
+// Takes SIGTERM, SIGINT and SIGHUP (blocked in every thread) for the process's life. A server
+// that still loads its store has accepted no call (each is refused until the load ends) and its
+// store's own writes at opening are transactions (docs/service.md, "Shutdown"), so SIGTERM or
+// SIGINT then end the process at once, instead of after a load that takes tens of seconds on a
+// large catalogue. Once it serves, they stop it
+// cleanly, through `stop`; SIGHUP reloads the token file (once it serves, if sent before).
+void TakeSignals(const sigset_t& signals, const std::shared_ptr<SignalState>& state) {
+  for (;;) {
+    int received = 0;
+    if (sigwait(&signals, &received) != 0) continue;
+    MutexLock lock(&state->mutex);
+    if (received == SIGHUP) {
+      if (state->server != nullptr) {
+        std::cerr << "orbit serve: SIGHUP: reloading the token file" << std::endl;
+        state->server->ReloadCredentials();
+      } else {
+        std::cerr << "orbit serve: SIGHUP while loading: the token file is read again once "
+                     "the server serves"
+                  << std::endl;
+        state->reload_when_serving = true;
+      }
+      continue;
+    }
+    const char* name = received == SIGTERM ? "SIGTERM" : "SIGINT";
+    if (state->server == nullptr) {
+      std::cerr << "orbit serve: " << name << " while loading the store: stopped before serving"
+                << std::endl;
+      std::_Exit(0);
+    }
+    state->stop.set_value(received);
+    return;
+  }
+}
 
 struct ServeOptions {
   server::ServerConfig config;
@@ -49,8 +95,12 @@ int RunServe(ServeOptions& o) {
   sigaddset(&signals, SIGINT);
   sigaddset(&signals, SIGHUP);
   pthread_sigmask(SIG_BLOCK, &signals, nullptr);
+  auto signal_state = std::make_shared<SignalState>();
+  std::future<int> stop = signal_state->stop.get_future();
+  std::thread(TakeSignals, signals, signal_state).detach();
 
   std::cerr << config.Describe();
+  std::cerr << "orbit serve: loading the store (SIGTERM or SIGINT stops the start)" << std::endl;
   server::OrbitServer server(config);
   if (!server.metrics_address().empty()) {
     std::cerr << "orbit serve: metrics on http://" << server.metrics_address() << "/metrics"
@@ -62,12 +112,12 @@ int RunServe(ServeOptions& o) {
             << std::endl;
   std::cerr << "orbit serve: listening on " << server.address() << std::endl;
 
-  int received = 0;
-  // SIGHUP reads the token file again and serves on; SIGTERM and SIGINT stop.
-  while (sigwait(&signals, &received) == 0 && received == SIGHUP) {
-    std::cerr << "orbit serve: SIGHUP: reloading the token file" << std::endl;
-    server.ReloadCredentials();
+  {
+    MutexLock lock(&signal_state->mutex);
+    signal_state->server = &server;
+    if (signal_state->reload_when_serving) server.ReloadCredentials();
   }
+  const int received = stop.get();
   std::cerr << "orbit serve: " << (received == SIGTERM ? "SIGTERM" : "SIGINT")
             << ": shutting down (up to " << config.shutdown_grace_seconds << " s)" << std::endl;
   server.Shutdown();

@@ -854,6 +854,47 @@ TEST(Server, PostgresReplicaIsNotServingUntilItHasLoadedItsIndex) {
   EXPECT_EQ(recognised.updates.at(0).candidates(0).name(), "obj92");
 }
 
+// SIGTERM while the server loads its store ends it at once, without waiting for the load (the
+// load is held up, as above, by a transaction locking the views table); the store is intact.
+TEST(Server, PostgresReplicaStopsAtOnceWhileItLoads) {
+  const testing::TestDatabase database;
+  {
+    ServerProcess first({.store = database.conninfo()});
+    v1::ObjectInfo info;
+    ASSERT_TRUE(Client(first.address()).Enroll("obj92", 92, &info).ok());
+  }
+  const std::string address = "127.0.0.1:" + std::to_string(testing::FreeLoopbackPort());
+  {
+    PostgresConnection locker(database.conninfo(), 0);
+    locker.Execute("BEGIN; LOCK TABLE views IN ACCESS EXCLUSIVE MODE");
+    ServerProcess loading({.store = database.conninfo(),
+                           .listen = address,
+                           .extra_args = {"--variant", std::string(VariantName(Product().variant))},
+                           .wait_until = ServerProcessOptions::Until::kLoading});
+    std::optional<int> health;
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(3);
+    while (!(health = testing::HealthStatus(address)) &&
+           std::chrono::steady_clock::now() < deadline) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    ASSERT_EQ(health, testing::kNotServing) << loading.Log();
+    const auto sent = std::chrono::steady_clock::now();
+    EXPECT_EQ(loading.Stop(SIGTERM, std::chrono::seconds(4)), 0) << loading.Log();
+    // Well before the store's 5 s lock timeout would have ended the load.
+    EXPECT_LT(std::chrono::steady_clock::now() - sent, std::chrono::seconds(2));
+    EXPECT_NE(loading.Log().find("SIGTERM while loading the store: stopped before serving"),
+              std::string::npos)
+        << loading.Log();
+    EXPECT_EQ(loading.Log().find("listening on"), std::string::npos) << loading.Log();
+    locker.Execute("COMMIT");
+  }
+  ServerProcess again({.store = database.conninfo()});
+  Client client(again.address());
+  const auto session = client.Session(v1::SessionOptions(), {CoilFrame(92, 45, 0)});
+  ASSERT_TRUE(session.status.ok()) << session.status.error_message();
+  EXPECT_EQ(session.updates.at(0).candidates(0).name(), "obj92");
+}
+
 TEST(Server, PostgresStoreOutOfReachStopsTheStartWithAClearMessage) {
   const testing::ScratchDir scratch;  // no server's socket in it
   const std::string store = "postgresql://orbit:s3cret@/models?host=" + scratch.path().string();

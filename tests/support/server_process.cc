@@ -94,6 +94,11 @@ ServerProcess::ServerProcess(ServerProcessOptions options) {
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   for (;;) {
     const std::string log = Slurp(log_file_);
+    if (options.wait_until == ServerProcessOptions::Until::kLoading &&
+        log.find("orbit serve: loading the store") != std::string::npos) {
+      address_ = options.listen;
+      return;
+    }
     if (const auto at = log.find(marker);
         at != std::string::npos && log.find('\n', at) != std::string::npos) {
       address_ = log.substr(at + marker.size(), log.find('\n', at) - at - marker.size());

@@ -40,6 +40,10 @@ struct ServerProcessOptions {
   std::optional<int> descriptor_limit = std::nullopt;
   std::vector<std::string> extra_args =
       {};  // further `orbit serve` flags, e.g. {"--max-sessions", "2"}
+  // What the constructor waits for: the server serving ("listening on"), or only its start of
+  // loading the store ("loading the store"; address() is then `listen` as given).
+  enum class Until { kServing, kLoading };
+  Until wait_until = Until::kServing;
 };
 
 // Writes `lines` to the token file `file`, readable and writable by its owner alone (mode 600),
@@ -62,7 +66,8 @@ ServerProcessOptions SecuredServerOptions(const std::filesystem::path& dir, cons
 
 class ServerProcess {
  public:
-  // Starts the server and waits (up to 60 s) until it says it is listening.
+  // Starts the server and waits (up to 60 s) until it says it is listening (or loading, as
+  // options.wait_until says).
   // Throws std::runtime_error with the server's log when it exits or does not start in time.
   explicit ServerProcess(ServerProcessOptions options = {});
   ~ServerProcess();
