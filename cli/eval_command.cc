@@ -30,6 +30,7 @@
 #include "evaluation/evaluation_runner.h"
 #include "evaluation/recognition_report.h"
 #include "evaluation/server_evaluation.h"
+#include "storage/sqlite_model_store.h"
 
 namespace orbit::cli {
 namespace {
@@ -88,6 +89,7 @@ struct EvalOptions {
   int candidates = 0;
   int candidates_above = 0;
   int distractors = 0;
+  std::string distractors_from;  // --distractors-from: a model store (SQLite file)
   std::string csv;
   std::string plot;
   int threads = EvaluationOptions{}.threads;
@@ -184,7 +186,7 @@ const std::map<std::string, std::string>& ServerRefusalReasons() {
          {"--methods", "--variant", "--index", "--kd-trees", "--kd-checks", "--kd-candidates",
           "--threshold", "--rejection", "--false-accept-rate", "--orientation-weight",
           "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight",
-          "--candidates", "--candidates-above", "--distractors"}) {
+          "--candidates", "--candidates-above", "--distractors", "--distractors-from"}) {
       r[flag] = "the server recognises with its own variant, engine and session defaults";
     }
     for (const char* flag : {"--distortions", "--sweep", "--sweep-steps"}) {
@@ -264,6 +266,48 @@ int RunServerEval(const EvalOptions& o) {
   }
 }
 
+// `--distractors-from FILE` into `options`: the store's first `distractors` objects in id order
+// (0: all of them), read when the runner asks for them. Throws std::invalid_argument when the
+// store holds fewer; the source throws it when an object is in another variant than the one
+// evaluated.
+void SetDistractorsFrom(const EvalOptions& o, EvaluationOptions& options) {
+  if (o.distractors_from.empty()) return;
+  std::size_t held = 0;
+  {
+    SqliteModelStore store(o.distractors_from);
+    ListRequest request{.after_id = 0, .limit = kMaxListLimit};
+    for (std::vector<ObjectSummary> page; !(page = store.List(request)).empty();) {
+      held += page.size();
+      request.after_id = page.back().id;
+    }
+  }
+  if (o.distractors > 0 && static_cast<std::size_t>(o.distractors) > held) {
+    throw std::invalid_argument("--distractors " + std::to_string(o.distractors) + ": " +
+                                o.distractors_from + " holds " + std::to_string(held) + " objects");
+  }
+  if (o.distractors == 0 && held > static_cast<std::size_t>(kMaxDistractors)) {
+    throw std::invalid_argument("--distractors-from " + o.distractors_from + " holds " +
+                                std::to_string(held) + " objects, more than " +
+                                std::to_string(kMaxDistractors) + ": choose --distractors N");
+  }
+  options.distractors = o.distractors > 0 ? o.distractors : static_cast<int>(held);
+  options.distractors_from = o.distractors_from;
+  options.distractor_models = [file = o.distractors_from](int count, DescriptorVariant variant) {
+    std::vector<ObjectModel> models = SqliteModelStore(file).LoadAll();
+    models.resize(std::min(models.size(), static_cast<std::size_t>(count)));
+    for (const ObjectModel& model : models) {
+      if (model.variant != variant) {
+        throw std::invalid_argument(
+            "--distractors-from " + file + ": object \"" + model.name + "\" is described in " +
+            std::string(VariantName(model.variant)) + ", the evaluation in " +
+            std::string(VariantName(variant)) + " (choose --variant " +
+            std::string(VariantName(model.variant)) + ")");
+      }
+    }
+    return models;
+  };
+}
+
 int RunEval(const EvalOptions& o) {
   try {
     auto [known, unknown] =
@@ -276,6 +320,7 @@ int RunEval(const EvalOptions& o) {
     SetBoxMargin(known, o.box_margin);
     SetBoxMargin(unknown, o.box_margin);
     EvaluationOptions options = ToEvaluationOptions(o);
+    SetDistractorsFrom(o, options);
     std::unique_ptr<ProgressBar> progress;
     if (!o.no_progress) {
       progress = std::make_unique<ProgressBar>(std::cerr, ::isatty(STDERR_FILENO) == 1);
@@ -509,6 +554,16 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                        "other objects")
       ->check(CLI::Range(0, kMaxDistractors))
       ->capture_default_str();
+  command
+      ->add_option(
+          "--distractors-from", o->distractors_from,
+          "take the distractors from this model store (a SQLite file, read; the evaluation "
+          "writes no object to it) "
+          "instead of generating them: its first --distractors objects in id order, "
+          "or all of them; they must be described in the evaluated variant. "
+          "`orbit import --layout distractors --objects 1-N` with the same --seed "
+          "stores the objects --distractors N generates; any other catalogue works too")
+      ->check(CLI::ExistingFile);
   command
       ->add_option("--candidates-above", o->candidates_above,
                    "with --candidates: the model-set size above which candidates are used")

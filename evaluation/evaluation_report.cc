@@ -68,7 +68,9 @@ std::string RunLine(const EvaluationReport& report) {
   out << "Seed " << report.seed << "; " << Objects(report.known_objects, "known");
   if (report.unknown_objects > 0) out << ", " << Objects(report.unknown_objects, "unknown");
   if (report.distractors > 0) {
-    out << ", " << report.distractors << " generated distractor objects in the model set";
+    out << ", " << report.distractors << " distractor objects "
+        << (report.distractors_from.empty() ? "generated" : "from " + report.distractors_from)
+        << " in the model set";
   }
   out << ", " << report.images << " images; index "
       << (report.search == SearchMode::kExact ? "exact" : "kdtree") << "; " << report.threads

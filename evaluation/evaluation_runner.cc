@@ -231,6 +231,27 @@ struct VariantModels {
   ModelMemory memory;
 };
 
+// The distractors `options.distractor_models` gives for `variant`, numbered from `first_id`.
+// Throws std::invalid_argument when it gives another count or another variant.
+std::vector<ObjectModel> GivenDistractors(const EvaluationOptions& options,
+                                          DescriptorVariant variant, ObjectId first_id) {
+  std::vector<ObjectModel> models = options.distractor_models(options.distractors, variant);
+  if (models.size() != static_cast<std::size_t>(options.distractors)) {
+    throw std::invalid_argument(options.distractors_from + " gave " +
+                                std::to_string(models.size()) + " distractors, not " +
+                                std::to_string(options.distractors));
+  }
+  for (std::size_t k = 0; k < models.size(); ++k) {
+    if (models[k].variant != variant) {
+      throw std::invalid_argument(options.distractors_from + " gave a distractor in " +
+                                  std::string(VariantName(models[k].variant)) + ", not " +
+                                  std::string(VariantName(variant)));
+    }
+    models[k].id = first_id + static_cast<ObjectId>(k);
+  }
+  return models;
+}
+
 // Step 2: for each variant (in the options' order), the distractors (on `threads` threads), the
 // known objects' models made of their images' model views, then the full index and its memory
 // (the known objects' alone), and its calibration (on `threads` threads). The index is built on
@@ -246,10 +267,12 @@ std::vector<VariantModels> BuildModels(const EvaluationDataset& dataset,
                          variants.size() * static_cast<std::size_t>(count));
       }
     };
+    const auto first_id = static_cast<ObjectId>(dataset.known.size() + 1);
     variants[v].distractors =
-        ViewIndex(MakeDistractors(options.distractors, options.variants[v],
-                                  static_cast<ObjectId>(dataset.known.size() + 1), options.seed,
-                                  threads, progress),
+        ViewIndex(options.distractor_models
+                      ? GivenDistractors(options, options.variants[v], first_id)
+                      : MakeDistractors(options.distractors, options.variants[v], first_id,
+                                        options.seed, threads, progress),
                   options.index)
             .Snapshot();
   }
@@ -747,6 +770,9 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
   report.known_objects = dataset.known.size();
   report.unknown_objects = dataset.unknown.size();
   report.distractors = static_cast<std::size_t>(options.distractors);
+  if (options.distractors > 0 && options.distractor_models) {
+    report.distractors_from = options.distractors_from;
+  }
   report.images = dataset.images.size();
 
   const Clock::time_point descriptor_start = Clock::now();

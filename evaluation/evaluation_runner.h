@@ -93,9 +93,16 @@ struct EvaluationOptions {
   // With active_step: which way each step goes (ActivePolicy).
   ActivePolicy active_policy = ActivePolicy::kFollowMoves;
   ViewIndexOptions index;  // search mode (exact or kd-tree) and FLANN's parameters
-  // Generated objects added to every model set (evaluation/distractor_objects.h), never queried:
-  // recognition among this many other objects (0..kMaxDistractors).
+  // Other objects added to every model set, never queried: recognition among this many other
+  // objects (0..kMaxDistractors). Generated (evaluation/distractor_objects.h) unless
+  // `distractor_models` is set.
   int distractors = 0;
+  // Empty, or where the distractors come from instead (docs/design.md#distractors): called once
+  // per evaluated variant with `distractors` and that variant, it returns that many models of the
+  // variant (their ids are replaced), or throws to refuse the evaluation. `distractors_from`
+  // names that source in the report.
+  std::function<std::vector<ObjectModel>(int count, DescriptorVariant variant)> distractor_models;
+  std::string distractors_from;
   EngineOptions engine;  // the engines' options; the window is raised to the largest n
   int threads = 0;       // worker threads; 0: every CPU this process may run on
   // Called from the worker threads (never concurrently) as work completes: the stage
@@ -186,7 +193,8 @@ struct EvaluationReport {
   std::vector<ModelMemory> memory;  // one per variant
   std::size_t known_objects = 0;
   std::size_t unknown_objects = 0;
-  std::size_t distractors = 0;  // EvaluationOptions::distractors
+  std::size_t distractors = 0;   // EvaluationOptions::distractors
+  std::string distractors_from;  // EvaluationOptions::distractors_from; "" for generated ones
   std::size_t images = 0;
   // RunCaptureEvaluation: the captured query sequences and their frames (0 for the protocol).
   std::size_t query_sequences = 0;

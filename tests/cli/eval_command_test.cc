@@ -188,6 +188,67 @@ TEST_F(EvalCommandTest, ExplainsBadOptions) {
   EXPECT_THAT(r.err, HasSubstr("distortion 'mb:len=0': len must be in [1, 100]"));
 }
 
+// --distractors-from: a store's objects join every model set as distractors. The objects
+// `orbit import --layout distractors` stored give the counts that generating them gives; a store
+// holding a twin of a queried object (COIL-100's object 1 imported whole, so with the views the
+// protocol takes out of the object's own model around each query) takes that object's hits; a
+// store too small, or in another variant, is refused by name.
+TEST_F(EvalCommandTest, DistractorsFromAStoreJoinTheModelSet) {
+  const std::string orbit = testing::OrbitBinary();
+  const std::string catalogue = (dir_ / "catalogue.db").string();
+  const std::string twin = (dir_ / "twin.db").string();
+  const std::string other_variant = (dir_ / "robust.db").string();
+  for (const std::string& import :
+       {" --db " + catalogue + " --layout distractors --objects 1-2",
+        " --db " + twin + " --layout coil100 --data " + coil_ + " --objects 1",
+        " --db " + other_variant + " --layout coil100 --data " + coil_ +
+            " --objects 2 --variant cedd-robust"}) {
+    const auto imported = testing::RunCommand(orbit + " import --threads 2" + import);
+    ASSERT_EQ(imported.exit_code, 0) << import << ": " << imported.err;
+  }
+  const std::string eval = orbit + " eval --data " + coil_ +
+                           " --objects 1-3 --methods product --variant cedd-hsv-hog --n 1 "
+                           "--trials 3 --no-progress --csv ";
+  const auto hits = [this](const std::string& csv) {
+    std::vector<std::string> counts;
+    for (const CsvRow& row : ReadCsv(dir_ / csv).second) counts.push_back(row.field.at("hits"));
+    return counts;
+  };
+
+  const auto generated = testing::RunCommand(eval + (dir_ / "generated.csv").string() +
+                                             " --distortions gn,mb --distractors 2");
+  ASSERT_EQ(generated.exit_code, 0) << generated.err;
+  EXPECT_THAT(generated.out, HasSubstr("2 distractor objects generated in the model set"));
+  const auto stored = testing::RunCommand(eval + (dir_ / "stored.csv").string() +
+                                          " --distortions gn,mb --distractors-from " + catalogue);
+  ASSERT_EQ(stored.exit_code, 0) << stored.err;
+  EXPECT_THAT(stored.out,
+              HasSubstr("2 distractor objects from " + catalogue + " in the model set"));
+  EXPECT_EQ(hits("stored.csv"), hits("generated.csv"));
+  EXPECT_EQ(hits("stored.csv").size(), 2u);
+
+  const auto alone =
+      testing::RunCommand(eval + (dir_ / "alone.csv").string() + " --distortions df");
+  ASSERT_EQ(alone.exit_code, 0) << alone.err;
+  EXPECT_EQ(hits("alone.csv"), std::vector<std::string>{"9"});
+  const auto twinned = testing::RunCommand(eval + (dir_ / "twinned.csv").string() +
+                                           " --distortions df --distractors-from " + twin);
+  ASSERT_EQ(twinned.exit_code, 0) << twinned.err;
+  EXPECT_EQ(hits("twinned.csv"), std::vector<std::string>{"6"});  // object 1's three queries lost
+
+  const auto too_many = testing::RunCommand(eval + (dir_ / "x.csv").string() +
+                                            " --distractors 3 --distractors-from " + catalogue);
+  EXPECT_EQ(too_many.exit_code, 1);
+  EXPECT_THAT(too_many.err, HasSubstr("--distractors 3: " + catalogue + " holds 2 objects"));
+  const auto variant = testing::RunCommand(eval + (dir_ / "x.csv").string() +
+                                           " --distractors-from " + other_variant);
+  EXPECT_EQ(variant.exit_code, 1);
+  EXPECT_THAT(variant.err,
+              HasSubstr("--distractors-from " + other_variant +
+                        ": object \"obj2\" is described in cedd-robust, the evaluation in "
+                        "cedd-hsv-hog (choose --variant cedd-robust)"));
+}
+
 // The lines of `text` that start with `prefix`.
 std::vector<std::string> LinesStartingWith(const std::string& text, const std::string& prefix) {
   std::vector<std::string> lines;
