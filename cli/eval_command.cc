@@ -25,6 +25,7 @@
 #include "evaluation/dataset.h"
 #include "evaluation/distortion_sweep.h"
 #include "evaluation/distractor_objects.h"
+#include "evaluation/distractor_sweep.h"
 #include "evaluation/evaluation_plot.h"
 #include "evaluation/evaluation_report.h"
 #include "evaluation/evaluation_runner.h"
@@ -88,7 +89,9 @@ struct EvalOptions {
   double nearest_view_weight = EngineOptions{}.nearest_view_weight;
   int candidates = 0;
   int candidates_above = 0;
-  int distractors = 0;
+  // --distractors: empty for none (or, with --distractors-from, all of the store's); several
+  // counts run the evaluation once per count (a distractor sweep).
+  std::vector<int> distractors;
   std::string distractors_from;  // --distractors-from: a model store (SQLite file)
   std::string csv;
   std::string plot;
@@ -136,7 +139,6 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.nearest_view_weight = o.nearest_view_weight;
   options.engine.candidate_objects = o.candidates;
   options.engine.candidates_above = o.candidates_above;
-  options.distractors = o.distractors;
   options.threads = o.threads;
   return options;
 }
@@ -266,31 +268,49 @@ int RunServerEval(const EvalOptions& o) {
   }
 }
 
-// `--distractors-from FILE` into `options`: the store's first `distractors` objects in id order
-// (0: all of them), read when the runner asks for them. Throws std::invalid_argument when the
-// store holds fewer; the source throws it when an object is in another variant than the one
-// evaluated.
-void SetDistractorsFrom(const EvalOptions& o, EvaluationOptions& options) {
-  if (o.distractors_from.empty()) return;
+// The objects of the store `file`. Throws StoreError as the store's constructor.
+std::size_t ObjectsHeld(const std::string& file) {
   std::size_t held = 0;
   {
-    SqliteModelStore store(o.distractors_from);
+    SqliteModelStore store(file);
     ListRequest request{.after_id = 0, .limit = kMaxListLimit};
     for (std::vector<ObjectSummary> page; !(page = store.List(request)).empty();) {
       held += page.size();
       request.after_id = page.back().id;
     }
   }
-  if (o.distractors > 0 && static_cast<std::size_t>(o.distractors) > held) {
-    throw std::invalid_argument("--distractors " + std::to_string(o.distractors) + ": " +
-                                o.distractors_from + " holds " + std::to_string(held) + " objects");
+  return held;
+}
+
+// The distractor counts the options ask for, one evaluation each: --distractors as given, or
+// with --distractors-from and no --distractors every object of the store. Throws
+// std::invalid_argument when the store holds fewer objects than a count.
+std::vector<int> DistractorCounts(const EvalOptions& o) {
+  if (o.distractors_from.empty()) {
+    return o.distractors.empty() ? std::vector<int>{0} : o.distractors;
   }
-  if (o.distractors == 0 && held > static_cast<std::size_t>(kMaxDistractors)) {
+  const std::size_t held = ObjectsHeld(o.distractors_from);
+  if (o.distractors.empty() && held > static_cast<std::size_t>(kMaxDistractors)) {
     throw std::invalid_argument("--distractors-from " + o.distractors_from + " holds " +
                                 std::to_string(held) + " objects, more than " +
                                 std::to_string(kMaxDistractors) + ": choose --distractors N");
   }
-  options.distractors = o.distractors > 0 ? o.distractors : static_cast<int>(held);
+  if (o.distractors.empty()) return {static_cast<int>(held)};
+  for (const int count : o.distractors) {
+    if (static_cast<std::size_t>(count) > held) {
+      throw std::invalid_argument("--distractors " + std::to_string(count) + ": " +
+                                  o.distractors_from + " holds " + std::to_string(held) +
+                                  " objects");
+    }
+  }
+  return o.distractors;
+}
+
+// `--distractors-from FILE` into `options`: its first `options.distractors` objects in id order,
+// read when the runner asks for them; the source throws std::invalid_argument when an object is
+// in another variant than the one evaluated.
+void SetDistractorsFrom(const EvalOptions& o, EvaluationOptions& options) {
+  if (o.distractors_from.empty()) return;
   options.distractors_from = o.distractors_from;
   options.distractor_models = [file = o.distractors_from](int count, DescriptorVariant variant) {
     std::vector<ObjectModel> models = SqliteModelStore(file).LoadAll();
@@ -308,6 +328,29 @@ void SetDistractorsFrom(const EvalOptions& o, EvaluationOptions& options) {
   };
 }
 
+// The flags that describe one evaluation's output, refused with several --distractors counts.
+void RefuseOnePerRunFlags(const EvalOptions& o) {
+  const auto refuse = [](const std::string& flag) {
+    throw std::invalid_argument(flag +
+                                " does not apply to several --distractors counts: run one count");
+  };
+  if (!o.queries.empty()) refuse("--queries");
+  if (!o.sweeps.empty()) refuse("--sweep");
+  if (!o.verdicts.empty()) refuse("--verdicts");
+  if (!o.recognition_plot.empty()) refuse("--recognition-plot");
+}
+
+// The sweep's table, then the CSV and the plot the options ask for.
+void WriteDistractorSweep(const std::vector<EvaluationReport>& reports, const EvalOptions& o) {
+  std::cout << DistractorSweepMarkdown(reports) << std::flush;
+  if (!o.csv.empty()) {
+    std::ofstream csv(o.csv);
+    if (csv) WriteDistractorSweepCsv(reports, csv);
+    if (!csv) throw std::runtime_error(o.csv + ": cannot write the CSV file");
+  }
+  if (!o.plot.empty()) WritePng(DrawDistractorSweepPlot(reports), o.plot);
+}
+
 int RunEval(const EvalOptions& o) {
   try {
     auto [known, unknown] =
@@ -321,6 +364,7 @@ int RunEval(const EvalOptions& o) {
     SetBoxMargin(unknown, o.box_margin);
     EvaluationOptions options = ToEvaluationOptions(o);
     SetDistractorsFrom(o, options);
+    const std::vector<int> counts = DistractorCounts(o);
     std::unique_ptr<ProgressBar> progress;
     if (!o.no_progress) {
       progress = std::make_unique<ProgressBar>(std::cerr, ::isatty(STDERR_FILENO) == 1);
@@ -341,6 +385,26 @@ int RunEval(const EvalOptions& o) {
           "--unknown-objects does not apply to --queries: a captured sequence of an object "
           "outside the model set is an unknown query");
     }
+    if (counts.size() > 1) {
+      RefuseOnePerRunFlags(o);
+      std::vector<EvaluationReport> reports;
+      for (const int count : counts) {
+        options.distractors = count;
+        if (progress) {
+          const std::string prefix = std::to_string(count) + " distractors: ";
+          options.progress = [&progress, prefix](std::string_view stage, std::size_t done,
+                                                 std::size_t total) {
+            progress->Update(prefix + std::string(stage), done, total);
+          };
+        }
+        reports.push_back(RunEvaluation(known, unknown, options));
+        std::cout << MarkdownReport(reports.back()) << std::flush;
+      }
+      progress.reset();
+      WriteDistractorSweep(reports, o);
+      return 0;
+    }
+    options.distractors = counts.front();
     const EvaluationReport report =
         o.queries.empty() ? RunEvaluation(known, unknown, options)
                           : RunCaptureEvaluation(known, ReadQueryCaptures(o.queries), options);
@@ -551,9 +615,11 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                    "add this many generated objects (random textured boxes and cylinders, " +
                        std::to_string(kDistractorViews) +
                        " views each) to every model set, never queried: recognition among many "
-                       "other objects")
-      ->check(CLI::Range(0, kMaxDistractors))
-      ->capture_default_str();
+                       "other objects. Several counts, e.g. 0,1000,9900, run the evaluation once "
+                       "per count and report hit rate and unknowns rejected against the count "
+                       "(--csv, --plot)")
+      ->delimiter(',')
+      ->check(CLI::Range(0, kMaxDistractors));
   command
       ->add_option(
           "--distractors-from", o->distractors_from,

@@ -191,8 +191,8 @@ TEST_F(EvalCommandTest, ExplainsBadOptions) {
 // --distractors-from: a store's objects join every model set as distractors. The objects
 // `orbit import --layout distractors` stored give the counts that generating them gives; a store
 // holding a twin of a queried object (COIL-100's object 1 imported whole, so with the views the
-// protocol takes out of the object's own model around each query) takes that object's hits; a
-// store too small, or in another variant, is refused by name.
+// protocol takes out of the object's own model around each query) takes that object's hits, as
+// a sweep over the count shows; a store too small, or in another variant, is refused by name.
 TEST_F(EvalCommandTest, DistractorsFromAStoreJoinTheModelSet) {
   const std::string orbit = testing::OrbitBinary();
   const std::string catalogue = (dir_ / "catalogue.db").string();
@@ -227,14 +227,27 @@ TEST_F(EvalCommandTest, DistractorsFromAStoreJoinTheModelSet) {
   EXPECT_EQ(hits("stored.csv"), hits("generated.csv"));
   EXPECT_EQ(hits("stored.csv").size(), 2u);
 
-  const auto alone =
-      testing::RunCommand(eval + (dir_ / "alone.csv").string() + " --distortions df");
-  ASSERT_EQ(alone.exit_code, 0) << alone.err;
-  EXPECT_EQ(hits("alone.csv"), std::vector<std::string>{"9"});
-  const auto twinned = testing::RunCommand(eval + (dir_ / "twinned.csv").string() +
-                                           " --distortions df --distractors-from " + twin);
-  ASSERT_EQ(twinned.exit_code, 0) << twinned.err;
-  EXPECT_EQ(hits("twinned.csv"), std::vector<std::string>{"6"});  // object 1's three queries lost
+  // A sweep of the twin store's first 0 and 1 objects: without it every DF query of objects 1-3
+  // is hit (9 of 9), with it object 1's three are lost.
+  const auto sweep = testing::RunCommand(eval + (dir_ / "sweep.csv").string() +
+                                         " --distortions df --distractors 0,1 --distractors-from " +
+                                         twin + " --plot " + (dir_ / "sweep.png").string());
+  ASSERT_EQ(sweep.exit_code, 0) << sweep.err;
+  EXPECT_THAT(sweep.out, HasSubstr("| df | product | 1 | 100.0 | 66.7 |"));
+  std::vector<std::string> rows;
+  for (const CsvRow& row : ReadCsv(dir_ / "sweep.csv").second) {
+    rows.push_back(row.field.at("distractors") + " " + row.field.at("trials") + " " +
+                   row.field.at("hits"));
+  }
+  EXPECT_EQ(rows, (std::vector<std::string>{"0 9 9", "1 9 6"}));
+  EXPECT_FALSE(cv::imread((dir_ / "sweep.png").string()).empty());
+  const auto one_per_run = testing::RunCommand(eval + (dir_ / "x.csv").string() +
+                                               " --distractors 0,1 --distractors-from " + twin +
+                                               " --verdicts " + (dir_ / "v.csv").string());
+  EXPECT_EQ(one_per_run.exit_code, 1);
+  EXPECT_THAT(
+      one_per_run.err,
+      HasSubstr("--verdicts does not apply to several --distractors counts: run one count"));
 
   const auto too_many = testing::RunCommand(eval + (dir_ / "x.csv").string() +
                                             " --distractors 3 --distractors-from " + catalogue);
