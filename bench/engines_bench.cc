@@ -1,5 +1,6 @@
 // Speed of the view index and the engines, on synthetic model sets of 100, 1000 and 10000
-// objects x 72 views (and 100,000 for exact-scan and session-frame/product), plus the kd-tree's recall against exact search on COIL-100.
+// objects x 72 views (and 100,000 for exact-scan and session-frame/product), plus the kd-tree's
+// recall against exact search on COIL-100.
 //
 //   exact-scan/<objects>             one brute-force Tanimoto pass over every view
 //                                    (ViewIndexSnapshot::SimilarityToEveryView)

@@ -381,10 +381,25 @@ namespace {
 
 // TC(query, summary) in float over `length` values, with Tanimoto()'s conventions for zero
 // vectors; `summary_norm` is summary . summary.
+// query . summary over `length` values in eight interleaved partial sums, added pairwise at the
+// end: a fixed order (so every path gives the same value, docs/design.md#exactness) that the
+// compiler vectorises, where one running sum is a chain of dependent additions. A scan of every
+// object's summaries (the exact mode's candidates) is this loop over every summary.
+ORBIT_HOT_LOOP float SummaryDot(const float* __restrict query, const float* __restrict summary,
+                                int length) {
+  float lanes[8] = {};
+  int i = 0;
+  for (; i + 8 <= length; i += 8) {
+    for (int k = 0; k < 8; ++k) lanes[k] += query[i + k] * summary[i + k];
+  }
+  for (int k = 0; i < length; ++i, ++k) lanes[k] += query[i] * summary[i];
+  return ((lanes[0] + lanes[4]) + (lanes[1] + lanes[5])) +
+         ((lanes[2] + lanes[6]) + (lanes[3] + lanes[7]));
+}
+
 float SummaryTanimoto(const std::vector<float>& query, float query_norm, const float* summary,
                       float summary_norm, int length) {
-  float qc = 0;
-  for (int i = 0; i < length; ++i) qc += query[i] * summary[i];
+  const float qc = RunHotLoop<SummaryDot>(query.data(), summary, length);
   if (query_norm == 0 && summary_norm == 0) return 1.0f;
   const float denominator = query_norm + summary_norm - qc;
   return denominator > 0 ? qc / denominator : 0.0f;

@@ -85,7 +85,8 @@ TEST(EngineRegistryTest, PreparingASnapshotBuildsTheSectorTableOnlyForEnginesWit
 }
 
 // COIL-100's LIRE descriptors: the views at even multiples of 5 degrees are the models, walks
-// over the others are the queries.
+// over the others are the queries. View searches, object candidates (scanned and from the
+// summary graph) and every engine's updates.
 TEST(HotLoopPathTest, SearchesAndEveryEngineAreBitIdenticalOnBothPaths) {
   std::vector<ObjectModel> models(100);
   std::vector<std::vector<ModelView>> queries(100);
@@ -117,6 +118,19 @@ TEST(HotLoopPathTest, SearchesAndEveryEngineAreBitIdenticalOnBothPaths) {
         lines.push_back(text);
       }
     }
+    // Object candidates from the summaries: scanned (exact) and from the summary graph.
+    ViewIndex graph(models, {.search = SearchMode::kKdTree});
+    for (const auto& candidates_of : {snapshot, graph.Snapshot()}) {
+      for (const int object : {3, 27, 64, 91}) {
+        for (const ModelView& query : queries[object - 1]) {
+          std::string text = "candidates " + std::to_string(object);
+          for (const ObjectCandidate& c : candidates_of->ObjectCandidates(query.descriptor, 8)) {
+            text += Scored(static_cast<std::int64_t>(c.position), 0, c.similarity);
+          }
+          lines.push_back(text);
+        }
+      }
+    }
     for (const std::string_view engine_name : EngineNames()) {
       const EngineOptions options;
       PrepareSnapshot(engine_name, options, *snapshot);
@@ -137,7 +151,7 @@ TEST(HotLoopPathTest, SearchesAndEveryEngineAreBitIdenticalOnBothPaths) {
     }
     return lines;
   });
-  EXPECT_EQ(portable.size(), 4u * 36 * (1 + EngineNames().size()));
+  EXPECT_EQ(portable.size(), 4u * 36 * (3 + EngineNames().size()));
   ExpectEqualLines(portable, fastest);
 }
 
