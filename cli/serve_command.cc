@@ -33,8 +33,8 @@ struct SignalState {
 // that still loads its store has accepted no call (each is refused until the load ends) and its
 // store's own writes at opening are transactions (docs/service.md, "Shutdown"), so SIGTERM or
 // SIGINT then end the process at once, instead of after a load that takes tens of seconds on a
-// large catalogue. Once it serves, they stop it
-// cleanly, through `stop`; SIGHUP reloads the token file (once it serves, if sent before).
+// large catalogue. Once it serves, they stop it cleanly, through `stop`; SIGHUP reloads the
+// token file (once it serves, if sent before).
 void TakeSignals(const sigset_t& signals, const std::shared_ptr<SignalState>& state) {
   for (;;) {
     int received = 0;
