@@ -1,12 +1,12 @@
 #include "evaluation/distractor_sweep.h"
 
 #include <algorithm>
-#include <cstdio>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "evaluation/evaluation_plot.h"
+#include "evaluation/evaluation_report.h"
 
 namespace orbit {
 namespace {
@@ -37,11 +37,7 @@ bool HasUnknowns(const std::vector<EvaluationReport>& reports) {
   return false;
 }
 
-std::string Percent(double rate) {
-  char text[16];
-  std::snprintf(text, sizeof text, "%.1f", 100 * rate);
-  return text;
-}
+std::string Percent(double rate) { return Format("%.1f", 100 * rate); }
 
 }  // namespace
 
@@ -89,13 +85,10 @@ void WriteDistractorSweepCsv(const std::vector<EvaluationReport>& reports, std::
          "reject_rate\n";
   for (const EvaluationReport& report : reports) {
     for (const EvaluationCell& cell : report.cells) {
-      char rates[48];
-      std::snprintf(rates, sizeof rates, "%.4f", cell.hit_rate());
-      const std::string hit_rate = rates;
-      std::snprintf(rates, sizeof rates, "%.4f", cell.reject_rate());
       out << report.distractors << "," << cell.method << "," << VariantName(cell.variant) << ","
           << cell.distortion << "," << cell.n << "," << cell.trials << "," << cell.hits << ","
-          << hit_rate << "," << cell.unknown_trials << "," << cell.rejected << "," << rates << "\n";
+          << Format("%.4f", cell.hit_rate()) << "," << cell.unknown_trials << "," << cell.rejected
+          << "," << Format("%.4f", cell.reject_rate()) << "\n";
     }
   }
 }

@@ -10,13 +10,14 @@
 #include "core/engines/product_pipeline.h"
 
 namespace orbit {
-namespace {
 
 std::string Format(const char* format, double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, format, value);
   return buffer;
 }
+
+namespace {
 
 std::string Mebibytes(std::size_t bytes) { return Format("%.2f MiB", bytes / 1048576.0); }
 

@@ -11,6 +11,9 @@
 
 namespace orbit {
 
+// `value` written with `format`, one printf conversion of a double (at most 63 characters).
+std::string Format(const char* format, double value);
+
 // The distortion as the thesis and the tables write it: "DF", "MB", "GN".
 std::string DistortionLabel(const std::string& distortion);
 

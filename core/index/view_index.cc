@@ -379,8 +379,6 @@ std::vector<ViewMatch> ViewIndexSnapshot::SearchKdTree(const DescriptorValues& q
 
 namespace {
 
-// TC(query, summary) in float over `length` values, with Tanimoto()'s conventions for zero
-// vectors; `summary_norm` is summary . summary.
 // query . summary over `length` values in eight interleaved partial sums, added pairwise at the
 // end: a fixed order (so every path gives the same value, docs/design.md#exactness) that the
 // compiler vectorises, where one running sum is a chain of dependent additions. A scan of every
@@ -397,6 +395,8 @@ ORBIT_HOT_LOOP float SummaryDot(const float* __restrict query, const float* __re
          ((lanes[2] + lanes[6]) + (lanes[3] + lanes[7]));
 }
 
+// TC(query, summary) in float over `length` values, with Tanimoto()'s conventions for zero
+// vectors; `summary_norm` is summary . summary.
 float SummaryTanimoto(const std::vector<float>& query, float query_norm, const float* summary,
                       float summary_norm, int length) {
   const float qc = RunHotLoop<SummaryDot>(query.data(), summary, length);
