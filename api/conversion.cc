@@ -12,6 +12,7 @@ v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
     case DescriptorVariant::kCeddFull: return v1::CEDD_FULL;
     case DescriptorVariant::kCeddRobust: return v1::CEDD_ROBUST;
     case DescriptorVariant::kCeddHsvHog: return v1::CEDD_HSV_HOG;
+    case DescriptorVariant::kCeddHsvLayout: return v1::CEDD_HSV_LAYOUT;
   }
   return v1::DESCRIPTOR_VARIANT_UNSPECIFIED;
 }
@@ -22,6 +23,7 @@ DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
     case v1::CEDD_FULL: return DescriptorVariant::kCeddFull;
     case v1::CEDD_ROBUST: return DescriptorVariant::kCeddRobust;
     case v1::CEDD_HSV_HOG: return DescriptorVariant::kCeddHsvHog;
+    case v1::CEDD_HSV_LAYOUT: return DescriptorVariant::kCeddHsvLayout;
     default: throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
   }
 }
@@ -31,7 +33,8 @@ std::string ProtoVariantName(v1::DescriptorVariant variant) {
     case v1::CEDD_LIRE:
     case v1::CEDD_FULL:
     case v1::CEDD_ROBUST:
-    case v1::CEDD_HSV_HOG: return std::string(VariantName(FromProtoVariant(variant)));
+    case v1::CEDD_HSV_HOG:
+    case v1::CEDD_HSV_LAYOUT: return std::string(VariantName(FromProtoVariant(variant)));
     case v1::DESCRIPTOR_VARIANT_UNSPECIFIED: return "unspecified";
     default: return "unknown (" + std::to_string(variant) + ")";
   }

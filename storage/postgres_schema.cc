@@ -72,6 +72,12 @@ constexpr const char* kMigrations[] = {
       );
       INSERT INTO change_log_horizon (pruned_through) VALUES (0);
     )sql",
+    // 4: the cedd-hsv-layout variant, 480 bytes as cedd-hsv-hog.
+    R"sql(
+      ALTER TABLE objects DROP CONSTRAINT objects_variant_check,
+        ADD CONSTRAINT objects_variant_check CHECK (variant IN ('cedd-lire', 'cedd-full',
+          'cedd-robust', 'cedd-hsv-hog', 'cedd-hsv-layout'));
+    )sql",
 };
 static_assert(std::size(kMigrations) == kPostgresSchemaVersion);
 

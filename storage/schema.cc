@@ -102,6 +102,26 @@ constexpr const char* kMigrations[] = {
       ALTER TABLE views_v4 RENAME TO views;
       CREATE INDEX views_by_object ON views (object_id, azimuth);
     )sql",
+    // 5: the cedd-hsv-layout variant, 480 bytes as cedd-hsv-hog. objects is rebuilt as in 3.
+    R"sql(
+      CREATE TABLE objects_v5 (
+        id INTEGER PRIMARY KEY AUTOINCREMENT,
+        name TEXT NOT NULL UNIQUE CHECK (length(name) BETWEEN 1 AND 64),
+        variant TEXT NOT NULL CHECK (variant IN ('cedd-lire', 'cedd-full', 'cedd-robust',
+                                                 'cedd-hsv-hog', 'cedd-hsv-layout')),
+        created_at TEXT NOT NULL,
+        updated_at TEXT NOT NULL,
+        metadata TEXT NOT NULL DEFAULT '{}'
+          CHECK (json_valid(metadata) AND json_type(metadata) = 'object')
+      ) STRICT;
+      INSERT INTO objects_v5 (id, name, variant, created_at, updated_at, metadata)
+        SELECT id, name, variant, created_at, updated_at, metadata FROM objects;
+      DELETE FROM sqlite_sequence WHERE name = 'objects_v5';
+      INSERT INTO sqlite_sequence (name, seq)
+        SELECT 'objects_v5', seq FROM sqlite_sequence WHERE name = 'objects';
+      DROP TABLE objects;
+      ALTER TABLE objects_v5 RENAME TO objects;
+    )sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

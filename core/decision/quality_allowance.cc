@@ -5,12 +5,11 @@
 namespace orbit {
 
 const AllowanceSlopes& AllowanceSlopesFor(DescriptorVariant variant) {
-  return variant == DescriptorVariant::kCeddHsvHog ? kHsvHogAllowanceSlopes : kCeddAllowanceSlopes;
+  return HasAppearanceChannels(variant) ? kHsvHogAllowanceSlopes : kCeddAllowanceSlopes;
 }
 
 const AllowanceSlopes& KnownAllowanceSlopesFor(DescriptorVariant variant) {
-  return variant == DescriptorVariant::kCeddHsvHog ? kHsvHogKnownAllowanceSlopes
-                                                   : kCeddKnownAllowanceSlopes;
+  return HasAppearanceChannels(variant) ? kHsvHogKnownAllowanceSlopes : kCeddKnownAllowanceSlopes;
 }
 
 double WindowAllowance(std::optional<double> noise_sigma, std::optional<double> blur,

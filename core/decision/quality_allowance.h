@@ -59,7 +59,8 @@ struct AllowanceSlopes {
   double per_blur_unit;   // U per unit of blur above kSharpFrameBlur
 };
 
-// CEDD's variants (fitted on cedd-robust, the product's variant then) and cedd-hsv-hog.
+// CEDD's variants (fitted on cedd-robust, the product's variant then) and cedd-hsv-hog, whose
+// slopes cedd-hsv-layout uses too (not refitted for it: docs/results/real-objects.md).
 inline constexpr AllowanceSlopes kCeddAllowanceSlopes = {0.006, 0.5};
 inline constexpr AllowanceSlopes kHsvHogAllowanceSlopes = {0.005, 0.2};
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <span>
 #include <stdexcept>
+#include <string>
 
 #include <opencv2/imgproc.hpp>
 
@@ -38,6 +39,13 @@ struct ColourPixels {
   std::array<std::uint8_t, kAppearanceSide * kAppearanceSide> bin{};
 };
 
+// A pixel's hue is as sure as its chroma (max - min of its channels) stands above the noise left
+// after the canonical blur: from kSureChroma on it counts in full.
+double HueCertainty(const cv::Vec3b& hsv) {
+  const double chroma = hsv[1] * hsv[2] / 255.0;
+  return std::min(1.0, chroma / kSureChroma);
+}
+
 // Adds to `counts` what a pixel's share `sure` of its hue and the share spread over every hue,
 // `any_hue` per saturation and value bin, make.
 void SpreadOverHues(const std::array<double, kSaturationBins * kValueBins>& any_hue,
@@ -49,9 +57,8 @@ void SpreadOverHues(const std::array<double, kSaturationBins * kValueBins>& any_
   }
 }
 
-ColourPixels ColourHistogram(const cv::Mat& small) {
-  cv::Mat hsv;
-  cv::cvtColor(small, hsv, cv::COLOR_BGR2HSV);  // hue 0..179, saturation and value 0..255
+// `hsv`: the 64x64 frame in OpenCV's 8-bit HSV (hue 0..179, saturation and value 0..255).
+ColourPixels ColourHistogram(const cv::Mat& hsv) {
   ColourPixels pixels;
   // Per saturation and value bin, the count spread over every hue (below).
   std::array<double, kSaturationBins * kValueBins> any_hue{}, border_any_hue{};
@@ -74,8 +81,7 @@ ColourPixels ColourHistogram(const cv::Mat& small) {
       // A pixel's hue is as sure as its chroma (max - min of its channels) stands above the
       // noise left after the canonical blur: below kSureChroma, the share it lacks is spread
       // over every hue, so that noise, which turns a grey's hue random, moves no bin.
-      const double chroma = row[x][1] * row[x][2] / 255.0;
-      const double sure = std::min(1.0, chroma / kSureChroma);
+      const double sure = HueCertainty(row[x]);
       const int bin = (hue * kSaturationBins + saturation) * kValueBins + value;
       pixels.bin[y * kAppearanceSide + x] = static_cast<std::uint8_t>(bin);
       pixels.whole[bin] += sure;
@@ -181,21 +187,63 @@ std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small,
   return histogram;
 }
 
+// The colour layout: per half of the frame (upper first), the hue-saturation-value histogram of
+// its pixels with kLayoutSaturationBins saturations, each pixel counted as ColourHistogram counts
+// it (a dark pixel as hue 0 and saturation 0; the unsure part of a hue spread over every hue) and
+// weighed by the object's share of its colour-histogram bin.
+ColourCounts ColourLayout(const cv::Mat& hsv, const ColourPixels& pixels,
+                          const ColourCounts& foreground) {
+  ColourCounts layout{};
+  for (int y = 0; y < hsv.rows; ++y) {
+    const cv::Vec3b* row = hsv.ptr<cv::Vec3b>(y);
+    double* band = layout.data() + (y * kLayoutBands / hsv.rows) * kLayoutBandSize;
+    for (int x = 0; x < hsv.cols; ++x) {
+      const double object = foreground[pixels.bin[y * kAppearanceSide + x]];
+      const int value = row[x][2] * kValueBins / 256;
+      if (value == 0) {
+        band[kDarkBin] += object;
+        continue;
+      }
+      const int saturation = row[x][1] * kLayoutSaturationBins / 256;
+      const int hue = row[x][0] * kHueBins / 180;
+      const double sure = HueCertainty(row[x]);
+      const int sv = saturation * kValueBins + value;
+      band[hue * kLayoutSaturationBins * kValueBins + sv] += object * sure;
+      if (sure < 1) {
+        for (int h = 0; h < kHueBins; ++h) {
+          band[h * kLayoutSaturationBins * kValueBins + sv] += object * (1 - sure) / kHueBins;
+        }
+      }
+    }
+  }
+  return layout;
+}
+
 }  // namespace
 
-void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values) {
+void AddAppearanceChannels(const cv::Mat& canonical, DescriptorVariant variant,
+                           DescriptorValues& values) {
   if (canonical.empty() || canonical.type() != CV_8UC3) {
     throw std::invalid_argument("appearance channels need a non-empty 8-bit BGR image");
+  }
+  if (!HasAppearanceChannels(variant)) {
+    throw std::invalid_argument(std::string(VariantName(variant)) + " has no appearance channels");
   }
   // Bilinear, shrinking too: the canonical frame is already blurred (a deviation of 2 of its
   // pixels, docs/design.md#canonical-frame), so area averaging, several times slower on a
   // factor that is not whole, would add little.
   cv::Mat small;
   cv::resize(canonical, small, cv::Size(kAppearanceSide, kAppearanceSide), 0, 0, cv::INTER_LINEAR);
-  const ColourPixels pixels = ColourHistogram(small);
+  cv::Mat hsv;
+  cv::cvtColor(small, hsv, cv::COLOR_BGR2HSV);
+  const ColourPixels pixels = ColourHistogram(hsv);
   const ColourCounts foreground = ForegroundShares(pixels);
   ColourCounts colour;
-  for (int b = 0; b < kColourChannelSize; ++b) colour[b] = pixels.whole[b] * foreground[b];
+  if (variant == DescriptorVariant::kCeddHsvHog) {
+    for (int b = 0; b < kColourChannelSize; ++b) colour[b] = pixels.whole[b] * foreground[b];
+  } else {
+    colour = ColourLayout(hsv, pixels, foreground);
+  }
   const auto gradient = GradientHistogram(small, pixels, foreground);
   ScaleChannel(colour, kColourNorm,
                std::span<std::uint8_t>(values.data() + kColourChannelOffset, kColourChannelSize));

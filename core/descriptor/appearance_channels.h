@@ -1,4 +1,5 @@
-// The appearance channels of the cedd-hsv-hog variant (docs/design.md#appearance-channels): what
+// The appearance channels of the cedd-hsv-hog and cedd-hsv-layout variants
+// (docs/design.md#appearance-channels, docs/design.md#colour-layout): what
 // look-alike real objects need and CEDD lacks. CEDD's 24 coarse colour bins cannot tell a red
 // apple from a redder one, and its texture classes move under blur; a finer colour histogram and
 // a coarse layout of gradient orientations can.
@@ -17,6 +18,16 @@
 //             is normalised as HOG's L2-Hys (L2, clipped at 0.2, L2 again), with a floor of
 //             kFlatCellShare of the mean cell's norm added to each cell's; each pixel's
 //             magnitude weighed by the object's share of its colour bin.
+// cedd-hsv-layout keeps the gradient cells and replaces the colour histogram's 192 values with
+//   colour layout  the object's colours in the frame's upper and lower halves, each a
+//                  12 x 2 x 4 hue-saturation-value histogram (bin = hue_bin * 8 +
+//                  saturation_bin * 4 + value_bin, 96 values a half, the upper half first), each
+//                  pixel counted as the colour histogram counts it (dark pixels, kSureChroma) and
+//                  weighed by the object's share of its colour-histogram bin (the foreground
+//                  estimate, which stays that of the 192 bins).
+// Why: two look-alike objects differ in where their colours are (a cup's print, a cow's patches)
+// more often than in which colours they hold; halves one above the other move little as the
+// object turns about its vertical axis, the way a walk around it turns it.
 // Each channel's square roots (a Hellinger-like scale: a bin's weight grows more slowly than its
 // count) are scaled to the channel's energy (kColourNorm, kGradientNorm: its Euclidean norm) and
 // rounded to 0..7, the range every descriptor value has. The channels' norms against CEDD's are
@@ -46,6 +57,13 @@ inline constexpr int kColourChannelOffset = kCeddSize;
 inline constexpr int kGradientChannelOffset = kColourChannelOffset + kColourChannelSize;
 static_assert(kGradientChannelOffset + kGradientChannelSize == kDescriptorSize);
 
+// cedd-hsv-layout's colour layout, in the colour histogram's place.
+inline constexpr int kLayoutBands = 2;
+inline constexpr int kLayoutSaturationBins = 2;
+inline constexpr int kLayoutBandSize = kHueBins * kLayoutSaturationBins * kValueBins;
+inline constexpr int kLayoutOffset = kColourChannelOffset;
+static_assert(kLayoutBands * kLayoutBandSize == kColourChannelSize);
+
 // Euclidean norm each channel is scaled to before rounding (values then clipped to 0..7).
 inline constexpr double kColourNorm = 48.0;
 inline constexpr double kGradientNorm = 5.0;
@@ -66,9 +84,11 @@ inline constexpr int kBorderRing = 4;
 inline constexpr double kCommonBorderColour = 0.02;
 inline constexpr double kMaxBackgroundShare = 0.8;
 
-// Writes the colour and gradient channels of `canonical` (8-bit BGR, not empty: a
-// CanonicalFrame) into values[kColourChannelOffset, kDescriptorSize). Values before are left
-// as they are. Throws std::invalid_argument for an empty image or one of another type.
-void AddAppearanceChannels(const cv::Mat& canonical, DescriptorValues& values);
+// Writes the appearance channels of `variant` (HasAppearanceChannels) of `canonical` (8-bit BGR,
+// not empty: a CanonicalFrame) into values[kColourChannelOffset, kDescriptorSize). Values before
+// are left as they are. Throws std::invalid_argument for an empty image or one of another type,
+// or a variant without appearance channels.
+void AddAppearanceChannels(const cv::Mat& canonical, DescriptorVariant variant,
+                           DescriptorValues& values);
 
 }  // namespace orbit

@@ -176,7 +176,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
                                 " image");
   }
   const bool canonical =
-      variant == DescriptorVariant::kCeddRobust || variant == DescriptorVariant::kCeddHsvHog;
+      variant == DescriptorVariant::kCeddRobust || HasAppearanceChannels(variant);
   const cv::Mat bgr = canonical ? CanonicalFrame(ToBgr(image(area))) : ToBgr(image(area));
   const bool lire = variant == DescriptorVariant::kCeddLire;
   const Grid grid = lire ? cedd::LireGrid(bgr.cols, bgr.rows) : cedd::FullGrid(bgr.cols, bgr.rows);
@@ -242,7 +242,7 @@ Descriptor ExtractCedd(const cv::Mat& image, DescriptorVariant variant,
     }
   }
   descriptor.values = cedd::Quantise(histogram);
-  if (variant == DescriptorVariant::kCeddHsvHog) AddAppearanceChannels(bgr, descriptor.values);
+  if (HasAppearanceChannels(variant)) AddAppearanceChannels(bgr, variant, descriptor.values);
   return descriptor;
 }
 

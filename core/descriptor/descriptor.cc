@@ -12,6 +12,7 @@ std::string_view VariantName(DescriptorVariant variant) {
     case DescriptorVariant::kCeddFull: return "cedd-full";
     case DescriptorVariant::kCeddRobust: return "cedd-robust";
     case DescriptorVariant::kCeddHsvHog: return "cedd-hsv-hog";
+    case DescriptorVariant::kCeddHsvLayout: return "cedd-hsv-layout";
   }
   return "unknown";
 }
@@ -41,8 +42,12 @@ void ValidateDescriptorValues(std::span<const std::uint8_t> values, std::string_
   }
 }
 
+bool HasAppearanceChannels(DescriptorVariant variant) {
+  return variant == DescriptorVariant::kCeddHsvHog || variant == DescriptorVariant::kCeddHsvLayout;
+}
+
 int DescriptorLength(DescriptorVariant variant) {
-  return variant == DescriptorVariant::kCeddHsvHog ? kDescriptorSize : kCeddSize;
+  return HasAppearanceChannels(variant) ? kDescriptorSize : kCeddSize;
 }
 
 DescriptorValues DescriptorFromBytes(std::span<const std::uint8_t> bytes, DescriptorVariant variant,

@@ -4,7 +4,8 @@
 // Layout: values 0..143 are CEDD's histogram (docs/design.md#histogram): value i belongs to
 // texture class i / 24 and fuzzy colour bin i % 24. Classes: 0 non-edge, 1 non-directional,
 // 2 horizontal, 3 vertical, 4 diagonal 45, 5 diagonal 135. The CEDD variants stop there; the
-// cedd-hsv-hog variant appends its appearance channels (core/descriptor/appearance_channels.h).
+// cedd-hsv-hog and cedd-hsv-layout variants append their appearance channels
+// (core/descriptor/appearance_channels.h).
 // Values past a variant's DescriptorLength are 0, so one Tanimoto over every value serves
 // every variant.
 #pragma once
@@ -37,13 +38,21 @@ enum class DescriptorVariant {
   // (core/descriptor/appearance_channels.h): the product's variant for real objects that look
   // alike (docs/design.md#appearance-channels)
   kCeddHsvHog,
+  // cedd-hsv-hog with its gradient cells pooled 2 x 2 and a colour layout, the object's colours
+  // in the frame's upper and lower halves, in the values that frees (core/descriptor/
+  // appearance_channels.h, docs/design.md#colour-layout)
+  kCeddHsvLayout,
 };
-inline constexpr std::array<DescriptorVariant, 4> kDescriptorVariants = {
+inline constexpr std::array<DescriptorVariant, 5> kDescriptorVariants = {
     DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust,
-    DescriptorVariant::kCeddHsvHog};
+    DescriptorVariant::kCeddHsvHog, DescriptorVariant::kCeddHsvLayout};
+
+// Whether `variant` appends the appearance channels to CEDD (cedd-hsv-hog, cedd-hsv-layout):
+// its descriptors are kDescriptorSize values and are taken from the canonical frame.
+bool HasAppearanceChannels(DescriptorVariant variant);
 
 // The variant's name as it appears on the command line, in the API and in the model store:
-// "cedd-lire", "cedd-full", "cedd-robust" or "cedd-hsv-hog".
+// "cedd-lire", "cedd-full", "cedd-robust", "cedd-hsv-hog" or "cedd-hsv-layout".
 std::string_view VariantName(DescriptorVariant variant);
 
 // Inverse of VariantName; nullopt for any other text.
@@ -59,7 +68,7 @@ void ValidateDescriptorValues(std::span<const std::uint8_t> values,
                               std::string_view what = "descriptor");
 
 // How many values a descriptor of `variant` has: kCeddSize for the CEDD variants, kDescriptorSize
-// for cedd-hsv-hog. A store's blob and the wire carry exactly these.
+// for those with appearance channels. A store's blob and the wire carry exactly these.
 int DescriptorLength(DescriptorVariant variant);
 
 // The descriptor held in `bytes` (a store's blob, a request's fields): exactly

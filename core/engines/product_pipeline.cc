@@ -23,12 +23,18 @@ std::string DescribeProduct() {
        << " pixels, Gaussian blur of " << kCanonicalBlurSigma
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
        << "th percentile of the brightest channel is " << kBrightnessTarget;
-  if (p.variant == DescriptorVariant::kCeddHsvHog) {
-    text << "; then a " << kHueBins << " x " << kSaturationBins << " x " << kValueBins
-         << " hue-saturation-value histogram of the object's colours, its background's taken off, "
-            "and "
-         << kGradientCellsPerSide << " x " << kGradientCellsPerSide << " cells of "
-         << kGradientOrientations << " gradient orientations";
+  if (HasAppearanceChannels(p.variant)) {
+    if (p.variant == DescriptorVariant::kCeddHsvHog) {
+      text << "; then a " << kHueBins << " x " << kSaturationBins << " x " << kValueBins
+           << " hue-saturation-value histogram of the object's colours";
+    } else {
+      text << "; then " << kHueBins << " x " << kLayoutSaturationBins << " x " << kValueBins
+           << " hue-saturation-value histograms of the object's colours in the frame's upper "
+              "and lower halves";
+    }
+    text << ", its background's taken off, and " << kGradientCellsPerSide << " x "
+         << kGradientCellsPerSide << " cells of " << kGradientOrientations
+         << " gradient orientations";
   }
   text << ")";
   if (p.options.candidate_objects > 0) {

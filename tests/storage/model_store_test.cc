@@ -245,15 +245,36 @@ TYPED_TEST(ModelStoreTest, LoadAllGivesEveryObjectInIdOrderWithItsVariant) {
   EXPECT_EQ(models[1].views[2].typical_distance, full.views[0].typical_distance);
 }
 
+// Two views of `variant`, an appearance variant, with values in all 480 places.
+Enrollment AppearanceObject(const std::string& name, DescriptorVariant variant, int seed) {
+  Enrollment object = SyntheticObject(name, 2, seed);
+  object.variant = variant;
+  for (ModelView& view : object.views) {
+    for (int i = kCeddSize; i < kDescriptorSize; ++i) view.descriptor[i] = (i * seed + 1) % 8;
+  }
+  return object;
+}
+
+// A cedd-hsv-layout object (the SQLite store's schema 5, PostgreSQL's 4) comes back in its own
+// variant with every one of its 480 values.
+TYPED_TEST(ModelStoreTest, TheLayoutVariantIsStoredAsItself) {
+  ModelStore& store = *this->store_;
+  const Enrollment layout = AppearanceObject("layout", DescriptorVariant::kCeddHsvLayout, 3);
+  const ObjectId id = store.Enroll(layout);
+  const std::optional<StoredObject> stored = store.Get(id);
+  ASSERT_TRUE(stored.has_value());
+  EXPECT_EQ(stored->summary.variant, DescriptorVariant::kCeddHsvLayout);
+  ASSERT_EQ(stored->views.size(), 2u);
+  EXPECT_EQ(stored->views[0].descriptor, layout.views[0].descriptor);
+  EXPECT_EQ(stored->views[1].descriptor, layout.views[1].descriptor);
+  EXPECT_EQ(store.LoadAll().at(0).variant, DescriptorVariant::kCeddHsvLayout);
+}
+
 // An object of the appearance variant keeps every one of its 480 values, through AddViews too,
 // beside an object of a CEDD variant whose 144 values are all that is stored.
 TYPED_TEST(ModelStoreTest, AppearanceVariantKeepsItsChannels) {
   ModelStore& store = *this->store_;
-  Enrollment appearance = SyntheticObject("appearance", 2, 5);
-  appearance.variant = DescriptorVariant::kCeddHsvHog;
-  for (ModelView& view : appearance.views) {
-    for (int i = kCeddSize; i < kDescriptorSize; ++i) view.descriptor[i] = (i * 5 + 1) % 8;
-  }
+  const Enrollment appearance = AppearanceObject("appearance", DescriptorVariant::kCeddHsvHog, 5);
   const ObjectId id = store.Enroll(appearance);
   ModelView added = appearance.views[0];
   added.azimuth = 45;

@@ -99,7 +99,7 @@ TEST(SchemaMigrationTest, AnEmptyFileBecomesACurrentStore) {
   }
   RawDatabase raw(dir / "empty.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3", "4"));
+              ElementsAre("1", "2", "3", "4", "5"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('objects')"),
               ElementsAre("id", "name", "variant", "created_at", "updated_at", "metadata"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('views')"),
@@ -136,7 +136,7 @@ TEST(SchemaMigrationTest, AVersion1StoreIsMigratedWithItsDataIntact) {
   EXPECT_EQ(store.Get(8)->thumbnails[0], "png");
   RawDatabase raw(dir / "v1.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3", "4"));
+              ElementsAre("1", "2", "3", "4", "5"));
   EXPECT_EQ(raw.Text("SELECT applied_at FROM schema_version WHERE version = 1"),
             "2024-01-01T00:00:00.000Z");
 }
@@ -161,6 +161,10 @@ TEST(SchemaMigrationTest, RebuildingTheObjectsTableKeepsViewsIdsAndCascades) {
   robust.variant = DescriptorVariant::kCeddRobust;
   EXPECT_EQ(store.Enroll(robust), 10);
   EXPECT_EQ(store.Get(10)->summary.variant, DescriptorVariant::kCeddRobust);
+  Enrollment layout = SyntheticObject("layout-cup", 1);  // migration 5's variant
+  layout.variant = DescriptorVariant::kCeddHsvLayout;
+  EXPECT_EQ(store.Enroll(layout), 11);
+  EXPECT_EQ(store.Get(11)->summary.variant, DescriptorVariant::kCeddHsvLayout);
   RawDatabase raw(dir / "v1.db");
   EXPECT_EQ(raw.Int("SELECT count(*) FROM pragma_foreign_key_check"), 0);
   EXPECT_THAT(raw.Column("SELECT name FROM sqlite_schema WHERE type = 'table' AND name LIKE "

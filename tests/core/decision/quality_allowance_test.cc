@@ -43,6 +43,10 @@ TEST(QualityAllowanceTest, FormulaByHand) {
   // cedd-hsv-hog's own slopes: 12 grey levels x 0.005, 0.25 x 0.2.
   EXPECT_EQ(&AllowanceSlopesFor(DescriptorVariant::kCeddHsvHog), &kHsvHogAllowanceSlopes);
   EXPECT_EQ(&AllowanceSlopesFor(DescriptorVariant::kCeddRobust), &kCeddAllowanceSlopes);
+  // cedd-hsv-layout has not been refitted: it uses cedd-hsv-hog's.
+  EXPECT_EQ(&AllowanceSlopesFor(DescriptorVariant::kCeddHsvLayout), &kHsvHogAllowanceSlopes);
+  EXPECT_EQ(&KnownAllowanceSlopesFor(DescriptorVariant::kCeddHsvLayout),
+            &kHsvHogKnownAllowanceSlopes);
   EXPECT_NEAR(NoiseAllowance(kCleanNoiseSigma + 12, kHsvHogAllowanceSlopes), 0.06, 1e-12);
   EXPECT_NEAR(BlurAllowance(kSharpFrameBlur + 0.25, kHsvHogAllowanceSlopes), 0.05, 1e-12);
 }
