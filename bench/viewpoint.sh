@@ -6,15 +6,18 @@
 # elevation (all.csv) four at a time in azimuth order, with their azimuths, as a device walking
 # round the object higher up would: whole frames, then each frame cut to its box (boxes.csv,
 # grown by 10% a side). Prints, per elevation and mode, how many of the queries' last updates
-# name the right object first, and how many of those are accepted.
-#   bench/viewpoint.sh [BUILD_DIR] [ETH80_DIR] [ELEVATIONS] [OBJECTS]
+# name the right object first, and how many of those are accepted, after the variant served.
+#   bench/viewpoint.sh [BUILD_DIR] [ETH80_DIR] [ELEVATIONS] [OBJECTS] [VARIANT]
 # ELEVATIONS: comma-separated (default 22,24,45; 0 is the ring itself); OBJECTS: how many of the
-# 40, in ring.csv's order, are enrolled and queried (default all).
+# 40, in ring.csv's order, are enrolled and queried (default all); VARIANT: the stores' descriptor
+# variant (default the product's), which the server then serves.
 set -euo pipefail
 build=${1:-build}
 data=${2:-../shared/data/eth-80-dev}
 elevations=${3:-22,24,45}
 max_objects=${4:-40}
+variant=()
+[[ -n ${5:-} ]] && variant=(--variant "$5")
 orbit="$build/orbit"
 work=$(mktemp -d)
 # shellcheck source=bench/serve_in_background.sh
@@ -39,8 +42,10 @@ for mode in whole cropped; do
   enrolled=()
   [[ $mode == cropped ]] && enrolled=(--boxes "$work/ring-boxes.csv")
   "$orbit" import --db "$work/$mode.db" --layout manifest --manifest "$work/ring.csv" \
-    "${enrolled[@]}" >/dev/null 2>"$work/import.log" || { cat "$work/import.log" >&2; exit 1; }
+    "${enrolled[@]}" "${variant[@]}" >/dev/null 2>"$work/import.log" || { cat "$work/import.log" >&2; exit 1; }
   serve_in_background "$orbit" "$work/serve.log" --db "$work/$mode.db"
+  # The variant the server took from the store.
+  sed -n "s/^orbit serve: \(descriptor variant [^ ]*\).*/$mode: served \1/p" "$work/serve.log"
   for elevation in "${wanted[@]}"; do
     queries=0 right=0 accepted=0
     for object in $objects; do

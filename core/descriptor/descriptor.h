@@ -38,9 +38,9 @@ enum class DescriptorVariant {
   // (core/descriptor/appearance_channels.h): the product's variant for real objects that look
   // alike (docs/design.md#appearance-channels)
   kCeddHsvHog,
-  // cedd-hsv-hog with its gradient cells pooled 2 x 2 and a colour layout, the object's colours
-  // in the frame's upper and lower halves, in the values that frees (core/descriptor/
-  // appearance_channels.h, docs/design.md#colour-layout)
+  // cedd-hsv-hog with its colour histogram replaced by a colour layout: the object's colours in
+  // the frame's upper and lower halves (core/descriptor/appearance_channels.h,
+  // docs/design.md#colour-layout)
   kCeddHsvLayout,
 };
 inline constexpr std::array<DescriptorVariant, 5> kDescriptorVariants = {
