@@ -63,8 +63,8 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
                    "cedd-robust: cedd-full of the canonical frame;\n"
                    "cedd-hsv-hog: cedd-robust, then a colour histogram and gradient cells of the\n"
                    "same frame, its background's colours taken off (the product's variant);\n"
-                   "cedd-hsv-layout: cedd-hsv-hog with coarser gradient cells and the object's\n"
-                   "colours in the frame's upper and lower halves")
+                   "cedd-hsv-layout: cedd-hsv-hog with the object's colours in the frame's\n"
+                   "upper and lower halves instead of one colour histogram")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();
