@@ -77,6 +77,7 @@ struct EvalOptions {
   double threshold = EngineOptions{}.threshold;
   std::string rejection = std::string(RejectionRuleName(EngineOptions{}.rejection));
   double false_accept_rate = EngineOptions{}.false_accept_rate;
+  double known_accept_rate = EngineOptions{}.known_accept_rate;
   std::string verdicts;
   bool active = false;
   double active_step = 20;
@@ -132,6 +133,7 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.active_step = o.active ? o.active_step : 0;
   options.active_policy = *ParseActivePolicy(o.active_policy);
   options.engine.false_accept_rate = o.false_accept_rate;
+  options.engine.known_accept_rate = o.known_accept_rate;
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
   options.engine.hmm_states = o.hmm_states;
@@ -186,9 +188,10 @@ const std::map<std::string, std::string>& ServerRefusalReasons() {
         "a query of an object the server does not hold is an unknown query already";
     for (const char* flag :
          {"--methods", "--variant", "--index", "--kd-trees", "--kd-checks", "--kd-candidates",
-          "--threshold", "--rejection", "--false-accept-rate", "--orientation-weight",
-          "--list-length", "--hmm-states", "--hmm-sharpness", "--nearest-view-weight",
-          "--candidates", "--candidates-above", "--distractors", "--distractors-from"}) {
+          "--threshold", "--rejection", "--false-accept-rate", "--known-accept-rate",
+          "--orientation-weight", "--list-length", "--hmm-states", "--hmm-sharpness",
+          "--nearest-view-weight", "--candidates", "--candidates-above", "--distractors",
+          "--distractors-from"}) {
       r[flag] = "the server recognises with its own variant, engine and session defaults";
     }
     for (const char* flag : {"--distortions", "--sweep", "--sweep-steps"}) {
@@ -555,6 +558,13 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->add_option("--false-accept-rate", o->false_accept_rate,
                    "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
       ->check(CLI::Range(1e-6, 1 - 1e-6))
+      ->capture_default_str();
+  command
+      ->add_option("--known-accept-rate", o->known_accept_rate,
+                   "the share of the known objects' own windows the calibrated rule raises its "
+                   "threshold to accept where look-alikes need more, in [0, 1); 0: the target "
+                   "rate alone")
+      ->check(CLI::Range(0.0, 1 - 1e-6))
       ->capture_default_str();
   command->add_option("--verdicts", o->verdicts,
                       "also write every query's answer as CSV (decision, unknown statistic, "

@@ -242,8 +242,14 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
       ->capture_default_str();
   cmd->add_option("--false-accept-rate", c.session_defaults.options.false_accept_rate,
                   "the calibrated rule's target share of unknown objects accepted, in (0, 1); "
-                  "measured on COIL-100 in docs/results/recognition.md")
+                  "measured in docs/results/recognition.md and real-objects.md")
       ->check(CLI::Range(1e-6, 1 - 1e-6))
+      ->capture_default_str();
+  cmd->add_option("--known-accept-rate", c.session_defaults.options.known_accept_rate,
+                  "the share of the known objects' own simulated windows the calibrated rule "
+                  "raises its threshold to accept where look-alikes need more, within a bound "
+                  "(docs/design.md#known-share), in [0, 1); 0: the target rate alone")
+      ->check(CLI::Range(0.0, 1 - 1e-6))
       ->capture_default_str();
   cmd->add_option("--threshold", c.session_defaults.options.threshold, "Th of the th rule")
       ->check(CLI::PositiveNumber)

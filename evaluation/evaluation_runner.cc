@@ -75,7 +75,8 @@ struct Method {
 
 // The method called `name` in a run whose engines take `run`: an engine of EngineNames() with
 // `run`, or kProductMethod, the product pipeline (core/engines/product_pipeline.h): its engine
-// with its own options, the window raised and the false-accept rate set as the run's, and the
+// with its own options, the window raised and the false-accept and known-accept rates set as the
+// run's, and the
 // run's object candidates when it sets them (candidate_objects > 0), on its own variant only.
 // Throws std::invalid_argument for any other name.
 Method ResolveMethod(std::string_view name, const EngineOptions& run) {
@@ -83,6 +84,7 @@ Method ResolveMethod(std::string_view name, const EngineOptions& run) {
   EngineOptions options = Product().options;
   options.window = std::max(options.window, run.window);
   options.false_accept_rate = run.false_accept_rate;
+  options.known_accept_rate = run.known_accept_rate;
   if (run.candidate_objects > 0) {
     options.candidate_objects = run.candidate_objects;
     options.candidates_above = run.candidates_above;

@@ -370,13 +370,14 @@ grpc::ServerUnaryReactor* ModelsService::DeleteObject(grpc::CallbackServerContex
 namespace {
 
 // What the calibration says of the default rule: the shares of its simulated unknown and known
-// windows of the default length that the default target accepts.
+// windows of the default length that the default rule accepts.
 v1::RuleEstimate EstimateRule(const RejectionCalibration& calibration,
                               const EngineOptions& defaults) {
   v1::RuleEstimate estimate;
   if (!calibration.calibrated()) return estimate;
   const int frames = std::min(defaults.window, kCalibratedWindowLengths);
-  const double null_threshold = calibration.NullThreshold(frames, defaults.false_accept_rate);
+  const double null_threshold =
+      calibration.Threshold(frames, defaults.false_accept_rate, defaults.known_accept_rate);
   const double ceiling = calibration.KnownCeiling(frames);
   const double threshold = std::min(null_threshold, ceiling);
   estimate.set_objects(calibration.sampled_objects());

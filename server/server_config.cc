@@ -117,7 +117,8 @@ std::string ServerConfig::Describe() const {
       << d.options.hmm_states << ", HMM sharpness " << d.options.hmm_sharpness << ", rejection "
       << RejectionRuleName(d.options.rejection);
   if (d.options.rejection == RejectionRule::kCalibrated) {
-    out << " (false-accept rate " << d.options.false_accept_rate << ")\n";
+    out << " (false-accept rate " << d.options.false_accept_rate << ", known-accept rate "
+        << d.options.known_accept_rate << ")\n";
   } else {
     out << " (Th " << d.options.threshold << ")\n";
   }

@@ -347,13 +347,23 @@ double RejectionCalibration::NullThreshold(int frames, double false_accept_rate)
   return accepted == 0 ? null.front() - 1e-12 : null[static_cast<std::size_t>(accepted - 1)];
 }
 
+double RejectionCalibration::Threshold(int frames, double false_accept_rate,
+                                       double known_accept_rate) const {
+  const double null_threshold = NullThreshold(frames, false_accept_rate);
+  if (known_.empty() || known_accept_rate <= 0) return null_threshold;
+  return std::max(null_threshold, std::min(KnownQuantile(frames, known_accept_rate),
+                                           NullThreshold(frames, kMostFalseAcceptRate)));
+}
+
+double RejectionCalibration::KnownQuantile(int frames, double share) const {
+  const std::vector<double>& known = Known(frames);
+  return known[std::min(known.size() - 1,
+                        static_cast<std::size_t>(share * static_cast<double>(known.size())))];
+}
+
 double RejectionCalibration::KnownCeiling(int frames) const {
   if (known_.empty()) return std::numeric_limits<double>::infinity();
-  const std::vector<double>& known = Known(frames);
-  return kKnownCeilingMargin *
-         known[std::min(
-             known.size() - 1,
-             static_cast<std::size_t>(kKnownWindowsAccepted * static_cast<double>(known.size())))];
+  return kKnownCeilingMargin * KnownQuantile(frames, kKnownWindowsAccepted);
 }
 
 double RejectionCalibration::KnownAcceptRate(double statistic, int frames) const {

@@ -22,6 +22,12 @@
 // the bound lies close to the share (the threshold near the null's f-quantile); with few it lies
 // well above it, and the rule is stricter (docs/design.md#calibrated-rule).
 //
+// The known share: where look-alikes are enrolled, a left-out object's windows look as known as
+// an enrolled object's own, and the null's threshold for a low target rejects most of the known
+// objects' windows too. The calibration sees this in its own known windows (below), so the
+// threshold is raised until a given share of them is accepted, within a most that keeps the
+// null's false-accept rate bounded (docs/design.md#known-share).
+//
 // The known ceiling: with few objects the null is a handful of object pairs (two objects: one
 // pair) and says little about an object nobody enrolled, and an unknown window meets one object
 // more than a left-out object met; the measured rate then lies far above f. So the threshold
@@ -68,6 +74,10 @@ inline constexpr double kNullShareBoundSigmas = 1.2816;
 inline constexpr double kKnownWindowsAccepted = 0.99;
 inline constexpr double kKnownCeilingMargin = 1.5;
 
+// The most the threshold is raised to for the known objects' windows: the null's threshold at
+// this false-accept rate (docs/design.md#known-share).
+inline constexpr double kMostFalseAcceptRate = 0.4;
+
 // In an index of more than kScanEveryObjectUpTo objects, the objects proposed for each sampled
 // view that its object's views are scored against.
 inline constexpr int kLeftOutCandidatesPerView = 32;
@@ -100,6 +110,14 @@ class RejectionCalibration {
   // below the least value when none is. REQUIRES: calibrated(), frames >= 1.
   double NullThreshold(int frames, double false_accept_rate) const;
 
+  // The threshold of the calibrated rule: the null's threshold for `false_accept_rate`, raised
+  // to the U below which `known_accept_rate` of the known objects' simulated windows fall when
+  // they need more, but never above the null's threshold for kMostFalseAcceptRate (nor below the
+  // first). known_accept_rate 0, or no known windows: the null's threshold alone
+  // (docs/design.md#known-share). REQUIRES: calibrated(), frames >= 1, false_accept_rate in
+  // (0, 1), known_accept_rate in [0, 1).
+  double Threshold(int frames, double false_accept_rate, double known_accept_rate) const;
+
   // The known ceiling: kKnownCeilingMargin times the U below which kKnownWindowsAccepted of the
   // known objects' simulated windows of `frames` frames fall; infinity when no object has a view
   // outside its own neighbourhood. REQUIRES: calibrated(), frames >= 1.
@@ -127,6 +145,9 @@ class RejectionCalibration {
   const std::vector<double>& Null(int frames) const;
   const std::vector<double>& NullBound(int frames) const;
   const std::vector<double>& Known(int frames) const;  // REQUIRES: !known_.empty()
+  // The value at position floor(share * N) of the N sorted known windows of `frames` frames (the
+  // last for share 1). REQUIRES: !known_.empty(), share in [0, 1].
+  double KnownQuantile(int frames, double share) const;
 
   std::vector<std::vector<double>> null_;  // [n - 1]: sorted U values for windows of n frames
   // [n - 1][i]: the bound on the share of the null at or below null_[n - 1][i], non-decreasing

@@ -45,6 +45,8 @@ void ValidateEngineOptions(const EngineOptions& o, std::string_view p) {
   Require(std::isfinite(o.threshold) && o.threshold > 0, p, "threshold", "(0, inf)", o.threshold);
   Require(o.false_accept_rate > 0 && o.false_accept_rate < 1, p, "false_accept_rate", "(0, 1)",
           o.false_accept_rate);
+  Require(o.known_accept_rate >= 0 && o.known_accept_rate < 1, p, "known_accept_rate", "[0, 1)",
+          o.known_accept_rate);
   Require(o.top_k >= 1 && o.top_k <= kMaxTopK, p, "top_k", Integers(1, kMaxTopK), o.top_k);
   Require(o.nearest_view_weight >= 0 && o.nearest_view_weight <= 1, p, "nearest_view_weight",
           Closed(0, 1), o.nearest_view_weight);

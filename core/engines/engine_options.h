@@ -34,13 +34,17 @@ struct EngineOptions {
   int hmm_sharpness = 0;
   // The accept / unknown rule (docs/design.md#accept-or-unknown): kTypicalDistance accepts when
   // T_M / mean Ttyp <= threshold; kCalibrated when the unknown statistic is at or below the
-  // threshold a model-set calibration gives for false_accept_rate (undecided without one:
-  // RecognitionEngine::SetCalibration).
+  // threshold a model-set calibration gives for false_accept_rate and known_accept_rate
+  // (undecided without one: RecognitionEngine::SetCalibration).
   RejectionRule rejection = RejectionRule::kTypicalDistance;
   double threshold = 2.0;  // Th (finite, > 0)
-  // kCalibrated's target share of unknown objects' windows accepted, in (0, 1); why this
-  // default: docs/results/recognition.md, "Why 0.17 by default".
+  // kCalibrated's target share of unknown objects' windows accepted, in (0, 1), and the share of
+  // the known objects' own windows it is raised to accept where look-alikes need more, in [0, 1)
+  // (0: the target alone; docs/design.md#known-share). Why these defaults:
+  // docs/results/recognition.md, "Why 0.17 by default", and docs/results/real-objects.md,
+  // "The known share".
   double false_accept_rate = 0.17;
+  double known_accept_rate = 0.95;
   int top_k = 5;  // objects in each update's ranking (1..kMaxTopK)
   // lambda of the nearest-view blend, in [0, 1] (0: the engine's own score, as the thesis'
   // engines; docs/design.md#nearest-view-blend).

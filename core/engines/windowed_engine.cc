@@ -177,7 +177,7 @@ Decision WindowedEngine::Decide(const Assessment& winner, FrameUpdate& update) c
       const double judged_as_known =
           update.unknown_statistic -
           WindowAllowance(update.noise_sigma, update.blur, KnownAllowanceSlopesFor(variant));
-      return judged <= calibration_->NullThreshold(frames, o.false_accept_rate) &&
+      return judged <= calibration_->Threshold(frames, o.false_accept_rate, o.known_accept_rate) &&
                      judged_as_known <= calibration_->KnownCeiling(frames)
                  ? Decision::kAccept
                  : Decision::kUnknown;

@@ -2,6 +2,8 @@
 // seen, and its arithmetic (quantiles, p-values, determinism, small model sets) is exact.
 #include "core/decision/rejection_calibration.h"
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -9,8 +11,12 @@
 #include <gtest/gtest.h>
 
 #include "core/engines/engine_registry.h"
+#include "core/engines/product_pipeline.h"
 #include "core/engines/recognition_engine.h"
+#include "evaluation/dataset.h"
+#include "evaluation/evaluation_runner.h"
 #include "tests/support/coil_models.h"
+#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -72,6 +78,75 @@ TEST(RejectionCalibrationTest, ThresholdIsTheLargestNullValueWhoseBoundMeetsTheT
   // Windows longer than the calibrated ones use the longest one's null.
   EXPECT_EQ(calibration.NullThreshold(64, 0.15),
             calibration.NullThreshold(kCalibratedWindowLengths, 0.15));
+}
+
+TEST(RejectionCalibrationTest, TheKnownShareRaisesTheThresholdWithinItsBounds) {
+  const RejectionCalibration& calibration = KnownCalibration();
+  int raised = 0;  // the cases where the known windows set the threshold
+  for (const int n : {1, 4, 8}) {
+    const double most = calibration.NullThreshold(n, kMostFalseAcceptRate);
+    for (const double rate : {0.02, 0.08, 0.5}) {
+      const double least = calibration.NullThreshold(n, rate);
+      // Without the known share: the null's threshold alone.
+      EXPECT_EQ(calibration.Threshold(n, rate, 0), least) << "n " << n << ", rate " << rate;
+      for (const double share : {0.5, 0.95, 0.999}) {
+        const double threshold = calibration.Threshold(n, rate, share);
+        const std::string where = "n " + std::to_string(n) + ", rate " + std::to_string(rate) +
+                                  ", share " + std::to_string(share);
+        // Never below the target's threshold, never raised above the most's.
+        EXPECT_GE(threshold, least) << where;
+        EXPECT_LE(threshold, std::max(least, most)) << where;
+        if (threshold > least && threshold < most) {
+          // Raised exactly to where the share of the known windows is accepted.
+          ++raised;
+          EXPECT_GE(calibration.KnownAcceptRate(threshold, n), share) << where;
+          EXPECT_LE(calibration.KnownAcceptRate(std::nextafter(threshold, 0.0), n), share) << where;
+        } else if (threshold == least && least < most) {
+          // Not raised: the target's threshold accepted the share already.
+          EXPECT_GE(calibration.KnownAcceptRate(threshold, n), share) << where;
+        }
+      }
+    }
+  }
+  EXPECT_GT(raised, 0);
+}
+
+// Nine of eth-80-dev's toy cars enrolled (objects 11-19), each view cut to its box grown by 10% a
+// side, and car9 (object 20) left out. A left-out car looks about as known as an enrolled car's
+// own windows, so the null's threshold at the product's target rejects known cars too (21 of
+// 27 queries right and accepted at n = 4); the known share raises it to accept more of them (25
+// of 27), and the unknown car is still rejected.
+TEST(RejectionCalibrationTest, TheKnownShareAcceptsLookAlikeCarsAndStillRejectsAnUnknownOne) {
+  const auto folder = testing::DataDir() / "eth-80-dev";
+  DatasetSelection selection;
+  selection.layout = "manifest";
+  selection.manifest = folder / "ring.csv";
+  selection.objects = "11-19";
+  selection.unknown_objects = "20";
+  SelectedImages images = SelectDataset(selection);
+  const auto boxes = ReadBoxes(folder / "boxes.csv");
+  AttachBoxes(images.known, boxes, 0.1);
+  AttachBoxes(images.unknown, boxes, 0.1);
+  const auto run = [&images](double known_accept_rate) {
+    EvaluationOptions options;
+    options.methods = {std::string(kProductMethod)};
+    options.distortions = {ParseDistortionSpec("df")};
+    options.query_lengths = {4};
+    options.trials = 3;
+    options.seed = 5;
+    options.engine.known_accept_rate = known_accept_rate;
+    const EvaluationReport report = RunEvaluation(images.known, images.unknown, options);
+    EXPECT_EQ(report.cells.size(), 1u);
+    return report.cells.at(0);
+  };
+  const EvaluationCell null_alone = run(0);
+  const EvaluationCell product = run(Product().options.known_accept_rate);
+  ASSERT_EQ(product.trials, 27);
+  ASSERT_EQ(product.unknown_trials, 3);
+  EXPECT_LE(null_alone.accepted, 22) << "of 27";
+  EXPECT_GE(product.accepted, 24) << "of 27";
+  EXPECT_EQ(null_alone.rejected, 3) << "of 3";
+  EXPECT_EQ(product.rejected, 3) << "of 3";
 }
 
 TEST(RejectionCalibrationTest, FewObjectsBoundTheShareFurtherBelowTheTarget) {

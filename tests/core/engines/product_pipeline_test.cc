@@ -34,6 +34,9 @@ TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
   EXPECT_THAT(text, HasSubstr("then a 12 x 4 x 4 hue-saturation-value histogram of the object's "
                               "colours, its background's taken off, and 4 x 4 cells of 9 "
                               "gradient orientations)"));
+  // The calibrated rule's target, raised for the known objects' windows where look-alikes need it.
+  EXPECT_EQ(Product().options.false_accept_rate, 0.17);
+  EXPECT_EQ(Product().options.known_accept_rate, 0.95);
   EXPECT_THAT(text, HasSubstr("; above 5000 objects, each frame scores the 8 objects whose sector "
                               "summaries are most like it"));
 }
