@@ -76,8 +76,8 @@ struct Method {
 // The method called `name` in a run whose engines take `run`: an engine of EngineNames() with
 // `run`, or kProductMethod, the product pipeline (core/engines/product_pipeline.h): its engine
 // with its own options, the window raised and the false-accept and known-accept rates set as the
-// run's, and the
-// run's object candidates when it sets them (candidate_objects > 0), on its own variant only.
+// run's, and the run's object candidates when it sets them (candidate_objects > 0), on its own
+// variant only.
 // Throws std::invalid_argument for any other name.
 Method ResolveMethod(std::string_view name, const EngineOptions& run) {
   if (name != kProductMethod) return {FindEngine(name).name, run, OnlyVariant(name)};

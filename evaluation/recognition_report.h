@@ -39,10 +39,11 @@ std::string ReliabilityMarkdown(const EvaluationReport& report);
 // The threshold sweep (`orbit eval --recognition-plot`): for targets t from 0.01 to 1, the
 // share of known queries right and accepted (accepted: p-value <= t) against the share of
 // unknown queries accepted, one panel per variant x distortion, one line per method x n. The
-// product's operating point is t = its false_accept_rate. The curves are the null's rule alone:
-// the known ceiling (docs/design.md#known-ceiling) does not move with t and is left out, so
-// where it holds the threshold the decisions in the tables accept fewer queries than the curve
-// at t. Throws std::invalid_argument when no
+// curves are the null's rule alone: the known share (docs/design.md#known-share) and the known
+// ceiling (docs/design.md#known-ceiling) do not move with t and are left out, so the decisions
+// in the tables lie on the curve at t = false_accept_rate only where neither moves the
+// threshold (the share raises it among look-alikes, the ceiling holds it on few objects).
+// Throws std::invalid_argument when no
 // cell has both known and unknown queries.
 LineFigure RecognitionCurves(const EvaluationReport& report);
 

@@ -376,15 +376,15 @@ v1::RuleEstimate EstimateRule(const RejectionCalibration& calibration,
   v1::RuleEstimate estimate;
   if (!calibration.calibrated()) return estimate;
   const int frames = std::min(defaults.window, kCalibratedWindowLengths);
-  const double null_threshold =
+  const double rule_threshold =
       calibration.Threshold(frames, defaults.false_accept_rate, defaults.known_accept_rate);
   const double ceiling = calibration.KnownCeiling(frames);
-  const double threshold = std::min(null_threshold, ceiling);
+  const double threshold = std::min(rule_threshold, ceiling);
   estimate.set_objects(calibration.sampled_objects());
   estimate.set_frames(frames);
   estimate.set_unknown_accepted(calibration.NullShare(threshold, frames));
   estimate.set_known_accepted(calibration.KnownAcceptRate(threshold, frames));
-  estimate.set_held_by_known_ceiling(ceiling < null_threshold);
+  estimate.set_held_by_known_ceiling(ceiling < rule_threshold);
   return estimate;
 }
 
