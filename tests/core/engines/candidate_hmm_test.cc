@@ -9,7 +9,6 @@
 #include "core/engines/orientation_hmm.h"
 #include "core/index/view_index.h"
 #include "tests/support/coil_models.h"
-#include "tests/support/test_data.h"
 
 namespace orbit {
 namespace {
@@ -110,23 +109,6 @@ TEST(CandidateHmmTest, ASessionSwitchesEnginesAsItsCatalogueCrossesTheLimit) {
   }
   EXPECT_EQ(back.frame_index, 7);
   EXPECT_EQ(back.ranking[0].object, 4);
-}
-
-TEST(CandidateHmmTest, CandidateOptionsOutsideTheirRangesAreRefused) {
-  // The message ValidateEngineOptions gives for the default options changed by `change`.
-  const auto message = [](void (*change)(EngineOptions&)) {
-    return testing::ErrorMessageOf([change] {
-      EngineOptions options;
-      change(options);
-      ValidateEngineOptions(options);
-    });
-  };
-  EXPECT_EQ(message([](EngineOptions& o) { o.candidate_objects = kMaxCandidateObjects + 1; }),
-            "engine option candidate_objects must be in 0..4096, got 4097");
-  EXPECT_EQ(message([](EngineOptions& o) { o.candidate_objects = -1; }),
-            "engine option candidate_objects must be in 0..4096, got -1");
-  EXPECT_EQ(message([](EngineOptions& o) { o.candidates_above = -1; }),
-            "engine option candidates_above must be in 0..1000000000, got -1");
 }
 
 }  // namespace

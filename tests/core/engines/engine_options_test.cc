@@ -1,5 +1,5 @@
-// EngineOptions: the calibrated rule's two rates are refused outside their ranges with one
-// message naming the option and the range.
+// EngineOptions: options outside their ranges are refused with one message naming the option
+// and the range.
 #include "core/engines/engine_options.h"
 
 #include <string>
@@ -32,6 +32,15 @@ TEST(EngineOptionsTest, TheRulesRatesAreRefusedOutsideTheirRanges) {
   EXPECT_NO_THROW(ValidateEngineOptions(options));
   options.known_accept_rate = 0;
   EXPECT_NO_THROW(ValidateEngineOptions(options));
+}
+
+TEST(EngineOptionsTest, CandidateOptionsOutsideTheirRangesAreRefused) {
+  EXPECT_EQ(MessageFor([](EngineOptions& o) { o.candidate_objects = kMaxCandidateObjects + 1; }),
+            "engine option candidate_objects must be in 0..4096, got 4097");
+  EXPECT_EQ(MessageFor([](EngineOptions& o) { o.candidate_objects = -1; }),
+            "engine option candidate_objects must be in 0..4096, got -1");
+  EXPECT_EQ(MessageFor([](EngineOptions& o) { o.candidates_above = -1; }),
+            "engine option candidates_above must be in 0..1000000000, got -1");
 }
 
 }  // namespace
