@@ -9,7 +9,9 @@
 // docs/results/recognition.md, "Cost"; docs/service.md). A session waits only for the
 // very first calibration, when the server started with fewer than two objects. A burst of
 // changes costs one recalibration per change it cannot coalesce, on one thread that runs on the
-// core's idle time (SCHED_IDLE, thread_priority.h), so it never takes the core from a session;
+// core's idle time (SCHED_IDLE, thread_priority.h) once there is a calibration, so it never
+// takes the core from a session; the first calibration, which sessions wait for, is made at
+// their priority (docs/design.md#recalibration);
 // it still streams the whole model set through the caches, which slows the sessions' frames
 // while it runs (docs/results/load.md, "At 1000 objects with the product default, again"),
 // hence the wait for a change worth it.
@@ -17,6 +19,9 @@
 // Thread-safe.
 #pragma once
 
+#include <sys/types.h>
+
+#include <atomic>
 #include <chrono>
 #include <cstdint>
 #include <memory>
@@ -43,7 +48,7 @@ class RejectionCalibrator {
  public:
   // Calibrates `initial` before returning, on every CPU the process may use (whatever
   // `options.threads` says), and starts the background thread, whose recalibrations use
-  // `options` as given, at idle priority.
+  // `options` as given, at idle priority once a calibration exists.
   explicit RejectionCalibrator(std::shared_ptr<const ViewIndexSnapshot> initial,
                                CalibrationOptions options = {});
   // Stops the background thread (a recalibration under way is finished first).
@@ -64,6 +69,9 @@ class RejectionCalibrator {
   void TEST_WaitFor(const ViewIndexSnapshot& snapshot) ABSL_LOCKS_EXCLUDED(mutex_);
   bool TEST_WaitFor(const ViewIndexSnapshot& snapshot, std::chrono::milliseconds timeout)
       ABSL_LOCKS_EXCLUDED(mutex_);
+  // The background thread's scheduling policy as Linux holds it (SCHED_IDLE, SCHED_OTHER), or -1
+  // when it cannot be read. Tests only.
+  int TEST_SchedulingPolicy();
 
  private:
   void Run() ABSL_LOCKS_EXCLUDED(mutex_);
@@ -84,6 +92,7 @@ class RejectionCalibrator {
   std::shared_ptr<const ViewIndexSnapshot> requested_ ABSL_GUARDED_BY(mutex_);     // null: none
   std::chrono::steady_clock::time_point first_requested_ ABSL_GUARDED_BY(mutex_);  // pending since
   bool stop_ ABSL_GUARDED_BY(mutex_) = false;
+  std::atomic<pid_t> thread_id_ = 0;  // the background thread's Linux id, once it runs (tests)
   std::thread thread_;
 };
 

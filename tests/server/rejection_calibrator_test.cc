@@ -2,6 +2,8 @@
 // except for the very first calibration, and only once the model set has changed enough.
 #include "server/rejection_calibrator.h"
 
+#include <sched.h>
+
 #include <chrono>
 #include <vector>
 
@@ -38,17 +40,24 @@ TEST(RejectionCalibratorTest, RecalibratesInTheBackgroundAfterAChange) {
   EXPECT_EQ(after->sampled_objects(), 5);
   // The same snapshot again asks for nothing new.
   EXPECT_EQ(calibrator.For(changed), after);
+  // With a calibration to keep serving, recalibrations run on the core's idle time only.
+  EXPECT_EQ(calibrator.TEST_SchedulingPolicy(), SCHED_IDLE);
 }
 
 TEST(RejectionCalibratorTest, WaitsOnlyForTheFirstCalibration) {
   ViewIndex index(CoilObjects(1, 1, EvenView));
   RejectionCalibrator calibrator(index.Snapshot());
   EXPECT_FALSE(calibrator.For(index.Snapshot())->calibrated());  // one object: none possible
+  // Sessions will wait for the first calibration, so it is not left to idle time, which a
+  // saturated machine never has.
+  EXPECT_EQ(calibrator.TEST_SchedulingPolicy(), SCHED_OTHER);
   index.Add(CoilObjects(2, 2, EvenView)[0]);
   // No calibration yet and now one is possible: this call waits for it.
   const auto first = calibrator.For(index.Snapshot());
   EXPECT_TRUE(first->calibrated());
   EXPECT_EQ(first->sampled_objects(), 2);
+  // Once there is one, the thread gives the cores back to the sessions.
+  EXPECT_EQ(calibrator.TEST_SchedulingPolicy(), SCHED_IDLE);
 }
 
 TEST(RejectionCalibratorTest, RecalibrationIsDueAfterOnePercentOfTheObjectsOrFiveMinutes) {
