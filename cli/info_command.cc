@@ -47,6 +47,7 @@ nlohmann::ordered_json InfoJson(const v1::ServerInfoResponse& info) {
         {"hmm_states", d.hmm_states()},
         {"rejection", RejectionText(d.rejection())},
         {"false_accept_rate", d.false_accept_rate()},
+        {"known_accept_rate", d.known_accept_rate()},
         {"threshold", d.threshold()}}},
       {"rule_estimate",
        {{"objects", info.rule_estimate().objects()},
@@ -90,7 +91,8 @@ int RunInfo(const InfoOptions& options) {
             << ", window " << d["window"] << ", w " << d["w"] << ", N_L " << d["list_length"]
             << ", HMM states " << d["hmm_states"] << ", rejection "
             << d["rejection"].get<std::string>() << " (false-accept rate " << d["false_accept_rate"]
-            << ", threshold " << d["threshold"] << ")\n"
+            << ", known-accept rate " << d["known_accept_rate"] << ", threshold " << d["threshold"]
+            << ")\n"
             << "limits    " << l["max_sessions"] << " sessions, " << l["max_frames_per_second"]
             << " frames/s per session, window <= " << l["max_window"]
             << ", messages <= " << l["max_message_bytes"] << " bytes, " << l["max_views_per_object"]

@@ -35,6 +35,12 @@ void AddSessionFlags(CLI::App& command, SessionFlags& flags) {
       .add_option("--false-accept-rate", flags.options.false_accept_rate,
                   "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
       ->check(CLI::Range(1e-6, 1 - 1e-6));
+  command
+      .add_option("--known-accept-rate", flags.options.known_accept_rate,
+                  "the calibrated rule's known share: where the enrolled objects look alike, the "
+                  "threshold is raised until this share of their own windows is accepted, in "
+                  "[0, 1); 0: the target rate alone")
+      ->check(CLI::Range(0.0, 1 - 1e-6));
   command.add_option("--threshold", flags.options.threshold,
                      "Th of the th rule: accept when T_M / Ttyp <= Th");
 }

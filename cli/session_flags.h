@@ -1,7 +1,7 @@
 // The session options of `orbit recognize` and `orbit demo` as command-line flags
 // (--engine, --top-k, --window, --w, --list-length, --hmm-states, --rejection, --false-accept-rate,
-// --threshold); a flag left out takes the server's default. Engine names are
-// api/engines/engine_names.h's.
+// --known-accept-rate, --threshold); a flag left out takes the server's default. Engine names
+// are api/engines/engine_names.h's.
 #pragma once
 
 #include <optional>

@@ -54,6 +54,7 @@ v1::SessionOptions ToProtoSessionOptions(const RecognitionOptions& options,
   if (options.threshold) open.set_threshold(*options.threshold);
   open.set_rejection(options.rejection);
   if (options.false_accept_rate) open.set_false_accept_rate(*options.false_accept_rate);
+  if (options.known_accept_rate) open.set_known_accept_rate(*options.known_accept_rate);
   open.set_variant(ToProtoVariant(variant));
   return open;
 }

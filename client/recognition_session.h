@@ -63,6 +63,7 @@ struct RecognitionOptions {
   std::optional<double> threshold;                      // Th of the accept rule REJECTION_TH
   v1::Rejection rejection = v1::REJECTION_UNSPECIFIED;  // the accept / unknown rule
   std::optional<double> false_accept_rate;              // REJECTION_CALIBRATED's target, in (0, 1)
+  std::optional<double> known_accept_rate;  // REJECTION_CALIBRATED's known share, in [0, 1)
   // The descriptor variant of the frames; unset: the server's. Setting another variant than
   // the server's ends the session with INVALID_ARGUMENT.
   std::optional<DescriptorVariant> variant;

@@ -53,6 +53,7 @@ grpc::Status ResolveSessionSettings(const v1::SessionOptions& requested,
   if (requested.hmm_states() != 0) o.hmm_states = requested.hmm_states();
   if (requested.has_threshold()) o.threshold = requested.threshold();
   if (requested.has_false_accept_rate()) o.false_accept_rate = requested.false_accept_rate();
+  if (requested.has_known_accept_rate()) o.known_accept_rate = requested.known_accept_rate();
   try {
     ValidateEngineOptions(o, "options.");
   } catch (const std::invalid_argument& e) {
@@ -80,6 +81,7 @@ v1::SessionOptions DescribeSettings(const SessionSettings& settings, DescriptorV
   o.set_threshold(settings.options.threshold);
   o.set_rejection(ToProtoRejection(settings.options.rejection));
   o.set_false_accept_rate(settings.options.false_accept_rate);
+  o.set_known_accept_rate(settings.options.known_accept_rate);
   o.set_variant(ToProtoVariant(variant));
   return o;
 }

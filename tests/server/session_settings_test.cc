@@ -32,9 +32,11 @@ TEST(SessionSettingsTest, UnsetFieldsKeepTheDefaultsAndSetOnesWin) {
   requested.set_variant(v1::CEDD_LIRE);
   requested.set_rejection(v1::REJECTION_TH);
   requested.set_false_accept_rate(0.02);
+  requested.set_known_accept_rate(0);  // an explicit 0 turns the known share off
   ASSERT_TRUE(Resolve(requested, &settings).ok());
   EXPECT_EQ(settings.options.rejection, RejectionRule::kTypicalDistance);
   EXPECT_EQ(settings.options.false_accept_rate, 0.02);
+  EXPECT_EQ(settings.options.known_accept_rate, 0.0);
   EXPECT_EQ(settings.engine, v1::ENGINE_VCI);
   EXPECT_EQ(settings.options.top_k, 3);
   EXPECT_EQ(settings.options.window, 64);
@@ -74,6 +76,10 @@ TEST(SessionSettingsTest, OutOfRangeValuesAreInvalidArgumentNamingTheField) {
        "options.false_accept_rate must be in (0, 1), got 1"},
       {[](v1::SessionOptions& o) { o.set_false_accept_rate(0); },
        "options.false_accept_rate must be in (0, 1), got 0"},
+      {[](v1::SessionOptions& o) { o.set_known_accept_rate(1); },
+       "options.known_accept_rate must be in [0, 1), got 1"},
+      {[](v1::SessionOptions& o) { o.set_known_accept_rate(-0.5); },
+       "options.known_accept_rate must be in [0, 1), got -0.5"},
       {[](v1::SessionOptions& o) { o.set_variant(v1::CEDD_FULL); },
        "options.variant is cedd-full but this server's models are cedd-lire; variants cannot be "
        "mixed"},
@@ -143,6 +149,7 @@ TEST(SessionSettingsTest, DescribeSettingsFillsEveryField) {
   EXPECT_EQ(described.threshold(), 2.0);
   EXPECT_EQ(described.rejection(), v1::REJECTION_CALIBRATED);  // the product's
   EXPECT_EQ(described.false_accept_rate(), 0.17);
+  EXPECT_EQ(described.known_accept_rate(), 0.95);
   EXPECT_EQ(described.variant(), v1::CEDD_FULL);
 }
 
