@@ -24,6 +24,10 @@
 //   rejection-calibration-every-object/<objects>
 //                                    the same, every left-out object scored against every object
 //                                    (the reference the candidates are measured by)
+//   catalogue-confidence/<objects>   one update's confidence from the calibration of the model
+//                                    set (CatalogueConfidence, core/decision/confidence.h), at
+//                                    U spread over the null's and the known windows' range, n = 8;
+//                                    fitted-confidence the logistic it replaces, for scale
 //   kd-search/coil100, exact-search/coil100
 //                                    one retrieval list (N_L = 4) over COIL-100's views at
 //                                    multiples of 10 degrees, queried with the views in between;
@@ -50,6 +54,7 @@
 #include "bench/synthetic_objects.h"
 #include "client/image_file.h"
 #include "core/base/parallel_for.h"
+#include "core/decision/confidence.h"
 #include "core/decision/rejection_calibration.h"
 #include "core/descriptor/cedd.h"
 #include "core/engines/engine_registry.h"
@@ -113,6 +118,36 @@ void BM_RejectionCalibration(benchmark::State& state, int objects, bool every_ob
     // The thresholds, to compare the candidates with the every-object reference.
     state.counters["threshold_n1"] = calibration.NullThreshold(1, 0.17);
     state.counters["threshold_n8"] = calibration.NullThreshold(8, 0.17);
+  }
+}
+
+// One update's confidence, at 64 statistics spread from the known windows' least to the null's
+// largest, cycled through.
+void BM_CatalogueConfidence(benchmark::State& state, int objects) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
+  const RejectionCalibration calibration = RejectionCalibration::FromIndex(*set.index->Snapshot());
+  constexpr int kFrames = 8;
+  const auto known = calibration.KnownWindows(kFrames);
+  const auto null = calibration.NullWindows(kFrames);
+  if (known.empty()) {
+    state.SkipWithError("no known windows");
+    return;
+  }
+  std::vector<double> statistics;
+  for (int i = 0; i < 64; ++i) {
+    statistics.push_back(known.front() + (null.back() - known.front()) * i / 63.0);
+  }
+  std::size_t next = 0;
+  for (auto _ : state) {
+    const double u = statistics[next++ % statistics.size()];
+    benchmark::DoNotOptimize(CatalogueConfidence(calibration, u, u, kFrames));
+  }
+}
+
+void BM_FittedConfidence(benchmark::State& state) {
+  std::size_t next = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(Confidence(0.5 + 0.03 * static_cast<double>(next++ % 64), 8));
   }
 }
 
@@ -316,6 +351,13 @@ int RegisterEngineBenchmarks() {
   benchmark::RegisterBenchmark("rejection-calibration-every-object/2000", BM_RejectionCalibration,
                                2000, true)
       ->Unit(benchmark::kMillisecond);
+  for (const int objects : {100, 1000}) {
+    benchmark::RegisterBenchmark(("catalogue-confidence/" + std::to_string(objects)).c_str(),
+                                 BM_CatalogueConfidence, objects)
+        ->Unit(benchmark::kMicrosecond);
+  }
+  benchmark::RegisterBenchmark("fitted-confidence", BM_FittedConfidence)
+      ->Unit(benchmark::kMicrosecond);
   for (const char* engine :
        {"vci", "hmm", "product", "product-every-object", "product-candidates:8",
         "product-candidates:16", "product-candidates:32"}) {

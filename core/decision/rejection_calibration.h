@@ -52,6 +52,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "core/index/view_index.h"
@@ -104,6 +105,8 @@ class RejectionCalibration {
                                         const CalibrationOptions& options = {});
 
   bool calibrated() const { return !null_.empty(); }
+  // Whether some object had a view outside its own neighbourhood to draw known windows from.
+  bool has_known_windows() const { return !known_.empty(); }
 
   // The largest U the null accepts for a window of `frames` frames at the target false-accept
   // rate (in (0, 1)): the largest null value whose FalseAcceptRate is at most the target; just
@@ -136,6 +139,13 @@ class RejectionCalibration {
   // objects, never below one window's worth (1 / (N + 1)). A window is accepted by the null at
   // target f iff its FalseAcceptRate is at most f. REQUIRES: calibrated(), frames >= 1.
   double FalseAcceptRate(double statistic, int frames) const;
+
+  // The sorted U of the null's windows and of the known objects' windows (empty without any) of
+  // `frames` frames. REQUIRES: calibrated(), frames >= 1.
+  std::span<const double> NullWindows(int frames) const { return Null(frames); }
+  std::span<const double> KnownWindows(int frames) const {
+    return known_.empty() ? std::span<const double>() : std::span<const double>(Known(frames));
+  }
 
   // The objects and views the null was drawn from.
   int sampled_objects() const { return sampled_objects_; }

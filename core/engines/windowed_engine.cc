@@ -149,7 +149,6 @@ void WindowedEngine::Judge(Assessment& winner, const Assessment* runner_up, Fram
   } else {
     update.unknown_statistic = UnknownStatistic(winner_rows, nullptr);
   }
-  update.confidence = Confidence(update.unknown_statistic, static_cast<int>(window_.size()));
   std::vector<std::optional<double>> noise, blur;
   for (const QueryFrame& frame : window_) {
     noise.push_back(frame.noise_sigma);
@@ -157,8 +156,24 @@ void WindowedEngine::Judge(Assessment& winner, const Assessment* runner_up, Fram
   }
   update.noise_sigma = MeanReading(noise);
   update.blur = MeanReading(blur);
+  const int frames = static_cast<int>(window_.size());
+  if (calibration_ != nullptr && calibration_->calibrated() && calibration_->has_known_windows()) {
+    const Judged judged = JudgedStatistics(update);
+    update.confidence =
+        CatalogueConfidence(*calibration_, judged.as_known, judged.as_unknown, frames);
+  } else {
+    update.confidence = Confidence(update.unknown_statistic, frames);
+  }
   update.decision = Decide(winner, update);
   update.pose = EstimatePose(window_, winner_rows);
+}
+
+WindowedEngine::Judged WindowedEngine::JudgedStatistics(const FrameUpdate& update) const {
+  const DescriptorVariant variant = index_->variant();
+  return {update.unknown_statistic -
+              WindowAllowance(update.noise_sigma, update.blur, AllowanceSlopesFor(variant)),
+          update.unknown_statistic -
+              WindowAllowance(update.noise_sigma, update.blur, KnownAllowanceSlopesFor(variant))};
 }
 
 Decision WindowedEngine::Decide(const Assessment& winner, FrameUpdate& update) const {
@@ -168,17 +183,12 @@ Decision WindowedEngine::Decide(const Assessment& winner, FrameUpdate& update) c
     // null's rise against the null's quantile, the known objects' against the known ceiling
     // (core/decision/rejection_calibration.h).
     const int frames = static_cast<int>(window_.size());
-    const DescriptorVariant variant = index_->variant();
-    const double judged =
-        update.unknown_statistic -
-        WindowAllowance(update.noise_sigma, update.blur, AllowanceSlopesFor(variant));
-    update.unknown_p_value = calibration_->FalseAcceptRate(judged, frames);
+    const Judged judged = JudgedStatistics(update);
+    update.unknown_p_value = calibration_->FalseAcceptRate(judged.as_unknown, frames);
     if (o.rejection == RejectionRule::kCalibrated) {
-      const double judged_as_known =
-          update.unknown_statistic -
-          WindowAllowance(update.noise_sigma, update.blur, KnownAllowanceSlopesFor(variant));
-      return judged <= calibration_->Threshold(frames, o.false_accept_rate, o.known_accept_rate) &&
-                     judged_as_known <= calibration_->KnownCeiling(frames)
+      return judged.as_unknown <= calibration_->Threshold(frames, o.false_accept_rate,
+                                                          o.known_accept_rate) &&
+                     judged.as_known <= calibration_->KnownCeiling(frames)
                  ? Decision::kAccept
                  : Decision::kUnknown;
     }

@@ -84,6 +84,13 @@ class WindowedEngine : public RecognitionEngine {
   void Judge(Assessment& winner, const Assessment* runner_up, FrameUpdate& update);
   // The decision of the options' rule; `update` holds the unknown statistic and readings.
   Decision Decide(const Assessment& winner, FrameUpdate& update) const;
+  // U less what the window's noise and blur add to it: to an unknown object's (the null's
+  // allowance) and to a known one's (core/decision/quality_allowance.h).
+  struct Judged {
+    double as_unknown = 0;
+    double as_known = 0;
+  };
+  Judged JudgedStatistics(const FrameUpdate& update) const;
   // Active vision among the ranked objects scoring within the margin of the winner.
   SuggestedMove SuggestNextMove(std::span<Assessment> ranked);
 

@@ -16,6 +16,7 @@
 #include "evaluation/dataset.h"
 #include "evaluation/evaluation_runner.h"
 #include "tests/support/coil_models.h"
+#include "tests/support/eth_images.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -117,16 +118,7 @@ TEST(RejectionCalibrationTest, TheKnownShareRaisesTheThresholdWithinItsBounds) {
 // 27 queries right and accepted at n = 4); the known share raises it to accept more of them (25
 // of 27), and the unknown car is still rejected.
 TEST(RejectionCalibrationTest, TheKnownShareAcceptsLookAlikeCarsAndStillRejectsAnUnknownOne) {
-  const auto folder = testing::DataDir() / "eth-80-dev";
-  DatasetSelection selection;
-  selection.layout = "manifest";
-  selection.manifest = folder / "ring.csv";
-  selection.objects = "11-19";
-  selection.unknown_objects = "20";
-  SelectedImages images = SelectDataset(selection);
-  const auto boxes = ReadBoxes(folder / "boxes.csv");
-  AttachBoxes(images.known, boxes, 0.1);
-  AttachBoxes(images.unknown, boxes, 0.1);
+  const SelectedImages images = testing::CroppedEthRing("11-19", "20");
   const auto run = [&images](double known_accept_rate) {
     EvaluationOptions options;
     options.methods = {std::string(kProductMethod)};
