@@ -5,7 +5,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -81,8 +80,9 @@ TEST(CatalogueConfidenceTest, FollowsWhichWindowsLookLikeTheWindow) {
   const RejectionCalibration& calibration = CoilCalibration();
   const auto median = [](auto share) {
     double low = -10, high = 10;
-    for (int step = 0; step < 60; ++step)
+    for (int step = 0; step < 60; ++step) {
       ((share((low + high) / 2) >= 0.5) ? high : low) = (low + high) / 2;
+    }
     return high;
   };
   for (const int n : {1, 4}) {
