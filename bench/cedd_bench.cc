@@ -5,11 +5,13 @@
 // The product's budgets: product-describe/640x480, the device side of the product
 // pipeline on one frame (core/engines/product_pipeline.h: cedd-robust), at most 6x
 // bgr2gray/640x480; product-enroll-view/128x128, what enrolling one view costs (descriptor, its
-// distorted copies and typical distance: DescribeView), under 10 ms. Run: build/orbit_bench
-// --benchmark_filter='cedd|bgr2gray|noise-estimate|product-'
+// distorted copies and typical distance: DescribeView), under 10 ms, and view-distortion/*, the
+// two copies alone. Run: build/orbit_bench
+// --benchmark_filter='cedd|bgr2gray|noise-estimate|product-|view-distortion'
 
 #include <benchmark/benchmark.h>
 
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -21,6 +23,7 @@
 #include "bench/bench_data.h"
 #include "client/image_file.h"
 #include "core/descriptor/cedd.h"
+#include "core/descriptor/distortion.h"
 #include "core/descriptor/noise_estimate.h"
 #include "core/descriptor/view_description.h"
 #include "core/engines/product_pipeline.h"
@@ -57,6 +60,20 @@ void BM_NoiseEstimate(benchmark::State& state, int width, int height) {
   for (auto _ : state) benchmark::DoNotOptimize(EstimateNoiseSigma(frame));
 }
 
+// The two distorted copies a view's typical distance describes (core/descriptor/distortion.h).
+void BM_MotionBlur(benchmark::State& state, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  for (auto _ : state) benchmark::DoNotOptimize(MotionBlur(frame));
+}
+
+void BM_GaussianNoise(benchmark::State& state, int width, int height) {
+  const cv::Mat frame = Frame(width, height);
+  std::uint64_t seed = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(AddGaussianNoise(frame, kGaussianNoiseVariance, ++seed));
+  }
+}
+
 // What a view costs to enroll in the product's variant.
 void BM_EnrollView(benchmark::State& state, int width, int height) {
   const cv::Mat frame = Frame(width, height);
@@ -77,6 +94,10 @@ int RegisterCeddBenchmarks() {
   benchmark::RegisterBenchmark("bgr2gray/640x480", BM_Bgr2Gray, 640, 480);
   benchmark::RegisterBenchmark("product-describe/640x480", BM_Cedd, Product().variant, 640, 480);
   benchmark::RegisterBenchmark("product-enroll-view/128x128", BM_EnrollView, 128, 128)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("view-distortion/motion-blur/128x128", BM_MotionBlur, 128, 128)
+      ->Unit(benchmark::kMicrosecond);
+  benchmark::RegisterBenchmark("view-distortion/gaussian-noise/128x128", BM_GaussianNoise, 128, 128)
       ->Unit(benchmark::kMicrosecond);
   benchmark::RegisterBenchmark("noise-estimate/128x128", BM_NoiseEstimate, 128, 128);
   benchmark::RegisterBenchmark("noise-estimate/640x480", BM_NoiseEstimate, 640, 480);
