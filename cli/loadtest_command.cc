@@ -37,6 +37,7 @@
 #include "core/base/parallel_for.h"
 #include "core/descriptor/cedd.h"
 #include "evaluation/dataset.h"
+#include "server/connection_limits.h"
 
 namespace orbit::cli {
 namespace {
@@ -463,7 +464,11 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
       ->add_option("--connections", options->connections,
                    "TCP connections the sessions are spread over, round robin: 1 (the\n"
                    "default, as ghz) multiplexes every session on one connection; as many as\n"
-                   "--sessions gives each session its own, as separate devices would")
+                   "--sessions gives each session its own, as separate devices would. A server\n"
+                   "opens at most its --max-streams-per-connection calls (" +
+                       std::to_string(server::ConnectionLimits{}.max_streams_per_connection) +
+                       " by default) on one\n"
+                       "connection and holds the sessions beyond them until others end")
       ->check(CLI::Range(1, 100000))
       ->capture_default_str();
   CLI::Option_group* mode = command->add_option_group("mode", "give exactly one");
@@ -529,6 +534,19 @@ void AddLoadtestCommand(CLI::App& app, int& exit_code) {
       throw CLI::ValidationError("--connections",
                                  "must be in 1..--sessions (" + std::to_string(options->sessions) +
                                      "), got " + std::to_string(options->connections));
+    }
+    const int per_connection =
+        (options->sessions + options->connections - 1) / options->connections;
+    const int server_default = server::ConnectionLimits{}.max_streams_per_connection;
+    if (per_connection > server_default) {
+      std::cerr << "orbit loadtest: warning: " << per_connection
+                << " sessions on one connection; a server with the default "
+                   "--max-streams-per-connection ("
+                << server_default
+                << ") holds those beyond it until others end, and their frames' round trips "
+                   "count from when they were due: give --connections "
+                << (options->sessions + server_default - 1) / server_default
+                << " or more, or raise the server's limit" << std::endl;
     }
     exit_code = RunLoadtest(*options);
   });

@@ -234,6 +234,17 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
   cmd->add_option("--window", c.session_defaults.options.window, "default window W")
       ->check(CLI::Range(1, kMaxWindow))
       ->capture_default_str();
+  cmd->add_option("--candidates-above", c.candidates_above,
+                  "sessions' HMM scores only the " + std::to_string(kProductCandidateObjects) +
+                      " objects per frame whose sector summaries the index finds most like it "
+                      "once the model set holds more than this many objects, and every object "
+                      "below (default: " +
+                      std::to_string(kProductCandidatesAbove) +
+                      " for a variant with appearance channels, " +
+                      std::to_string(kCeddCandidatesAbove) +
+                      " for the CEDD-only ones, where each costs less; "
+                      "docs/design.md#object-candidates)")
+      ->check(CLI::Range(0, kMaxCandidatesAbove));
   cmd->add_option("--rejection", o->rejection,
                   "default accept / unknown rule: calibrated (the product's: a threshold from "
                   "--false-accept-rate, computed from the model set) or th (the thesis' rule in "

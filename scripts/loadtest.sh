@@ -19,7 +19,8 @@
 # LOAD_CPU (1), OBJECTS (100 or 1000), CONNECTIONS (one: every session of a row on one TCP
 # connection, as ghz does; each: a connection per session, as separate devices would have), DB
 # (BUILD_DIR/loadtest/coil<OBJECTS>.db), OUT (BUILD_DIR/loadtest/<time>), COMMIT (the commit
-# BUILD_DIR was built from, for the table's heading; default the checkout's HEAD).
+# BUILD_DIR was built from, for the table's heading; default the checkout's HEAD), SERVE_FLAGS
+# (more flags for `orbit serve`, e.g. "--candidates-above 5000"; default none).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -63,9 +64,12 @@ fi
 cp "$db" "$out/models.db"
 
 # --max-fps: a closed-loop session sends thousands of frames per second, far above the default 60.
-# --max-sessions: the soak opens 500.
+# --max-sessions: the soak opens 500. --max-streams-per-connection: with CONNECTIONS=one every
+# session of a row is a call on one connection, and the default (100 calls) would hold the
+# sessions beyond it until others end, their frames' round trips counted from when they were due.
 taskset -c "$server_cpu" "$orbit" serve --db "$out/models.db" --listen "127.0.0.1:$port" \
-  --max-fps 1000000 --max-sessions 1000 2>"$out/serve.log" &
+  --max-fps 1000000 --max-sessions 1000 --max-streams-per-connection 1000 ${SERVE_FLAGS:-} \
+  2>"$out/serve.log" &
 server=$!
 trap 'kill "$server" 2>/dev/null || true; wait "$server" 2>/dev/null || true' EXIT
 for _ in $(seq 100); do
@@ -152,7 +156,7 @@ else
 fi
 sharing="every session of a row on one TCP connection"
 [[ "$connections" == each ]] && sharing="a TCP connection per session"
-echo "Commit $commit$dirty, $objects objects x 72 views, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row, $sharing; JSON in $out."
+echo "Commit $commit$dirty, $objects objects x 72 views, $(nproc) CPUs ($(lscpu | sed -n 's/^Model name: *//p')), $duration s per row, $sharing${SERVE_FLAGS:+, orbit serve $SERVE_FLAGS}; JSON in $out."
 echo
 echo "| load | engine | frames/s | RTT p50 (ms) | p90 | p99 | max | server processing p50 / p99 (us) | server CPU per frame (us) | generator CPU per frame (us) | server RSS start -> end (MB) | errors | load avg before |"
 echo "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: | --- | --- | ---: |"

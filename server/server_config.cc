@@ -35,6 +35,12 @@ void ValidateServerConfig(const ServerConfig& config) {
                                 std::to_string(config.limits.max_hmm_cells));
   }
   ValidateEngineOptions(config.session_defaults.options);
+  if (config.candidates_above &&
+      (*config.candidates_above < 0 || *config.candidates_above > kMaxCandidatesAbove)) {
+    throw std::invalid_argument("--candidates-above must be in 0.." +
+                                std::to_string(kMaxCandidatesAbove) + ", got " +
+                                std::to_string(*config.candidates_above));
+  }
   ValidateConnectionLimits(config.connections);
   if (config.store_grace_seconds < 0) {
     throw std::invalid_argument("--store-grace " + std::to_string(config.store_grace_seconds) +
@@ -122,6 +128,14 @@ std::string ServerConfig::Describe() const {
   } else {
     out << " (Th " << d.options.threshold << ")\n";
   }
+  out << "  candidates          " << d.options.candidate_objects
+      << " objects a frame, proposed by the index, above "
+      << (candidates_above ? std::to_string(*candidates_above)
+          : variant        ? std::to_string(ProductCandidatesAbove(*variant))
+                           : "the variant's (" + std::to_string(kProductCandidatesAbove) +
+                          " with appearance channels, " + std::to_string(kCeddCandidatesAbove) +
+                          " without)")
+      << " objects\n";
   out << "  limits              " << limits.max_sessions << " sessions, "
       << limits.max_frames_per_second << " frames/s per session, window <= " << limits.max_window
       << ", HMM window x states <= " << limits.max_hmm_cells

@@ -35,9 +35,13 @@ struct ServerConfig {
   // who can reach the port: refused unless explicitly allowed.
   bool allow_remote_without_tokens = false;
   // Of every model and session. Unset: the variant of the objects the store holds (StoreVariant),
-  // or the product's (core/engines/product_pipeline.h: cedd-robust) for an empty store, so a store
-  // built with an older default keeps serving without a flag.
+  // or the product's (core/engines/product_pipeline.h) for an empty store, so a store built with
+  // an older default keeps serving without a flag.
   std::optional<DescriptorVariant> variant;
+  // Sessions' HMM scores only candidate objects once the model set holds more than this many
+  // (EngineOptions::candidates_above of session_defaults, set by OrbitServer once the variant is
+  // known). Unset: ProductCandidatesAbove(variant).
+  std::optional<int> candidates_above;
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;

@@ -7,6 +7,10 @@
 
 namespace orbit {
 
+int ProductCandidatesAbove(DescriptorVariant variant) {
+  return HasAppearanceChannels(variant) ? kProductCandidatesAbove : kCeddCandidatesAbove;
+}
+
 const ProductPipeline& Product() {
   static const ProductPipeline product;
   return product;

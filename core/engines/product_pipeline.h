@@ -19,11 +19,18 @@ namespace orbit {
 // The method name `orbit eval` gives the product pipeline.
 inline constexpr std::string_view kProductMethod = "product";
 
-// Above kProductCandidatesAbove objects a session scores only the objects the index proposes,
-// kProductCandidateObjects per frame (EngineOptions::candidate_objects; why these:
-// docs/results/scale.md).
+// Above some number of objects a session scores only the objects the index proposes,
+// kProductCandidateObjects per frame (EngineOptions::candidate_objects), where scoring every
+// object's sector table costs more than proposing candidates. That table's cost grows with the
+// frame's non-zero values: a variant with appearance channels (whose gradient cells are dense)
+// crosses over at kProductCandidatesAbove objects, the CEDD-only variants (a few dozen non-zero
+// bins) at kCeddCandidatesAbove. Why these: docs/design.md#object-candidates.
 inline constexpr int kProductCandidateObjects = 8;
-inline constexpr int kProductCandidatesAbove = 5000;
+inline constexpr int kProductCandidatesAbove = 500;
+inline constexpr int kCeddCandidatesAbove = 5000;
+
+// The candidates_above of the product's engine on a model set in `variant`.
+int ProductCandidatesAbove(DescriptorVariant variant);
 
 struct ProductPipeline {
   DescriptorVariant variant = DescriptorVariant::kCeddHsvHog;
@@ -35,16 +42,16 @@ struct ProductPipeline {
   // show when the window holds few frames); the calibrated accept / unknown rule; and move
   // suggestions that never send the device back to a side it has seen while the other is new
   // (docs/results/recognition.md).
-  EngineOptions options = [] {
+  EngineOptions options = [](DescriptorVariant variant) {
     EngineOptions options;
     options.hmm_sharpness = kMaxHmmSharpness;
     options.nearest_view_weight = 0.5;
     options.rejection = RejectionRule::kCalibrated;
     options.move_prefers_new_side = true;
     options.candidate_objects = kProductCandidateObjects;
-    options.candidates_above = kProductCandidatesAbove;
+    options.candidates_above = ProductCandidatesAbove(variant);
     return options;
-  }();
+  }(variant);
 };
 
 // The pipeline above.

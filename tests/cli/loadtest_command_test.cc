@@ -104,6 +104,24 @@ TEST(LoadtestCommandTest, SessionsOnConnectionsOfTheirOwnAreAnsweredAlike) {
   EXPECT_EQ(report.at("errors"), nlohmann::json::object());
 }
 
+// More sessions on one connection than a server opens by default: the run says so, for the
+// sessions beyond it would wait and their frames count late, and says how to spread them.
+TEST(LoadtestCommandTest, WarnsWhenOneConnectionCarriesMoreSessionsThanAServerOpens) {
+  ScratchDir dir;
+  ServerProcess server({.database = CoilStore(dir)});
+  const std::string at = "loadtest --json --server " + server.address() + " --data " + CoilDir() +
+                         " --objects 1-2 --rate 1 --duration 0.2 --sessions 101";
+  const testing::CommandResult crowded = RunOrbit(at);
+  EXPECT_EQ(crowded.exit_code, 0) << crowded.err;
+  EXPECT_THAT(crowded.err,
+              HasSubstr("warning: 101 sessions on one connection; a server with the default "
+                        "--max-streams-per-connection (100) holds those beyond it"));
+  EXPECT_THAT(crowded.err, HasSubstr("give --connections 2 or more"));
+  const testing::CommandResult spread = RunOrbit(at + " --connections 2");
+  EXPECT_EQ(spread.exit_code, 0) << spread.err;
+  EXPECT_THAT(spread.err, ::testing::Not(HasSubstr("warning")));
+}
+
 TEST(LoadtestCommandTest, SessionsBeyondTheServersLimitAreCountedAsResourceExhausted) {
   ScratchDir dir;
   ServerProcess server({.database = CoilStore(dir), .extra_args = {"--max-sessions", "2"}});

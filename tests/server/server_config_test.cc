@@ -50,6 +50,30 @@ TEST(ServerConfigTest, DescribeNamesEngineAndLimits) {
   EXPECT_NE(text.find("access control      none (loopback only)"), std::string::npos) << text;
 }
 
+TEST(ServerConfigTest, TheCandidatesThresholdIsTheVariantsUnlessGivenAndGivenOnlyInRange) {
+  ServerConfig config;
+  EXPECT_NE(config.Describe().find("candidates          8 objects a frame, proposed by the index, "
+                                   "above the variant's (500 with appearance channels, 5000 "
+                                   "without) objects\n"),
+            std::string::npos)
+      << config.Describe();
+  config.variant = DescriptorVariant::kCeddRobust;
+  EXPECT_NE(config.Describe().find("proposed by the index, above 5000 objects\n"),
+            std::string::npos)
+      << config.Describe();
+  config.candidates_above = 0;
+  EXPECT_NE(config.Describe().find("proposed by the index, above 0 objects\n"), std::string::npos)
+      << config.Describe();
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  config.candidates_above = -1;
+  try {
+    ValidateServerConfig(config);
+    ADD_FAILURE() << "accepted -1";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "--candidates-above must be in 0..1000000000, got -1");
+  }
+}
+
 TEST(ServerConfigTest, TheStoreIsNamedWithoutItsPasswordAndAMalformedOneIsRefused) {
   ServerConfig config;
   config.database = "/var/lib/orbit/models.db";

@@ -37,8 +37,18 @@ TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
   // The calibrated rule's target, raised for the known objects' windows where look-alikes need it.
   EXPECT_EQ(Product().options.false_accept_rate, 0.17);
   EXPECT_EQ(Product().options.known_accept_rate, 0.95);
-  EXPECT_THAT(text, HasSubstr("; above 5000 objects, each frame scores the 8 objects whose sector "
+  EXPECT_THAT(text, HasSubstr("; above 500 objects, each frame scores the 8 objects whose sector "
                               "summaries are most like it"));
+}
+
+TEST(ProductPipelineTest, CandidatesTakeOverSoonerWhereEveryObjectsTableIsDense) {
+  // The appearance channels' gradient cells make every value of a frame count in every object's
+  // sector table; a CEDD-only frame has a few dozen.
+  for (const DescriptorVariant variant : kDescriptorVariants) {
+    EXPECT_EQ(ProductCandidatesAbove(variant), HasAppearanceChannels(variant) ? 500 : 5000)
+        << VariantName(variant);
+  }
+  EXPECT_EQ(Product().options.candidates_above, ProductCandidatesAbove(Product().variant));
 }
 
 // Objects 41-48, 3 trials per object and n, n = 1 and 4: 24 queries per cell, so one query is
