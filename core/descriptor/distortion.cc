@@ -7,20 +7,12 @@
 #include <stdexcept>
 #include <vector>
 
-#include "core/base/cpu_dispatch.h"
 #include "core/base/seeded_random.h"
 
 namespace orbit {
 namespace {
 
 constexpr double kMatlabEps = std::numeric_limits<double>::epsilon();  // MATLAB's eps
-
-// One tap of the motion blur along a row: sums[i] += weight * in[i]. A multiply and an add per
-// value, never fused, so both hot-loop paths give the same sums.
-ORBIT_HOT_LOOP void AddWeightedRow(double* __restrict sums, const std::uint8_t* __restrict in,
-                                   double weight, int n) {
-  for (int i = 0; i < n; ++i) sums[i] += weight * in[i];
-}
 
 void RequireEightBitImage(const cv::Mat& image, const char* function) {
   if (image.empty() || image.depth() != CV_8U || image.channels() > 4) {
@@ -128,7 +120,8 @@ cv::Mat MotionBlur(const cv::Mat& image, double length, double angle_degrees) {
       const int shift = tap.dx * channels;
       const int begin = std::max(0, -tap.dx) * channels;
       const int end = std::min(image.cols, image.cols - tap.dx) * channels;
-      RunHotLoop<AddWeightedRow>(sums.data() + begin, in + begin + shift, tap.weight, end - begin);
+      const double weight = tap.weight;
+      for (int i = begin; i < end; ++i) sums[i] += weight * in[i + shift];
     }
     std::uint8_t* out = result.ptr<std::uint8_t>(y);
     for (int i = 0; i < row_values; ++i) {

@@ -8,8 +8,6 @@
 
 #include <gtest/gtest.h>
 
-#include "core/base/cpu_dispatch.h"
-
 namespace orbit {
 namespace {
 
@@ -114,45 +112,39 @@ TEST(MotionBlurTest, BlursEveryChannelOnItsOwn) {
 // imfilter's definition, pixel by pixel and tap by tap in the kernel's row-major order: the
 // blur must give these values to the last bit, whatever order its loops run in, for kernels of
 // several lengths and angles and for images narrower than the kernel.
-// On both hot-loop paths: the row sums run through RunHotLoop.
 TEST(MotionBlurTest, EqualsTheCorrelationWithTheKernelValueByValue) {
-  for (const HotLoopPath path : {HotLoopPath::kPortable, HotLoopPath::kFastest}) {
-    TEST_SetHotLoopPath(path);
-    cv::RNG rng(5);
-    for (const cv::Size size : {cv::Size(37, 23), cv::Size(5, 9)}) {
-      for (const int channels : {1, 3}) {
-        cv::Mat image(size, CV_8UC(channels));
-        rng.fill(image, cv::RNG::UNIFORM, 0, 256);
-        for (const auto& [length, angle] : std::vector<std::pair<double, double>>{
-                 {15, 20}, {9, 135}, {4.5, 90}, {21, 0}, {1, 0}}) {
-          const cv::Mat kernel = MotionBlurKernel(length, angle);
-          const cv::Mat blurred = MotionBlur(image, length, angle);
-          int differing = 0;
-          for (int y = 0; y < image.rows; ++y) {
-            for (int x = 0; x < image.cols; ++x) {
-              for (int ch = 0; ch < channels; ++ch) {
-                double sum = 0;
-                for (int r = 0; r < kernel.rows; ++r) {
-                  for (int c = 0; c < kernel.cols; ++c) {
-                    const int yy = y + r - kernel.rows / 2, xx = x + c - kernel.cols / 2;
-                    const double w = kernel.at<double>(r, c);
-                    if (w == 0 || yy < 0 || yy >= image.rows || xx < 0 || xx >= image.cols)
-                      continue;
-                    sum += w * image.ptr<std::uint8_t>(yy)[xx * channels + ch];
-                  }
+  cv::RNG rng(5);
+  for (const cv::Size size : {cv::Size(37, 23), cv::Size(5, 9)}) {
+    for (const int channels : {1, 3}) {
+      cv::Mat image(size, CV_8UC(channels));
+      rng.fill(image, cv::RNG::UNIFORM, 0, 256);
+      for (const auto& [length, angle] :
+           std::vector<std::pair<double, double>>{{15, 20}, {9, 135}, {4.5, 90}, {21, 0}, {1, 0}}) {
+        const cv::Mat kernel = MotionBlurKernel(length, angle);
+        const cv::Mat blurred = MotionBlur(image, length, angle);
+        int differing = 0;
+        for (int y = 0; y < image.rows; ++y) {
+          for (int x = 0; x < image.cols; ++x) {
+            for (int ch = 0; ch < channels; ++ch) {
+              double sum = 0;
+              for (int r = 0; r < kernel.rows; ++r) {
+                for (int c = 0; c < kernel.cols; ++c) {
+                  const int yy = y + r - kernel.rows / 2, xx = x + c - kernel.cols / 2;
+                  const double w = kernel.at<double>(r, c);
+                  if (w == 0 || yy < 0 || yy >= image.rows || xx < 0 || xx >= image.cols) continue;
+                  sum += w * image.ptr<std::uint8_t>(yy)[xx * channels + ch];
                 }
-                differing += blurred.ptr<std::uint8_t>(y)[x * channels + ch] !=
-                             cv::saturate_cast<std::uint8_t>(std::round(sum));
               }
+              differing += blurred.ptr<std::uint8_t>(y)[x * channels + ch] !=
+                           cv::saturate_cast<std::uint8_t>(std::round(sum));
             }
           }
-          EXPECT_EQ(differing, 0) << size << " x" << channels << ", length " << length << ", angle "
-                                  << angle << ", path " << static_cast<int>(path);
         }
+        EXPECT_EQ(differing, 0) << size << " x" << channels << ", length " << length << ", angle "
+                                << angle;
       }
     }
   }
-  TEST_SetHotLoopPath(HotLoopPath::kFastest);
 }
 
 TEST(MotionBlurTest, RejectsImagesItCannotBlur) {
