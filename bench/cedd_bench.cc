@@ -3,7 +3,7 @@
 //
 // Frames are a real photograph from the conformance set, resized (INTER_AREA) to each size.
 // The product's budgets: product-describe/640x480, the device side of the product
-// pipeline on one frame (core/engines/product_pipeline.h: cedd-robust), at most 6x
+// pipeline on one frame (core/engines/product_pipeline.h, its variant), at most 6x
 // bgr2gray/640x480; product-enroll-view/128x128, what enrolling one view costs (descriptor, its
 // distorted copies and typical distance: DescribeView), under 10 ms, and view-distortion/*, the
 // two copies alone. Run: build/orbit_bench

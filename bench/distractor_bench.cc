@@ -5,7 +5,8 @@
 // enrollment report add. The parts: distractor-render/128x128 paints one view from its cast rays;
 // the distortions and the description of one view are in cedd_bench.cc
 // (view-distortion/*, cedd-hsv-hog/128x128, product-enroll-view/128x128).
-// Run: build/orbit_bench --benchmark_filter='distractor|view-distortion|product-enroll|cedd-hsv-hog/128'
+// Run: build/orbit_bench
+// --benchmark_filter='distractor|view-distortion|product-enroll|cedd-hsv-hog/128'
 
 #include <benchmark/benchmark.h>
 
