@@ -34,13 +34,10 @@ void ValidateServerConfig(const ServerConfig& config) {
                                 " HMM states) is above --max-hmm-cells " +
                                 std::to_string(config.limits.max_hmm_cells));
   }
-  ValidateEngineOptions(config.session_defaults.options);
-  if (config.candidates_above &&
-      (*config.candidates_above < 0 || *config.candidates_above > kMaxCandidatesAbove)) {
-    throw std::invalid_argument("--candidates-above must be in 0.." +
-                                std::to_string(kMaxCandidatesAbove) + ", got " +
-                                std::to_string(*config.candidates_above));
-  }
+  // The sessions' options as OrbitServer will run them, given threshold included.
+  EngineOptions sessions = config.session_defaults.options;
+  if (config.candidates_above) sessions.candidates_above = *config.candidates_above;
+  ValidateEngineOptions(sessions);
   ValidateConnectionLimits(config.connections);
   if (config.store_grace_seconds < 0) {
     throw std::invalid_argument("--store-grace " + std::to_string(config.store_grace_seconds) +

@@ -70,7 +70,7 @@ TEST(ServerConfigTest, TheCandidatesThresholdIsTheVariantsUnlessGivenAndGivenOnl
     ValidateServerConfig(config);
     ADD_FAILURE() << "accepted -1";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "--candidates-above must be in 0..1000000000, got -1");
+    EXPECT_STREQ(e.what(), "engine option candidates_above must be in 0..1000000000, got -1");
   }
 }
 
