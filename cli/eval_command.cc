@@ -567,8 +567,9 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->check(CLI::Range(0.0, 1 - 1e-6))
       ->capture_default_str();
   command->add_option("--verdicts", o->verdicts,
-                      "also write every query's answer as CSV (decision, unknown statistic, "
-                      "p-value, confidence, pose error)");
+                      "also write every query's answer as CSV (its object, the top-1 object: which "
+                      "look-alikes are taken for which; decision, unknown statistic, p-value, "
+                      "confidence, pose error)");
   command->add_flag("--active", o->active,
                     "active vision: after its first two views, each query takes its next view "
                     "--active-step degrees on in the direction its method's latest update "

@@ -114,6 +114,8 @@ struct EvaluationOptions {
 struct QueryVerdict {
   bool known = false;  // the query's object is in the model set
   bool hit = false;    // known, and the top-1 object is right
+  std::string object;  // the query's object, by name
+  std::string answer;  // the top-1 object, by name; "" for an empty ranking
   Decision decision = Decision::kUndecided;
   // FrameUpdate's; NaN when the answer did not say (a server's update carries neither).
   double unknown_statistic = 0;

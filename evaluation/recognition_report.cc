@@ -12,6 +12,20 @@
 namespace orbit {
 namespace {
 
+// `text` as one CSV field, quoted (RFC 4180) when it holds a comma, a quote or a line break, or
+// starts or ends with a blank, which a reader would trim.
+std::string CsvField(const std::string& text) {
+  const bool plain = text.find_first_of(",\"\r\n") == std::string::npos &&
+                     (text.empty() || (text.front() != ' ' && text.back() != ' '));
+  if (plain) return text;
+  std::string quoted = "\"";
+  for (const char c : text) {
+    if (c == '"') quoted += '"';
+    quoted += c;
+  }
+  return quoted + '"';
+}
+
 std::string Percent(int count, int total) {
   if (total == 0) return "-";
   char text[16];
@@ -158,13 +172,14 @@ LineFigure RecognitionCurves(const EvaluationReport& report) {
 }
 
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {
-  out << "method,variant,distortion,n,known,hit,decision,unknown_statistic,unknown_p_value,"
-         "confidence,pose_error,pose_spread,noise_sigma,blur\n";
+  out << "method,variant,distortion,n,object,answer,known,hit,decision,unknown_statistic,"
+         "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur\n";
   char numbers[160];
   for (const EvaluationCell& cell : report.cells) {
     for (const QueryVerdict& v : cell.verdicts) {
       out << cell.method << ',' << VariantName(cell.variant) << ',' << cell.distortion << ','
-          << cell.n << ',' << v.known << ',' << v.hit << ',' << DecisionName(v.decision) << ',';
+          << cell.n << ',' << CsvField(v.object) << ',' << CsvField(v.answer) << ',' << v.known
+          << ',' << v.hit << ',' << DecisionName(v.decision) << ',';
       for (const double value : {v.unknown_statistic, v.unknown_p_value}) {
         if (!std::isnan(value)) {
           std::snprintf(numbers, sizeof numbers, "%.6g", value);

@@ -8,6 +8,7 @@
 #include <set>
 #include <sstream>
 #include <stdexcept>
+#include <string_view>
 #include <thread>
 
 #include "api/conversion.h"
@@ -108,13 +109,16 @@ std::vector<v1::SessionUpdate> RecogniseSequence(const Connection& connection,
   return updates;
 }
 
-// The verdict of `update` for a query whose right answer is the object with id `expected`, or
-// UNKNOWN when `expected` is 0 (no object of the query's name on the server).
-QueryVerdict Judge(const v1::SessionUpdate& update, std::int64_t expected) {
+// The verdict of `update` for a query of `object`, whose right answer is the object with id
+// `expected`, or UNKNOWN when `expected` is 0 (no object of the query's name on the server).
+QueryVerdict Judge(const v1::SessionUpdate& update, std::string_view object,
+                   std::int64_t expected) {
   QueryVerdict verdict;
   verdict.known = expected != 0;
   verdict.hit =
       verdict.known && update.candidates_size() > 0 && update.candidates(0).id() == expected;
+  verdict.object = object;
+  if (update.candidates_size() > 0) verdict.answer = update.candidates(0).name();
   verdict.decision = FromProtoDecision(update.decision());
   verdict.unknown_statistic = std::numeric_limits<double>::quiet_NaN();
   verdict.unknown_p_value = std::numeric_limits<double>::quiet_NaN();
@@ -190,7 +194,7 @@ EvaluationReport RunServerEvaluation(const Connection& connection,
       if (updates.size() < n) continue;
       double seconds = 0;
       for (std::size_t k = 0; k < n; ++k) seconds += updates[k].processing_time_us() * 1e-6;
-      cell.Add(Judge(updates[n - 1], expected), seconds);
+      cell.Add(Judge(updates[n - 1], sequence.object, expected), seconds);
     }
     if (options.progress) options.progress("sessions", s + 1, sequences.size());
   }

@@ -522,12 +522,21 @@ TEST_F(ServerQueriesTest, ReportsTheServersAnswersAsTheLocalModeReportsItsOwn) {
   EXPECT_EQ(cells[1].number("trials"), 2);
   EXPECT_EQ(cells[1].number("hits"), 2);
 
-  // Every query's verdict; the server states no unknown statistic nor p-value.
+  // Every query's verdict; the server states no unknown statistic nor p-value. Each names the
+  // query's object and the server's first candidate: a known query's own (all were right),
+  // and for obj9's one of the three the server holds.
   const auto [verdict_header, verdict_rows] = ReadCsv(verdicts);
   ASSERT_EQ(verdict_rows.size(), 4u + 3u);
   for (const CsvRow& verdict : verdict_rows) {
     EXPECT_EQ(verdict.field.at("unknown_statistic"), "");
     EXPECT_EQ(verdict.field.at("unknown_p_value"), "");
+    if (verdict.field.at("known") == "1") {
+      EXPECT_THAT(verdict.field.at("object"), ::testing::AnyOf("obj1", "obj2", "obj3"));
+      EXPECT_EQ(verdict.field.at("answer"), verdict.field.at("object"));
+    } else {
+      EXPECT_EQ(verdict.field.at("object"), "obj9");
+      EXPECT_THAT(verdict.field.at("answer"), ::testing::AnyOf("obj1", "obj2", "obj3"));
+    }
   }
 
   // The same captures against a local model set of the same images, run by the same pipeline:

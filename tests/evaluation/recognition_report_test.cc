@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -15,6 +17,8 @@ QueryVerdict Known(bool hit, Decision decision, double p, double confidence, dou
   QueryVerdict v;
   v.known = true;
   v.hit = hit;
+  v.object = "cup1";
+  v.answer = hit ? "cup1" : "cup \"3\", white";  // a name that needs quoting in CSV
   v.decision = decision;
   v.unknown_p_value = p;
   v.confidence = confidence;
@@ -29,6 +33,8 @@ QueryVerdict Known(bool hit, Decision decision, double p, double confidence, dou
 
 QueryVerdict Unknown(Decision decision, double p, double confidence) {
   QueryVerdict v;
+  v.object = "apple10";
+  v.answer = "apple2";
   v.decision = decision;
   v.unknown_p_value = p;
   v.confidence = confidence;
@@ -118,19 +124,20 @@ TEST(RecognitionReportTest, WritesOneCsvLinePerQuery) {
   std::string line;
   std::getline(lines, line);
   EXPECT_EQ(line,
-            "method,variant,distortion,n,known,hit,decision,unknown_statistic,"
+            "method,variant,distortion,n,object,answer,known,hit,decision,unknown_statistic,"
             "unknown_p_value,confidence,pose_error,pose_spread,noise_sigma,blur");
   std::getline(lines, line);
-  EXPECT_EQ(line, "product,cedd-robust,df,8,1,1,ACCEPT,0,0.01,0.95,10.0,0.0,24.500,0.625");
-  int count = 1;
-  std::string last;
-  while (std::getline(lines, line)) {
-    ++count;
-    last = line;
-  }
-  EXPECT_EQ(count, 6);
+  EXPECT_EQ(line,
+            "product,cedd-robust,df,8,cup1,cup1,1,1,ACCEPT,0,0.01,0.95,10.0,0.0,24.500,0.625");
+  std::vector<std::string> rows;
+  while (std::getline(lines, line)) rows.push_back(line);
+  ASSERT_EQ(rows.size(), 5u);
+  // The wrong answer: which object the query was taken for, quoted as RFC 4180 says.
+  EXPECT_EQ(rows[2],
+            "product,cedd-robust,df,8,cup1,\"cup \"\"3\"\", white\",1,0,ACCEPT,0,0.05,0.85,,,"
+            "24.500,0.625");
   // An unknown query: no pose, no readings.
-  EXPECT_EQ(last, "product,cedd-robust,df,8,0,0,ACCEPT,0,0.02,0.88,,,,");
+  EXPECT_EQ(rows[4], "product,cedd-robust,df,8,apple10,apple2,0,0,ACCEPT,0,0.02,0.88,,,,");
 }
 
 }  // namespace
