@@ -116,6 +116,20 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
     return model_.views[a].azimuth < model_.views[b].azimuth;
   });
   for (const int v : by_azimuth_) sorted_azimuths_.push_back(model_.views[v].azimuth);
+  const std::size_t count = by_azimuth_.size();
+  for (std::size_t i = 0; i < count && count > 1; ++i) {
+    const ModelView& first = model_.views[by_azimuth_[i]];
+    const ModelView& second = model_.views[by_azimuth_[(i + 1) % count]];
+    double apart = second.azimuth - first.azimuth;
+    if (apart < 0 || (apart == 0 && i + 1 == count)) apart += 360;
+    if (apart <= 0 || apart > kBlendViewsUpTo || first.elevation != second.elevation) continue;
+    std::int32_t sum_norm = 0;
+    for (std::size_t d = 0; d < kDescriptorSize; ++d) {
+      const int sum = first.descriptor[d] + second.descriptor[d];
+      sum_norm += sum * sum;
+    }
+    neighbour_pairs_.push_back({by_azimuth_[i], by_azimuth_[(i + 1) % count], sum_norm});
+  }
 }
 
 std::pair<int, int> IndexedObject::NeighbourViews(double azimuth) const {

@@ -49,6 +49,21 @@ struct SectorViews {
 // Throws std::invalid_argument when count < 1 or the model has no views.
 SectorViews ComputeSectorViews(const ObjectModel& model, int count);
 
+// Two views next to each other in azimuth, whose blend (the mean of their descriptors) stands
+// for the view halfway between them (docs/design.md#blended-views).
+struct NeighbourPair {
+  int first = 0;   // a view, as an index into ObjectModel::views
+  int second = 0;  // the next view counter-clockwise (in increasing azimuth, across 360)
+  // |c_first + c_second|^2: with the frame's products with each view, the TC of the blend
+  // without touching its descriptor.
+  std::int32_t sum_squared_norm = 0;
+};
+
+// The widest arc, in degrees, across which two neighbouring views are blended: farther apart
+// than a quarter turn, they show different sides of the object, and their mean looks like
+// neither (docs/design.md#blended-views).
+inline constexpr double kBlendViewsUpTo = 90;
+
 class IndexedObject {
  public:
   // Throws std::invalid_argument when the model has no views, a value exceeds 7 or an azimuth
@@ -73,6 +88,10 @@ class IndexedObject {
   // of Tanimoto coefficients (core/index/similarity_rows.h) reads.
   const ViewBins& view_bins() const { return view_bins_; }
 
+  // The pairs of views next to each other in azimuth, at the same elevation (or both without
+  // one) and at most kBlendViewsUpTo degrees apart, in increasing azimuth of `first`.
+  const std::vector<NeighbourPair>& neighbour_pairs() const { return neighbour_pairs_; }
+
   // The views on either side of `azimuth` (degrees, any value): `first` is the view at or
   // counter-clockwise-before it (largest azimuth <= it, circularly) and `second` the view at or
   // after it (smallest azimuth >= it, circularly). Both equal when a view sits exactly there
@@ -92,6 +111,7 @@ class IndexedObject {
   std::vector<double> sorted_azimuths_;
   std::vector<std::int32_t> squared_norms_;
   ViewBins view_bins_;
+  std::vector<NeighbourPair> neighbour_pairs_;
   mutable Mutex sectors_mutex_;
   // An entry, once made, is never changed nor removed: Sectors() returns it unlocked.
   mutable std::map<int, std::unique_ptr<const SectorViews>> sectors_

@@ -5,7 +5,8 @@
 
 namespace orbit {
 
-std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object) {
+std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
+                                 float* best_blend) {
   const std::vector<std::int32_t>& cc = object.squared_norms();
   const std::size_t count = cc.size();
   // The thread's scratch: a session's answer computes a few of these rows per frame. The
@@ -26,6 +27,17 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
     row[v] = qq == 0 && cc[v] == 0
                  ? 1.0f
                  : static_cast<float>(static_cast<double>(qc[v]) / (qq + cc[v] - qc[v]));
+  }
+  if (best_blend != nullptr) {
+    // With m = (a + b) / 2: q.m / (q.q + m.m - q.m), every term times 4 to stay in integers.
+    // The denominator is |2q - (a + b)|^2 + 2 q.(a + b): 0 only when q and a + b are both 0.
+    double best = 0;
+    for (const NeighbourPair& pair : object.neighbour_pairs()) {
+      const std::int32_t products = 2 * (qc[pair.first] + qc[pair.second]);
+      const std::int32_t denominator = 4 * qq + pair.sum_squared_norm - products;
+      best = std::max(best, denominator == 0 ? 1.0 : static_cast<double>(products) / denominator);
+    }
+    *best_blend = static_cast<float>(best);
   }
   return row;
 }
@@ -54,9 +66,10 @@ ObjectRows SimilarityRows::For(std::span<const QueryFrame> window, const Indexed
     auto at = std::find_if(frame.begin(), frame.end(),
                            [&](const Row& row) { return row.object == &object; });
     if (at == frame.end()) {
-      Row row{&object, {}, SimilarityRow(window[k].descriptor.values, object)};
+      float blended = 0;
+      Row row{&object, {}, SimilarityRow(window[k].descriptor.values, object, &blended)};
       const auto highest = std::max_element(row.values.begin(), row.values.end());
-      row.nearest = {static_cast<int>(highest - row.values.begin()), *highest};
+      row.nearest = {static_cast<int>(highest - row.values.begin()), *highest, blended};
       frame.push_back(std::move(row));  // moving a Row keeps its values where they are
       at = frame.end() - 1;
     }

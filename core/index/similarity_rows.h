@@ -21,16 +21,22 @@
 
 namespace orbit {
 
-// TC of `frame` with each view of `object`, in the object's view order.
+// TC of `frame` with each view of `object`, in the object's view order. With `best_blend`, also
+// the highest TC of `frame` with the blend of a pair of IndexedObject::neighbour_pairs (the mean
+// of the two views' descriptors, docs/design.md#blended-views), 0 when the object has none.
 // REQUIRES: every value of `frame` at most 7 (ValidateDescriptorValues; views are checked when
 // the object is indexed).
-std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object);
+std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
+                                 float* best_blend = nullptr);
 
 // The view of a row with the highest TC (the first of equals, as std::max_element finds it),
 // and that TC: what the nearest-view blend and the unknown statistic read of most rows.
 struct NearestView {
   int view = -1;
   float similarity = 0;
+  // The highest TC with a blend of two neighbouring views (SimilarityRow's `best_blend`): what
+  // the product's nearest-view term reads beside `similarity`.
+  float blended = 0;
 };
 
 // One object's rows for a window: rows[k][v] = TC(window frame k, view v).

@@ -17,6 +17,8 @@
 #include "core/descriptor/similarity.h"
 #include "core/descriptor/view_description.h"
 #include "core/index/indexed_object.h"
+#include "core/index/similarity_rows.h"
+#include "core/index/view_index.h"
 #include "tests/support/coil_models.h"
 
 namespace orbit {
@@ -395,12 +397,15 @@ TEST(RecognitionEngineTest, BaselineScoresByHand) {
 
 // The nearest-view blend, by hand, on one frame q = (bin 0: 2, bin 1: 2), HMM with the thesis'
 // emissions. Object 1 has views (bin 0: 4) at 0 and (bin 1: 4) at 10 degrees, one sector
-// whose mean view is q itself: path TC 1, but each view alone only 8 / (8 + 16 - 8) = 0.5.
+// whose mean view is q itself: path TC 1, but each view alone only 8 / (8 + 16 - 8) = 0.5 (the
+// two are taken at different elevations, so they are not blended: docs/design.md#blended-views).
 // Object 2 has one view q + (bin 2: 1): TC 8 / (8 + 9 - 8) = 8/9 both ways. The HMM alone
 // ranks 1 (1.0) over 2 (8/9); half from the nearest views, 2 (8/9) over 1 (0.75).
 TEST(RecognitionEngineTest, NearestViewBlendByHand) {
-  const ObjectModel one{
+  ObjectModel one{
       1, "one", DescriptorVariant::kCeddLire, {View(Bins({{0, 4}}), 0), View(Bins({{1, 4}}), 10)}};
+  one.views[0].elevation = 0;
+  one.views[1].elevation = 20;
   const ObjectModel two{
       2, "two", DescriptorVariant::kCeddLire, {View(Bins({{0, 2}, {1, 2}, {2, 1}}), 100)}};
   ViewIndex index({one, two});
@@ -426,15 +431,44 @@ TEST(RecognitionEngineTest, NearestViewBlendByHand) {
   EXPECT_NEAR(nearest[1].score, 0.5, 1e-6);
 }
 
-// On real frames, every ranked object's blended score is (1 - w) x the engine's own + w x EIS'
-// score of the same window, whatever the engine: the blend needs no engine's internals.
+// The same objects with object 1's two views at one elevation, 10 degrees apart: their mean is
+// q, so the nearest-view term finds q between them (TC 1) and object 1 stays first at every
+// weight, with 1.0 against object 2's 8/9.
+TEST(RecognitionEngineTest, TheNearestViewTermFindsAFrameBetweenTwoNeighbouringViews) {
+  const ObjectModel one{
+      1, "one", DescriptorVariant::kCeddLire, {View(Bins({{0, 4}}), 0), View(Bins({{1, 4}}), 10)}};
+  const ObjectModel two{
+      2, "two", DescriptorVariant::kCeddLire, {View(Bins({{0, 2}, {1, 2}, {2, 1}}), 100)}};
+  ViewIndex index({one, two});
+  const std::vector<QueryFrame> frame = {
+      {{DescriptorVariant::kCeddLire, Bins({{0, 2}, {1, 2}})}, 5}};
+  for (const double weight : {0.5, 1.0}) {
+    const std::vector<RankedObject> ranking = CreateEngine("hmm", {.nearest_view_weight = weight})
+                                                  ->ObserveSequence(index.Snapshot(), frame)
+                                                  .ranking;
+    ASSERT_EQ(ranking.size(), 2u);
+    EXPECT_EQ(ranking[0].object, 1) << weight;
+    EXPECT_NEAR(ranking[0].score, 1.0, 1e-6) << weight;
+    EXPECT_NEAR(ranking[1].score, 8.0 / 9, 1e-6) << weight;
+  }
+}
+
+// On real frames, every ranked object's blended score is (1 - w) x the engine's own + w x the
+// nearest-view term of the same window: per frame the best of the object's views (EIS' own
+// similarity) and of its neighbouring views' blends, whatever the engine: the blend needs no
+// engine's internals.
 TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
   const std::vector<QueryFrame> frames = Frames(4, {95, 135, 175, 215}, 25);
   const std::shared_ptr<const ViewIndexSnapshot> index = CoilIndex(SearchMode::kExact);
-  std::map<ObjectId, double> eis;
-  for (const RankedObject& r :
-       CreateEngine("eis", {.top_k = 10})->ObserveSequence(index, frames).ranking) {
-    eis[r.object] = r.score;
+  std::map<ObjectId, double> nearest;
+  for (const ObjectSlot& slot : index->objects()) {
+    double sum = 0;
+    for (const QueryFrame& frame : frames) {
+      float blended = 0;
+      const std::vector<float> row = SimilarityRow(frame.descriptor.values, *slot.object, &blended);
+      sum += std::max(*std::max_element(row.begin(), row.end()), blended);
+    }
+    nearest[slot.object->id()] = sum / static_cast<double>(frames.size());
   }
   for (const std::string_view name : {"hmm", "vci", "eiis"}) {
     std::map<ObjectId, double> own;
@@ -448,8 +482,8 @@ TEST(RecognitionEngineTest, NearestViewBlendIsTheEngineScoreMixedWithEis) {
     ASSERT_EQ(blended.ranking.size(), std::min<std::size_t>(4, own.size())) << name;
     for (std::size_t i = 0; i < blended.ranking.size(); ++i) {
       const ObjectId object = blended.ranking[i].object;
-      ASSERT_TRUE(own.contains(object) && eis.contains(object)) << name << " object " << object;
-      EXPECT_NEAR(blended.ranking[i].score, 0.7 * own[object] + 0.3 * eis[object], 1e-6)
+      ASSERT_TRUE(own.contains(object) && nearest.contains(object)) << name << " object " << object;
+      EXPECT_NEAR(blended.ranking[i].score, 0.7 * own[object] + 0.3 * nearest[object], 1e-6)
           << name << " object " << object;
       if (i > 0) {
         EXPECT_GE(blended.ranking[i - 1].score, blended.ranking[i].score) << name;

@@ -57,6 +57,32 @@ TEST(IndexedObjectTest, AzimuthsAreNormalisedAndOrdered) {
   EXPECT_EQ(object.sorted_azimuths(), (std::vector<double>{10, 180, 270}));
 }
 
+// Views at 20, 350, 60 and 200 degrees: in azimuth order 20, 60, 200, 350. Next to each other
+// and at most kBlendViewsUpTo (90) degrees apart: 20 and 60, then 350 and 20 across 360. Each
+// pair's |c_a + c_b|^2: (1, 3) gives 10, (3, 2) gives 13.
+TEST(IndexedObjectTest, NeighbourPairsAreViewsNextInAzimuthAndCloseEnoughToBlend) {
+  const IndexedObject object(
+      Model({Bins({{0, 1}}), Bins({{0, 2}, {1, 2}}), Bins({{1, 3}}), Bins({{2, 1}})},
+            {20, 350, 60, 200}));
+  const std::vector<NeighbourPair>& pairs = object.neighbour_pairs();
+  ASSERT_EQ(pairs.size(), 2u);
+  EXPECT_EQ(pairs[0].first, 0);
+  EXPECT_EQ(pairs[0].second, 2);
+  EXPECT_EQ(pairs[0].sum_squared_norm, 10);
+  EXPECT_EQ(pairs[1].first, 1);
+  EXPECT_EQ(pairs[1].second, 0);
+  EXPECT_EQ(pairs[1].sum_squared_norm, 13);
+
+  // Exactly 90 degrees apart is close enough, once: the way back round is 270.
+  EXPECT_EQ(
+      IndexedObject(Model({Bins({{0, 1}}), Bins({{1, 1}})}, {0, 90})).neighbour_pairs().size(), 1u);
+  // One view, or two at different elevations: nothing to blend.
+  EXPECT_TRUE(IndexedObject(Model({Bins({{0, 1}})}, {0})).neighbour_pairs().empty());
+  ObjectModel tilted = Model({Bins({{0, 1}}), Bins({{1, 1}})}, {0, 20});
+  tilted.views[1].elevation = 30;
+  EXPECT_TRUE(IndexedObject(tilted).neighbour_pairs().empty());
+}
+
 TEST(IndexedObjectTest, AModelWithoutViewsOrWithABadViewIsRefused) {
   EXPECT_EQ(testing::ErrorMessageOf([] { IndexedObject object(Model({}, {})); }),
             "object 9 has no views");

@@ -19,14 +19,15 @@ namespace {
 using testing::Bins;
 using testing::CoilObject;
 
-ObjectModel Model(ObjectId id, std::vector<DescriptorValues> views) {
+// Views `apart` degrees from each other, from azimuth 0: 120 is too far apart to blend.
+ObjectModel Model(ObjectId id, std::vector<DescriptorValues> views, double apart = 120) {
   ObjectModel model;
   model.id = id;
   model.name = "obj" + std::to_string(id);
   double azimuth = 0;
   for (DescriptorValues& descriptor : views) {
     model.views.push_back({std::move(descriptor), azimuth, std::nullopt, 0.1});
-    azimuth += 90;
+    azimuth += apart;
   }
   return model;
 }
@@ -59,6 +60,33 @@ TEST(SimilarityRowsTest, RowsHoldEachFramesTanimotoWithEachView) {
   EXPECT_EQ(got.nearest[0].similarity, 1.0f);
   EXPECT_EQ(got.nearest[1].view, 2);
   EXPECT_EQ(got.nearest[1].similarity, 1.0f);
+}
+
+// Views (4, 0) and (0, 4) 20 degrees apart blend into (2, 2). A frame (2, 2) is each view's TC
+// 8 / (8 + 16 - 8) = 1/2 and the blend's 1; a frame (4, 0) is the first view's 1 and the blend's
+// 8 / (16 + 8 - 8) = 1/2. Views 120 degrees apart are not blended: 0.
+TEST(SimilarityRowsTest, EachRowKnowsItsBestBlendOfNeighbouringViews) {
+  const DescriptorValues first = Bins({{0, 4}}), second = Bins({{1, 4}});
+  const IndexedObject object(Model(1, {first, second}, 20));
+  const DescriptorValues between = Bins({{0, 2}, {1, 2}});
+  float blended = -1;
+  EXPECT_EQ(SimilarityRow(between, object, &blended), (std::vector<float>{0.5f, 0.5f}));
+  EXPECT_EQ(blended, 1.0f);
+  EXPECT_EQ(SimilarityRow(first, object, &blended), (std::vector<float>{1.0f, 0.0f}));
+  EXPECT_EQ(blended, 0.5f);
+
+  SimilarityRows rows;
+  const std::vector<QueryFrame> window{Frame(between)};
+  rows.PushFrame();
+  const ObjectRows got = rows.For(window, object);
+  ASSERT_EQ(got.nearest.size(), 1u);
+  EXPECT_EQ(got.nearest[0].view, 0);
+  EXPECT_EQ(got.nearest[0].similarity, 0.5f);
+  EXPECT_EQ(got.nearest[0].blended, 1.0f);
+
+  const IndexedObject far_apart(Model(2, {first, second}));
+  SimilarityRow(between, far_apart, &blended);
+  EXPECT_EQ(blended, 0.0f);
 }
 
 // Of equally near views the first is the nearest: the unknown statistic reads its typical
