@@ -339,24 +339,20 @@ struct Outcome {
   double seconds = 0;  // wall-clock time in ObserveSequence
 };
 
-// The name of the model set's object `id`: known objects are numbered from 1 in `known`'s
-// order, distractors after them (BuildModels).
-std::string ModelObjectName(const std::vector<DatasetObject>& known, ObjectId id) {
-  if (id >= 1 && id <= static_cast<ObjectId>(known.size())) return known[id - 1].name;
-  return "distractor " + std::to_string(id - static_cast<ObjectId>(known.size()));
-}
-
 // The outcome of `update` for a query of `object` whose right answer is object `expected`, or
-// kUnknown when `expected` is 0 (an object outside the model set). `true_azimuth`: the model
-// azimuth the latest frame was taken at, when known (the protocol's views), for the pose error.
-void Judge(const FrameUpdate& update, const std::vector<DatasetObject>& known,
-           const std::string& object, ObjectId expected, std::optional<double> true_azimuth,
-           Outcome& outcome) {
+// kUnknown when `expected` is 0 (an object outside the model set), answered from `model_set`
+// (its objects' names: the dataset's and the distractors'). `true_azimuth`: the model azimuth the
+// latest frame was taken at, when known (the protocol's views), for the pose error.
+void Judge(const FrameUpdate& update, const ViewIndexSnapshot& model_set, const std::string& object,
+           ObjectId expected, std::optional<double> true_azimuth, Outcome& outcome) {
   QueryVerdict& verdict = outcome.verdict;
   verdict.known = expected != 0;
   verdict.hit = verdict.known && IsTopOneHit(update.ranking, expected);
   verdict.object = object;
-  verdict.answer = update.ranking.empty() ? "" : ModelObjectName(known, update.ranking[0].object);
+  if (!update.ranking.empty()) {
+    const ObjectId answer = update.ranking[0].object;
+    verdict.answer = model_set.objects()[model_set.PositionOf(answer)].object->model().name;
+  }
   verdict.decision = update.decision;
   verdict.unknown_statistic = update.unknown_statistic;
   verdict.unknown_p_value = update.unknown_p_value;
@@ -564,10 +560,8 @@ struct TaskQuery {
 };
 
 // Step 3: every task of `grid` on `threads` threads, each method of `options` answering
-// `query_of(task)` under every distortion against the model set of `known` (and its
-// distractors); returns the outcome table.
+// `query_of(task)` under every distortion; returns the outcome table.
 std::vector<Outcome> RunTasks(const TrialGrid& grid, const EvaluationOptions& options,
-                              const std::vector<DatasetObject>& known,
                               const std::vector<VariantModels>& models,
                               const EngineOptions& engine_options, int threads,
                               const std::function<TaskQuery(const TrialGrid::Task&)>& query_of) {
@@ -587,7 +581,8 @@ std::vector<Outcome> RunTasks(const TrialGrid& grid, const EvaluationOptions& op
         Outcome& outcome = outcomes[grid.OutcomeSlot(task, d, m)];
         outcome.seconds = SecondsSince(start);
         outcome.answered = true;
-        Judge(answer.update, known, query.object, query.expected, answer.latest_azimuth, outcome);
+        Judge(answer.update, *models[t.variant].full_index, query.object, query.expected,
+              answer.latest_azimuth, outcome);
       }
     }
     pool.Give(std::move(engines));
@@ -804,10 +799,9 @@ EvaluationReport RunEvaluation(const std::vector<DatasetImage>& known,
                        options.distortions.size(),   options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
   const std::vector<Outcome> outcomes =
-      RunTasks(grid, options, dataset.known, models, report.engine, report.threads,
-               [&](const TrialGrid::Task& t) {
-                 return ProtocolQuery(t, dataset, described, models, options);
-               });
+      RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
+        return ProtocolQuery(t, dataset, described, models, options);
+      });
   report.trial_seconds = SecondsSince(trial_start);
 
   report.cells = AggregateCells(outcomes, grid, options);
@@ -877,27 +871,26 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                        options.distortions.size(),   options.methods.size()};
   const Clock::time_point trial_start = Clock::now();
   const std::vector<Outcome> outcomes =
-      RunTasks(grid, options, dataset.known, models, report.engine, report.threads,
-               [&](const TrialGrid::Task& t) {
-                 const CaptureSequence* sequence = &sequences[t.object];
-                 const int n = options.query_lengths[t.n_slot];
-                 TaskQuery query;
-                 query.skipped = static_cast<int>(sequence->frames.size()) < n;
-                 query.object = sequence->object;
-                 query.expected = expected[t.object];
-                 query.ask = [&, sequence, t, n](RecognitionEngine& engine, std::size_t d) {
-                   std::vector<QueryFrame> frames;
-                   for (int k = 0; k < n; ++k) {
-                     const std::size_t f = sequence->frames[static_cast<std::size_t>(k)];
-                     frames.push_back(WithReadings(
-                         {{options.variants[t.variant], queries[f][t.variant][d]},
-                          options.use_orientation ? captures[f].azimuth : std::nullopt},
-                         quality[f][d], options));
-                   }
-                   return Answer{engine.ObserveSequence(models[t.variant].full_index, frames), {}};
-                 };
-                 return query;
-               });
+      RunTasks(grid, options, models, report.engine, report.threads, [&](const TrialGrid::Task& t) {
+        const CaptureSequence* sequence = &sequences[t.object];
+        const int n = options.query_lengths[t.n_slot];
+        TaskQuery query;
+        query.skipped = static_cast<int>(sequence->frames.size()) < n;
+        query.object = sequence->object;
+        query.expected = expected[t.object];
+        query.ask = [&, sequence, t, n](RecognitionEngine& engine, std::size_t d) {
+          std::vector<QueryFrame> frames;
+          for (int k = 0; k < n; ++k) {
+            const std::size_t f = sequence->frames[static_cast<std::size_t>(k)];
+            frames.push_back(
+                WithReadings({{options.variants[t.variant], queries[f][t.variant][d]},
+                              options.use_orientation ? captures[f].azimuth : std::nullopt},
+                             quality[f][d], options));
+          }
+          return Answer{engine.ObserveSequence(models[t.variant].full_index, frames), {}};
+        };
+        return query;
+      });
   report.trial_seconds = SecondsSince(trial_start);
   report.cells = AggregateCells(outcomes, grid, options);
   return report;

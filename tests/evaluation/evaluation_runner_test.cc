@@ -173,7 +173,9 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
 
 // --distractors: the queries are the dataset's alone (the same counts per cell), the report
 // says how many objects joined the model set, and the product still finds COIL-100's objects
-// among them on clean frames.
+// among them on clean frames. Each verdict names its query's object and the object answered,
+// by the model set's names: a known query's own, and for the unknown object 50 one of the three
+// or a distractor, by its generated name.
 TEST(RunEvaluationTest, DistractorsJoinTheModelSetButNotTheQueries) {
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod)};
@@ -183,12 +185,25 @@ TEST(RunEvaluationTest, DistractorsJoinTheModelSetButNotTheQueries) {
   options.trials = 2;
   options.distractors = 4;
   const EvaluationReport report =
-      RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3}), {}, options);
+      RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3}),
+                    ListCoil100(testing::CoilDir(), std::vector<int>{50}), options);
   EXPECT_EQ(report.distractors, 4u);
   ASSERT_EQ(report.cells.size(), 1u);
   EXPECT_EQ(report.cells[0].trials, 3 * 2);
   EXPECT_EQ(report.cells[0].hits, 3 * 2);
+  EXPECT_EQ(report.cells[0].unknown_trials, 2);
   EXPECT_EQ(report.memory[0].objects, 3u);  // the known objects' memory alone
+  ASSERT_EQ(report.cells[0].verdicts.size(), 3u * 2 + 2);
+  for (const QueryVerdict& verdict : report.cells[0].verdicts) {
+    if (verdict.known) {
+      EXPECT_THAT(verdict.object, ::testing::AnyOf("obj1", "obj2", "obj3"));
+      EXPECT_EQ(verdict.answer, verdict.object);
+    } else {
+      EXPECT_EQ(verdict.object, "obj50");
+      EXPECT_THAT(verdict.answer, ::testing::AnyOf("obj1", "obj2", "obj3", "distractor1",
+                                                   "distractor2", "distractor3", "distractor4"));
+    }
+  }
   options.distractors = kMaxDistractors + 1;
   EXPECT_EQ(testing::ErrorMessageOf([&] {
               RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1}), {}, options);
