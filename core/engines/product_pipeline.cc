@@ -20,11 +20,16 @@ std::string DescribeProduct() {
   const ProductPipeline& p = Product();
   std::ostringstream text;
   text << p.engine << " (" << p.options.hmm_states << " states, window " << p.options.window
-       << ", emissions to the power " << (1 << p.options.hmm_sharpness) << ", score "
-       << 1 - p.options.nearest_view_weight << " path + " << p.options.nearest_view_weight
-       << " nearest views) on " << VariantName(p.variant)
-       << " (CEDD of a canonical frame: resampled to " << kCanonicalArea
-       << " pixels, Gaussian blur of " << kCanonicalBlurSigma
+       << ", emissions to the power " << (1 << p.options.hmm_sharpness) << ", ";
+  if (p.options.nearest_view_weight == 1) {
+    text << "the path's best " << RankedDepth(p.options)
+         << " objects scored by their nearest and blended views";
+  } else {
+    text << "score " << 1 - p.options.nearest_view_weight << " path + "
+         << p.options.nearest_view_weight << " nearest views";
+  }
+  text << ") on " << VariantName(p.variant) << " (CEDD of a canonical frame: resampled to "
+       << kCanonicalArea << " pixels, Gaussian blur of " << kCanonicalBlurSigma
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
        << "th percentile of the brightest channel is " << kBrightnessTarget;
   if (HasAppearanceChannels(p.variant)) {

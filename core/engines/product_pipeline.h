@@ -37,15 +37,16 @@ struct ProductPipeline {
   std::string_view engine = "hmm";  // one of EngineNames()
   // The engine's options: EngineOptions' defaults but for the HMM's sharpened emissions
   // (hmm_sharpness 5: emissions to the 32nd power), with which using the measured turns no
-  // longer costs the right object points against ignoring them; half of each score from the
-  // nearest views (nearest_view_weight 0.5: the sector means alone miss what single views
-  // show when the window holds few frames); the calibrated accept / unknown rule; and move
+  // longer costs the right object points against ignoring them; the best objects of the path
+  // scored by their nearest views and blended views alone (nearest_view_weight 1: the sector
+  // means miss what single views show, and between enrolled views the blends show it,
+  // docs/design.md#nearest-view-blend); the calibrated accept / unknown rule; and move
   // suggestions that never send the device back to a side it has seen while the other is new
   // (docs/results/recognition.md).
   EngineOptions options = [](DescriptorVariant variant) {
     EngineOptions options;
     options.hmm_sharpness = kMaxHmmSharpness;
-    options.nearest_view_weight = 0.5;
+    options.nearest_view_weight = 1;
     options.rejection = RejectionRule::kCalibrated;
     options.move_prefers_new_side = true;
     options.candidate_objects = kProductCandidateObjects;

@@ -26,10 +26,11 @@ TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
   const auto names = EngineNames();
   EXPECT_NE(std::find(names.begin(), names.end(), Product().engine), names.end());
   const std::string text = DescribeProduct();
-  EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32, score 0.5 path "
-                              "+ 0.5 nearest views) on cedd-hsv-hog"));
+  EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32, the path's "
+                              "best 5 objects scored by their nearest and blended views) on "
+                              "cedd-hsv-hog"));
   EXPECT_EQ(Product().options.hmm_sharpness, 5);
-  EXPECT_EQ(Product().options.nearest_view_weight, 0.5);
+  EXPECT_EQ(Product().options.nearest_view_weight, 1);
   EXPECT_THAT(text, HasSubstr("Gaussian blur of 2 px"));
   EXPECT_THAT(text, HasSubstr("then a 12 x 4 x 4 hue-saturation-value histogram of the object's "
                               "colours, its background's taken off, and 4 x 4 cells of 9 "
