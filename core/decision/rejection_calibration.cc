@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -17,14 +18,15 @@ namespace {
 
 // One sampled view against the objects its left-out object is compared with (its columns: every
 // object of the index, or its candidates in a large one): per column, the view's best similarity
-// to that object and the Ttyp of that best view. A column of its own object holds -1 (never a
-// winner).
+// to that object (its views and their blends) and the Ttyp of its best view. Its own object is
+// never a column.
 struct SampledView {
   std::size_t left_out = 0;         // position in the left-out objects
   std::vector<float> best;          // [columns]
   std::vector<float> best_typical;  // [columns]
-  // Its best similarity to its own object's views outside kOwnNeighbourhoodDegrees, and that
-  // view's Ttyp; own_best is -1 when the object has no such view.
+  // Its best similarity to its own object's views outside kOwnNeighbourhoodDegrees and their
+  // blends (MatchOwnViews), and the best view's Ttyp; own_best is -1 when the object has no
+  // such view.
   float own_best = -1.0f;
   float own_typical = 0.0f;
 };
@@ -59,93 +61,92 @@ int SampledViewOf(const IndexedObject& object, int count, int k) {
   return by_azimuth[static_cast<std::size_t>(k) * by_azimuth.size() / count];
 }
 
-// The sampled view's best similarity to its own object's views outside its neighbourhood, from
-// `similarity(v)` to each view v of the object.
-template <typename Similarity>
-void MatchOwnViews(const IndexedObject& object, int view, const Similarity& similarity,
-                   SampledView& sample) {
-  const double azimuth = object.model().views[view].azimuth;
+// The sampled view's best similarity to its own object's views outside its neighbourhood and to
+// the blends of the object's neighbouring pairs outside it (docs/design.md#blended-views), from
+// `query`, its descriptor, and `row`, its SimilarityRow with the object. Not the pair of views
+// either side of the neighbourhood: the object holds no such pair, and their blend would stand
+// in for the very view the neighbourhood takes out. own_typical is the Ttyp of the best view,
+// as a session reads it.
+void MatchOwnViews(const IndexedObject& object, int view, const DescriptorValues& query,
+                   std::span<const float> row, SampledView& sample) {
+  const std::vector<ModelView>& views = object.model().views;
+  const double azimuth = views[static_cast<std::size_t>(view)].azimuth;
+  const auto outside = [&](int v) {
+    return std::abs(AzimuthChange(azimuth, views[static_cast<std::size_t>(v)].azimuth)) >
+           kOwnNeighbourhoodDegrees;
+  };
   for (int v = 0; v < object.view_count(); ++v) {
-    if (std::abs(AzimuthChange(azimuth, object.model().views[v].azimuth)) <=
-        kOwnNeighbourhoodDegrees)
-      continue;
-    const float value = similarity(v);
-    if (value > sample.own_best) {
+    const float value = row[static_cast<std::size_t>(v)];
+    if (outside(v) && value > sample.own_best) {
       sample.own_best = value;
-      sample.own_typical = static_cast<float>(object.model().views[v].typical_distance);
+      sample.own_typical = static_cast<float>(views[static_cast<std::size_t>(v)].typical_distance);
     }
+  }
+  for (const NeighbourPair& pair : object.neighbour_pairs()) {
+    if (outside(pair.first) && outside(pair.second))
+      sample.own_best = std::max(sample.own_best, BlendSimilarity(query, object, pair));
   }
 }
 
-// Every object of the index as the columns: one exact scan of every view per sampled view.
-void CompareWithEveryObject(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
-                            std::vector<SampledView>& sampled) {
-  const std::vector<ObjectSlot>& objects = index.objects();
-  const std::size_t o = left_out.position;
-  const IndexedObject& object = *objects[o].object;
-  std::vector<float> similarities;
-  for (std::size_t k = 0; k < left_out.views.size(); ++k) {
-    const int view =
-        SampledViewOf(object, static_cast<int>(left_out.views.size()), static_cast<int>(k));
-    index.SimilarityToEveryView(object.model().views[view].descriptor, similarities);
-    SampledView& sample = sampled[left_out.views[k]];
-    sample.best.assign(objects.size(), -1.0f);
-    sample.best_typical.assign(objects.size(), 0.0f);
-    MatchOwnViews(
-        object, view, [&](int v) { return similarities[objects[o].first_slot + v]; }, sample);
-    for (std::size_t p = 0; p < objects.size(); ++p) {
-      if (p == o) continue;
-      const IndexedObject& other = *objects[p].object;
-      for (int v = 0; v < other.view_count(); ++v) {
-        const float similarity = similarities[objects[p].first_slot + v];
-        if (similarity > sample.best[p]) {
-          sample.best[p] = similarity;
-          sample.best_typical[p] = static_cast<float>(other.model().views[v].typical_distance);
-        }
-      }
-    }
-  }
-}
-
-// The candidates of the object's sampled views as the columns (the objects ObjectCandidates
-// proposes for any of them, the object itself left out), each scored exactly.
-void CompareWithCandidates(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
-                           std::vector<SampledView>& sampled) {
+// The sampled views of `left_out` against `columns` (positions in index.objects(), its own
+// object not among them), each scored exactly as a session's rows score it: per column, the
+// view's best similarity to that object's views and their blends, and the Ttyp of its best view.
+void CompareWithColumns(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
+                        const std::vector<std::size_t>& columns,
+                        std::vector<SampledView>& sampled) {
   const std::vector<ObjectSlot>& objects = index.objects();
   const IndexedObject& object = *objects[left_out.position].object;
   const int count = static_cast<int>(left_out.views.size());
-  std::vector<int> views;
-  std::vector<std::size_t> columns;
   for (int k = 0; k < count; ++k) {
-    views.push_back(SampledViewOf(object, count, k));
-    for (const ObjectCandidate& candidate : index.ObjectCandidates(
-             object.model().views[views.back()].descriptor, kLeftOutCandidatesPerView + 1)) {
-      if (candidate.position != left_out.position) columns.push_back(candidate.position);
-    }
-  }
-  std::sort(columns.begin(), columns.end());
-  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
-  for (int k = 0; k < count; ++k) {
-    const DescriptorValues& query = object.model().views[views[k]].descriptor;
+    const int view = SampledViewOf(object, count, k);
+    const DescriptorValues& query = object.model().views[static_cast<std::size_t>(view)].descriptor;
     SampledView& sample = sampled[left_out.views[k]];
     sample.best.assign(columns.size(), -1.0f);
     sample.best_typical.assign(columns.size(), 0.0f);
-    // Rows from the objects' bin-major views: the Tanimoto coefficients, rounded once to float
-    // as every other path here rounds them.
-    const std::vector<float> own = SimilarityRow(query, object);
-    MatchOwnViews(
-        object, views[k], [&](int v) { return own[v]; }, sample);
+    MatchOwnViews(object, view, query, SimilarityRow(query, object), sample);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const IndexedObject& column = *objects[columns[c]].object;
-      const std::vector<float> row = SimilarityRow(query, column);
+      float blended = 0;
+      const std::vector<float> row = SimilarityRow(query, column, &blended);
       for (std::size_t v = 0; v < row.size(); ++v) {
         if (row[v] > sample.best[c]) {
           sample.best[c] = row[v];
           sample.best_typical[c] = static_cast<float>(column.model().views[v].typical_distance);
         }
       }
+      sample.best[c] = std::max(sample.best[c], blended);
     }
   }
+}
+
+// Every other object of the index as the columns.
+void CompareWithEveryObject(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
+                            std::vector<SampledView>& sampled) {
+  std::vector<std::size_t> columns;
+  for (std::size_t p = 0; p < index.objects().size(); ++p) {
+    if (p != left_out.position) columns.push_back(p);
+  }
+  CompareWithColumns(index, left_out, columns, sampled);
+}
+
+// The candidates of the object's sampled views as the columns (the objects ObjectCandidates
+// proposes for any of them, the object itself left out).
+void CompareWithCandidates(const ViewIndexSnapshot& index, const LeftOutObject& left_out,
+                           std::vector<SampledView>& sampled) {
+  const IndexedObject& object = *index.objects()[left_out.position].object;
+  const int count = static_cast<int>(left_out.views.size());
+  std::vector<std::size_t> columns;
+  for (int k = 0; k < count; ++k) {
+    const int view = SampledViewOf(object, count, k);
+    for (const ObjectCandidate& candidate :
+         index.ObjectCandidates(object.model().views[static_cast<std::size_t>(view)].descriptor,
+                                kLeftOutCandidatesPerView + 1)) {
+      if (candidate.position != left_out.position) columns.push_back(candidate.position);
+    }
+  }
+  std::sort(columns.begin(), columns.end());
+  columns.erase(std::unique(columns.begin(), columns.end()), columns.end());
+  CompareWithColumns(index, left_out, columns, sampled);
 }
 
 // The sampled views of every left-out object, compared with their columns on `options.threads`
@@ -189,7 +190,7 @@ double WindowStatistic(const std::vector<SampledView>& sampled, const std::vecto
     if (sums[p] > sums[winner]) winner = p;
   }
   for (std::size_t p = 0; p < sums.size(); ++p) {
-    if (p == winner || sampled[frames[0]].best[p] < 0) continue;
+    if (p == winner) continue;
     if (runner_up == sums.size() || sums[p] > sums[runner_up]) runner_up = p;
   }
   double d1 = 0, d2 = 0, typical = 0;
@@ -209,7 +210,6 @@ double KnownWindowStatistic(const std::vector<SampledView>& sampled, const std::
   SumBest(sampled, frames, sums);
   std::size_t runner_up = sums.size();
   for (std::size_t p = 0; p < sums.size(); ++p) {
-    if (sampled[frames[0]].best[p] < 0) continue;  // its own object
     if (runner_up == sums.size() || sums[p] > sums[runner_up]) runner_up = p;
   }
   double d1 = 0, d2 = 0, typical = 0;

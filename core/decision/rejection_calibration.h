@@ -5,7 +5,8 @@
 // Leave one object out: each known object in turn plays an object the server has never seen.
 // Some of its views are queried against every other object; a window of n of them is answered
 // as a session would answer it (the winner and the runner-up are the two objects with the
-// largest summed best-view similarity over the window's frames) and gives one value of the
+// largest summed best-view similarity over the window's frames, a blend of two neighbouring
+// views counting as a view, docs/design.md#blended-views) and gives one value of the
 // unknown statistic U (core/decision/unknown_statistic.h). Those values are the null distribution:
 // what U looks like when the object in front of the camera is unknown. A window whose U is at or
 // below the threshold for a target false-accept rate f is accepted, and an unknown object's
@@ -32,18 +33,17 @@
 // pair) and says little about an object nobody enrolled, and an unknown window meets one object
 // more than a left-out object met; the measured rate then lies far above f. So the threshold
 // never exceeds what the known objects' own windows need: each sampled view, matched against
-// its own object's views outside kOwnNeighbourhoodDegrees of it (a query falls between enrolled
-// views), gives a known window the same way, and the rule accepts a window only at or below
-// both the null's f-quantile and the known ceiling, a margin above the known windows'
-// kKnownWindowsAccepted quantile. With many
-// objects the null's quantile usually lies below the ceiling and rules alone
-// (docs/design.md#known-ceiling).
+// its own object's views outside kOwnNeighbourhoodDegrees of it and the blends of its pairs
+// of views outside it (a query falls between enrolled views), gives a known window the same way,
+// and the rule accepts a window only at or below both the null's f-quantile and the known ceiling,
+// a margin above the known windows' kKnownWindowsAccepted quantile. With many objects the null's
+// quantile usually lies below the ceiling and rules alone (docs/design.md#known-ceiling).
 //
 // Sampling keeps the cost bounded: at most `max_sampled_views` views (spread evenly in azimuth
 // over every object, or one view of each of `max_sampled_views` objects spread evenly over a
 // larger index); windows draw their frames from the sampled views of one object, with
 // replacement. Up to kScanEveryObjectUpTo objects a sampled view is compared with every view of
-// the index (one exact scan); above, with the views of the objects ObjectCandidates proposes for
+// the index; above, with the views of the objects ObjectCandidates proposes for
 // its object's sampled views, each scored exactly, and an object no view proposes is taken to
 // answer a window less well than those that are (docs/design.md#calibrated-rule).
 //

@@ -17,10 +17,10 @@ double UnknownStatistic(const ObjectRows& winner, const ObjectRows* runner_up) {
   double d1_sum = 0, d2_sum = 0, typical_sum = 0;
   for (std::size_t k = 0; k < winner.nearest.size(); ++k) {
     const NearestView& best = winner.nearest[k];
-    d1_sum += 1 - best.similarity;
+    d1_sum += 1 - best.closest();
     typical_sum += views[static_cast<std::size_t>(best.view)].typical_distance;
     if (runner_up != nullptr) {
-      d2_sum += 1 - runner_up->nearest[k].similarity;
+      d2_sum += 1 - runner_up->nearest[k].closest();
     } else {
       d2_sum += 1.0;
     }

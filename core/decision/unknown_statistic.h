@@ -6,9 +6,10 @@
 // engine's internal matching.
 //
 // For each frame q_k of the window (k = 1..n; docs/design.md#unknown-statistic):
-//   d1_k = 1 - max_v TC(q_k, v)   over the winner's views v (the frame's best view of it)
-//   d2_k = 1 - max_v TC(q_k, v)   over the runner-up's views (1 when there is no runner-up)
-//   t_k  = Ttyp of the winner's best view for q_k
+//   d1_k = 1 - max_v TC(q_k, v)   over the winner's views v and the blends of its neighbouring
+//                                 views (NearestView::closest, docs/design.md#blended-views)
+//   d2_k = 1 - max_v TC(q_k, v)   the same over the runner-up's (1 when there is no runner-up)
+//   t_k  = Ttyp of the winner's best view (not blend) for q_k
 //   U = mean(d1) / mean(d2) + kTypicalTermWeight * mean(d1) / mean(t)
 // The second term is dropped when mean(t) is 0 (views enrolled without typical distances).
 //

@@ -41,9 +41,9 @@ struct EngineOptions {
   // kCalibrated's target share of unknown objects' windows accepted, in (0, 1), and the share of
   // the known objects' own windows it is raised to accept where look-alikes need more, in [0, 1)
   // (0: the target alone; docs/design.md#known-share). Why these defaults:
-  // docs/results/recognition.md, "Why 0.17 by default", and docs/results/real-objects.md,
+  // docs/results/recognition.md, "Why 0.15 by default", and docs/results/real-objects.md,
   // "The known share".
-  double false_accept_rate = 0.17;
+  double false_accept_rate = 0.15;
   double known_accept_rate = 0.95;
   int top_k = 5;  // objects in each update's ranking (1..kMaxTopK)
   // lambda of the nearest-view blend, in [0, 1] (0: the engine's own score, as the thesis'

@@ -129,7 +129,7 @@ std::size_t WindowedEngine::Rank(std::vector<Assessment>& assessments) {
     for (auto it = assessments.begin(); it != ranked; ++it) {
       double nearest = 0;
       for (const NearestView& view : rows_->For(window_, *it->object).nearest) {
-        nearest += std::max(view.similarity, view.blended);
+        nearest += view.closest();
       }
       nearest /= static_cast<double>(window_.size());
       it->score = (1 - weight) * it->score + weight * nearest;

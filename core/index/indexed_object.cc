@@ -118,17 +118,19 @@ IndexedObject::IndexedObject(ObjectModel model) : model_(std::move(model)) {
   for (const int v : by_azimuth_) sorted_azimuths_.push_back(model_.views[v].azimuth);
   const std::size_t count = by_azimuth_.size();
   for (std::size_t i = 0; i < count && count > 1; ++i) {
-    const ModelView& first = model_.views[by_azimuth_[i]];
-    const ModelView& second = model_.views[by_azimuth_[(i + 1) % count]];
-    double apart = second.azimuth - first.azimuth;
-    if (apart < 0 || (apart == 0 && i + 1 == count)) apart += 360;
-    if (apart <= 0 || apart > kBlendViewsUpTo || first.elevation != second.elevation) continue;
+    const int a = by_azimuth_[i];
+    const int b = by_azimuth_[(i + 1) % count];
+    const ModelView& first = model_.views[a];
+    const ModelView& second = model_.views[b];
+    // Two views at one azimuth are 0 apart, not a full turn: they blend into neither.
+    const double apart = NormaliseAzimuth(second.azimuth - first.azimuth);
+    if (apart == 0 || apart > kBlendViewsUpTo || first.elevation != second.elevation) continue;
     std::int32_t sum_norm = 0;
     for (std::size_t d = 0; d < kDescriptorSize; ++d) {
       const int sum = first.descriptor[d] + second.descriptor[d];
       sum_norm += sum * sum;
     }
-    neighbour_pairs_.push_back({by_azimuth_[i], by_azimuth_[(i + 1) % count], sum_norm});
+    neighbour_pairs_.push_back({a, b, sum_norm});
   }
 }
 

@@ -4,6 +4,18 @@
 #include <cstdint>
 
 namespace orbit {
+namespace {
+
+// TC of a frame with the blend m = (a + b) / 2 of two views: q.m / (q.q + m.m - q.m), every
+// term times 4 to stay in integers, from `products` = 2 (q.a + q.b), `qq` = q.q and
+// `sum_squared_norm` = |a + b|^2. The denominator is |2q - (a + b)|^2 + 2 q.(a + b): 0 only
+// when q and a + b are both 0.
+double BlendTanimoto(std::int32_t products, std::int32_t qq, std::int32_t sum_squared_norm) {
+  const std::int32_t denominator = 4 * qq + sum_squared_norm - products;
+  return denominator == 0 ? 1.0 : static_cast<double>(products) / denominator;
+}
+
+}  // namespace
 
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
                                  float* best_blend) {
@@ -29,17 +41,27 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
                  : static_cast<float>(static_cast<double>(qc[v]) / (qq + cc[v] - qc[v]));
   }
   if (best_blend != nullptr) {
-    // With m = (a + b) / 2: q.m / (q.q + m.m - q.m), every term times 4 to stay in integers.
-    // The denominator is |2q - (a + b)|^2 + 2 q.(a + b): 0 only when q and a + b are both 0.
     double best = 0;
     for (const NeighbourPair& pair : object.neighbour_pairs()) {
-      const std::int32_t products = 2 * (qc[pair.first] + qc[pair.second]);
-      const std::int32_t denominator = 4 * qq + pair.sum_squared_norm - products;
-      best = std::max(best, denominator == 0 ? 1.0 : static_cast<double>(products) / denominator);
+      best = std::max(
+          best, BlendTanimoto(2 * (qc[pair.first] + qc[pair.second]), qq, pair.sum_squared_norm));
     }
     *best_blend = static_cast<float>(best);
   }
   return row;
+}
+
+float BlendSimilarity(const DescriptorValues& frame, const IndexedObject& object,
+                      const NeighbourPair& pair) {
+  const DescriptorValues& a = object.model().views[static_cast<std::size_t>(pair.first)].descriptor;
+  const DescriptorValues& b =
+      object.model().views[static_cast<std::size_t>(pair.second)].descriptor;
+  std::int32_t qq = 0, products = 0;
+  for (std::size_t d = 0; d < kDescriptorSize; ++d) {
+    qq += frame[d] * frame[d];
+    products += frame[d] * (a[d] + b[d]);
+  }
+  return static_cast<float>(BlendTanimoto(2 * products, qq, pair.sum_squared_norm));
 }
 
 void Prefetch(const ObjectRows& rows) {

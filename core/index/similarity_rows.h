@@ -29,6 +29,12 @@ namespace orbit {
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
                                  float* best_blend = nullptr);
 
+// TC of `frame` with the blend of `pair`, one of `object`'s neighbour_pairs, exactly as
+// SimilarityRow's `best_blend` computes it: for a caller that reads some of the pairs, not the
+// best of all. REQUIRES: as SimilarityRow.
+float BlendSimilarity(const DescriptorValues& frame, const IndexedObject& object,
+                      const NeighbourPair& pair);
+
 // The view of a row with the highest TC (the first of equals, as std::max_element finds it),
 // and that TC: what the nearest-view blend and the unknown statistic read of most rows.
 struct NearestView {
@@ -37,6 +43,10 @@ struct NearestView {
   // The highest TC with a blend of two neighbouring views (SimilarityRow's `best_blend`): what
   // the product's nearest-view term reads beside `similarity`.
   float blended = 0;
+
+  // The nearer of the two: how close the frame comes to the object's views and the blends
+  // between them, what the product's nearest-view term and the unknown statistic read.
+  float closest() const { return similarity > blended ? similarity : blended; }
 };
 
 // One object's rows for a window: rows[k][v] = TC(window frame k, view v).

@@ -58,7 +58,7 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   EXPECT_EQ(info_json["views"], 54);
   EXPECT_EQ(info_json["variant"], "cedd-hsv-hog");
   EXPECT_EQ(info_json["session_defaults"]["rejection"], "calibrated");
-  EXPECT_EQ(info_json["session_defaults"]["false_accept_rate"], 0.17);
+  EXPECT_EQ(info_json["session_defaults"]["false_accept_rate"], 0.15);
   EXPECT_EQ(info_json["session_defaults"]["known_accept_rate"], 0.95);
   EXPECT_EQ(info_json["limits"]["max_image_pixels"], 16777216);
   EXPECT_EQ(info_json["limits"]["max_hmm_cells"], 1024);

@@ -148,7 +148,7 @@ TEST(SessionSettingsTest, DescribeSettingsFillsEveryField) {
   EXPECT_EQ(described.hmm_states(), 8);
   EXPECT_EQ(described.threshold(), 2.0);
   EXPECT_EQ(described.rejection(), v1::REJECTION_CALIBRATED);  // the product's
-  EXPECT_EQ(described.false_accept_rate(), 0.17);
+  EXPECT_EQ(described.false_accept_rate(), 0.15);
   EXPECT_EQ(described.known_accept_rate(), 0.95);
   EXPECT_EQ(described.variant(), v1::CEDD_FULL);
 }

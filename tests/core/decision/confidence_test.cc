@@ -119,7 +119,8 @@ double LargestGap(const std::vector<std::pair<double, bool>>& updates, int least
 
 TEST(CatalogueConfidenceTest, MeansWhatItSaysAmongLookAlikesWhereTheFittedCurveDoesNot) {
   // eth-80-dev's 40 look-alikes, cropped, four of them unknown, every protocol distortion. The
-  // curve fitted on COIL-100 says 0.5-0.6 where about 80% of the answers are right.
+  // curve fitted on COIL-100 is more than 10 points from the share right in some bin of at least
+  // 50 updates; the catalogue's confidence stays within 8 in every one.
   const SelectedImages images = testing::CroppedEthRing("", "2,20,22,32");
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod)};
@@ -137,8 +138,8 @@ TEST(CatalogueConfidenceTest, MeansWhatItSaysAmongLookAlikesWhereTheFittedCurveD
     }
   }
   ASSERT_EQ(catalogue.size(), 1200u);
-  EXPECT_LE(LargestGap(catalogue, 50), 12);
-  EXPECT_GE(LargestGap(fitted, 50), 20);
+  EXPECT_LE(LargestGap(catalogue, 50), 8);
+  EXPECT_GE(LargestGap(fitted, 50), 10);
 }
 
 }  // namespace

@@ -17,6 +17,7 @@
 #include "evaluation/evaluation_runner.h"
 #include "tests/support/coil_models.h"
 #include "tests/support/eth_images.h"
+#include "tests/support/hand_made_descriptors.h"
 #include "tests/support/test_data.h"
 
 namespace orbit {
@@ -318,6 +319,40 @@ TEST(RejectionCalibrationTest, TwoObjectsHoldTheThresholdAtWhatTheirOwnViewsNeed
   EXPECT_EQ(known_accepted, 4);
   EXPECT_GT(unknown_under_null, 6) << "of 40";
   EXPECT_LE(unknown_accepted, 6) << "of 40";
+}
+
+// An object of three views at 0, 20 and 40 degrees, one of them (`mean_at`) the mean of the
+// other two, and a second object far from it (views at 0 and 180, nothing in common).
+RejectionCalibration BlendCalibration(int mean_at) {
+  const DescriptorValues a = testing::Bins({{0, 4}, {1, 2}});
+  const DescriptorValues b = testing::Bins({{0, 4}, {2, 2}});
+  const DescriptorValues mean = testing::Bins({{0, 4}, {1, 1}, {2, 1}});
+  std::vector<ObjectModel> models(2);
+  models[0].id = 1;
+  models[0].name = "blend";
+  const std::vector<DescriptorValues> descriptors = mean_at == 0
+                                                        ? std::vector<DescriptorValues>{mean, a, b}
+                                                        : std::vector<DescriptorValues>{a, mean, b};
+  for (int v = 0; v < 3; ++v)
+    models[0].views.push_back({descriptors[v], 20.0 * v, std::nullopt, 0.1});
+  models[1].id = 2;
+  models[1].name = "far";
+  models[1].views = {{testing::Bins({{3, 4}}), 0, std::nullopt, 0.1},
+                     {testing::Bins({{4, 4}}), 180, std::nullopt, 0.1}};
+  return RejectionCalibration::FromIndex(*ViewIndex(std::move(models)).Snapshot());
+}
+
+TEST(RejectionCalibrationTest, AKnownWindowReadsTheBlendsOfItsObjectsPairsOutsideItsNeighbourhood) {
+  // The mean at 0: its neighbourhood (10 degrees) leaves the views at 20 and 40, a pair of the
+  // object whose blend is the frame itself: d1 = 0, U = 0.
+  EXPECT_GT(BlendCalibration(0).KnownAcceptRate(0, 1), 0);
+  // The mean at 20: the views either side of its neighbourhood are no pair of the object (each
+  // of its pairs holds the view at 20), so its best is a view at TC 18/20 = 0.9 and U =
+  // 0.1 / 1 + 0.2 * 0.1 / 0.1 = 0.3 (the far object the runner-up at TC 0); so is every other
+  // known window's (the blend of the mean and an outer view reaches 68/86 from the other).
+  const RejectionCalibration between = BlendCalibration(20);
+  EXPECT_EQ(between.KnownAcceptRate(0.3 - 1e-6, 1), 0);
+  EXPECT_GT(between.KnownAcceptRate(0.3 + 1e-6, 1), 0);
 }
 
 TEST(RejectionCalibrationTest, AnObjectOfOneViewHasNoKnownWindows) {

@@ -54,6 +54,21 @@ TEST(UnknownStatisticTest, WeighsTheRunnerUpAndTheTypicalDistance) {
   EXPECT_NEAR(UnknownStatistic(window, winner, &twin), 1.4, 1e-12);
 }
 
+TEST(UnknownStatisticTest, AFrameBetweenTwoNeighbouringViewsIsAsNearAsTheirBlend) {
+  // The frame is the mean of two views 90 degrees apart: TC 1 with their blend, 18/20 = 0.9
+  // with either view (q.q = 18, a.a = 20, q.a = 18).
+  const DescriptorValues a = Bins({{0, 4}, {1, 2}});
+  const DescriptorValues b = Bins({{0, 4}, {2, 2}});
+  const std::vector<QueryFrame> window{Frame(Bins({{0, 4}, {1, 1}, {2, 1}}))};
+  const IndexedObject neighbours = Object(1, {{a, 0.1}, {b, 0.1}});  // at 0 and 90
+  EXPECT_NEAR(UnknownStatistic(window, neighbours, nullptr), 0.0, 1e-7);
+  // With a third view between them (0, 90, 180) the two are not neighbours: the best is a view,
+  // d1 = 0.1, U = 0.1 / 1 + 0.2 * 0.1 / 0.1 = 0.3. (The blends with the view between, kDisjoint,
+  // reach 11/20 and 11/16.)
+  const IndexedObject apart = Object(2, {{a, 0.1}, {kDisjoint, 0.1}, {b, 0.1}});
+  EXPECT_NEAR(UnknownStatistic(window, apart, nullptr), 0.3, 1e-6);
+}
+
 TEST(UnknownStatisticTest, DropsTheTypicalTermWithoutTypicalDistances) {
   const IndexedObject winner = Object(1, {{kHalf, 0.0}});
   const std::vector<QueryFrame> window{Frame(kQuery)};

@@ -83,6 +83,10 @@ TEST(SimilarityRowsTest, EachRowKnowsItsBestBlendOfNeighbouringViews) {
   EXPECT_EQ(got.nearest[0].view, 0);
   EXPECT_EQ(got.nearest[0].similarity, 0.5f);
   EXPECT_EQ(got.nearest[0].blended, 1.0f);
+  EXPECT_EQ(got.nearest[0].closest(), 1.0f);
+  // The same blend from the frame's descriptor, as the calibration reads a pair of its own.
+  EXPECT_EQ(BlendSimilarity(between, object, object.neighbour_pairs()[0]), 1.0f);
+  EXPECT_EQ(BlendSimilarity(first, object, object.neighbour_pairs()[0]), 0.5f);
 
   const IndexedObject far_apart(Model(2, {first, second}));
   SimilarityRow(between, far_apart, &blended);
