@@ -63,12 +63,12 @@ int SampledViewOf(const IndexedObject& object, int count, int k) {
 
 // The sampled view's best similarity to its own object's views outside its neighbourhood and to
 // the blends of the object's neighbouring pairs outside it (docs/design.md#blended-views), from
-// `query`, its descriptor, and `row`, its SimilarityRow with the object. Not the pair of views
+// its SimilarityRow with the object: `row` and the pairs' `blends`. Not the pair of views
 // either side of the neighbourhood: the object holds no such pair, and their blend would stand
 // in for the very view the neighbourhood takes out. own_typical is the Ttyp of the best view,
 // as a session reads it.
-void MatchOwnViews(const IndexedObject& object, int view, const DescriptorValues& query,
-                   std::span<const float> row, SampledView& sample) {
+void MatchOwnViews(const IndexedObject& object, int view, std::span<const float> row,
+                   std::span<const float> blends, SampledView& sample) {
   const std::vector<ModelView>& views = object.model().views;
   const double azimuth = views[static_cast<std::size_t>(view)].azimuth;
   const auto outside = [&](int v) {
@@ -82,9 +82,10 @@ void MatchOwnViews(const IndexedObject& object, int view, const DescriptorValues
       sample.own_typical = static_cast<float>(views[static_cast<std::size_t>(v)].typical_distance);
     }
   }
-  for (const NeighbourPair& pair : object.neighbour_pairs()) {
-    if (outside(pair.first) && outside(pair.second))
-      sample.own_best = std::max(sample.own_best, BlendSimilarity(query, object, pair));
+  const std::vector<NeighbourPair>& pairs = object.neighbour_pairs();
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (outside(pairs[i].first) && outside(pairs[i].second))
+      sample.own_best = std::max(sample.own_best, blends[i]);
   }
 }
 
@@ -103,7 +104,9 @@ void CompareWithColumns(const ViewIndexSnapshot& index, const LeftOutObject& lef
     SampledView& sample = sampled[left_out.views[k]];
     sample.best.assign(columns.size(), -1.0f);
     sample.best_typical.assign(columns.size(), 0.0f);
-    MatchOwnViews(object, view, query, SimilarityRow(query, object), sample);
+    std::vector<float> blends;
+    const std::vector<float> own = SimilarityRow(query, object, nullptr, &blends);
+    MatchOwnViews(object, view, own, blends, sample);
     for (std::size_t c = 0; c < columns.size(); ++c) {
       const IndexedObject& column = *objects[columns[c]].object;
       float blended = 0;

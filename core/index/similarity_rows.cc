@@ -18,7 +18,7 @@ double BlendTanimoto(std::int32_t products, std::int32_t qq, std::int32_t sum_sq
 }  // namespace
 
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
-                                 float* best_blend) {
+                                 float* best_blend, std::vector<float>* blends) {
   const std::vector<std::int32_t>& cc = object.squared_norms();
   const std::size_t count = cc.size();
   // The thread's scratch: a session's answer computes a few of these rows per frame. The
@@ -40,28 +40,18 @@ std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObj
                  ? 1.0f
                  : static_cast<float>(static_cast<double>(qc[v]) / (qq + cc[v] - qc[v]));
   }
-  if (best_blend != nullptr) {
+  if (best_blend != nullptr || blends != nullptr) {
     double best = 0;
+    if (blends != nullptr) blends->clear();
     for (const NeighbourPair& pair : object.neighbour_pairs()) {
-      best = std::max(
-          best, BlendTanimoto(2 * (qc[pair.first] + qc[pair.second]), qq, pair.sum_squared_norm));
+      const double blend =
+          BlendTanimoto(2 * (qc[pair.first] + qc[pair.second]), qq, pair.sum_squared_norm);
+      best = std::max(best, blend);
+      if (blends != nullptr) blends->push_back(static_cast<float>(blend));
     }
-    *best_blend = static_cast<float>(best);
+    if (best_blend != nullptr) *best_blend = static_cast<float>(best);
   }
   return row;
-}
-
-float BlendSimilarity(const DescriptorValues& frame, const IndexedObject& object,
-                      const NeighbourPair& pair) {
-  const DescriptorValues& a = object.model().views[static_cast<std::size_t>(pair.first)].descriptor;
-  const DescriptorValues& b =
-      object.model().views[static_cast<std::size_t>(pair.second)].descriptor;
-  std::int32_t qq = 0, products = 0;
-  for (std::size_t d = 0; d < kDescriptorSize; ++d) {
-    qq += frame[d] * frame[d];
-    products += frame[d] * (a[d] + b[d]);
-  }
-  return static_cast<float>(BlendTanimoto(2 * products, qq, pair.sum_squared_norm));
 }
 
 void Prefetch(const ObjectRows& rows) {

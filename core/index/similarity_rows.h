@@ -23,17 +23,13 @@ namespace orbit {
 
 // TC of `frame` with each view of `object`, in the object's view order. With `best_blend`, also
 // the highest TC of `frame` with the blend of a pair of IndexedObject::neighbour_pairs (the mean
-// of the two views' descriptors, docs/design.md#blended-views), 0 when the object has none.
+// of the two views' descriptors, docs/design.md#blended-views), 0 when the object has none; with
+// `blends`, the TC with each pair's blend, in neighbour_pairs' order (for a caller that reads
+// some of the pairs, not the best of all).
 // REQUIRES: every value of `frame` at most 7 (ValidateDescriptorValues; views are checked when
 // the object is indexed).
 std::vector<float> SimilarityRow(const DescriptorValues& frame, const IndexedObject& object,
-                                 float* best_blend = nullptr);
-
-// TC of `frame` with the blend of `pair`, one of `object`'s neighbour_pairs, exactly as
-// SimilarityRow's `best_blend` computes it: for a caller that reads some of the pairs, not the
-// best of all. REQUIRES: as SimilarityRow.
-float BlendSimilarity(const DescriptorValues& frame, const IndexedObject& object,
-                      const NeighbourPair& pair);
+                                 float* best_blend = nullptr, std::vector<float>* blends = nullptr);
 
 // The view of a row with the highest TC (the first of equals, as std::max_element finds it),
 // and that TC: what the nearest-view blend and the unknown statistic read of most rows.

@@ -84,9 +84,13 @@ TEST(SimilarityRowsTest, EachRowKnowsItsBestBlendOfNeighbouringViews) {
   EXPECT_EQ(got.nearest[0].similarity, 0.5f);
   EXPECT_EQ(got.nearest[0].blended, 1.0f);
   EXPECT_EQ(got.nearest[0].closest(), 1.0f);
-  // The same blend from the frame's descriptor, as the calibration reads a pair of its own.
-  EXPECT_EQ(BlendSimilarity(between, object, object.neighbour_pairs()[0]), 1.0f);
-  EXPECT_EQ(BlendSimilarity(first, object, object.neighbour_pairs()[0]), 0.5f);
+  // Each pair's blend on its own, as the calibration reads some of them: the one pair here.
+  std::vector<float> blends{0.25f, 0.25f};
+  SimilarityRow(between, object, nullptr, &blends);
+  EXPECT_EQ(blends, std::vector<float>{1.0f});
+  SimilarityRow(first, object, &blended, &blends);
+  EXPECT_EQ(blends, std::vector<float>{0.5f});
+  EXPECT_EQ(blended, 0.5f);
 
   const IndexedObject far_apart(Model(2, {first, second}));
   SimilarityRow(between, far_apart, &blended);
