@@ -44,7 +44,7 @@ double Confidence(double unknown_statistic, int frames);
 // at U less the known allowance, the left-out ones at U less the null's
 // (core/decision/quality_allowance.h), as the rule judges them.
 inline constexpr double kRightPrior = 0.8;
-inline constexpr double kConfidenceNeighbourhood = 0.1;
+inline constexpr double kConfidenceNeighbourhood = 0.05;
 
 // 0 for a non-finite U. REQUIRES: calibration.calibrated(), calibration.has_known_windows(),
 // frames >= 1.

@@ -65,9 +65,11 @@ TEST(CatalogueConfidenceTest, IsCertainBelowEveryWindowAndFarFromItAboveEvery) {
   ASSERT_TRUE(calibration.has_known_windows());
   for (const int n : {1, 4, 8}) {
     // Below every window the nearest ones are the enrolled objects' own (COIL-100's objects differ:
-    // no left-out window comes as low); above every window, nearly all left-out objects'.
+    // no left-out window comes as low); above every window, nearly all left-out objects': below
+    // 0.15 is fewer than one known window for 22 left-out ones, as shares of their sets
+    // (0.8 x 1 / (0.8 x 1 + 0.2 x 22) = 0.154).
     EXPECT_EQ(CatalogueConfidence(calibration, -1, -1, n), 1) << n;
-    EXPECT_LT(CatalogueConfidence(calibration, 1e6, 1e6, n), 0.1) << n;
+    EXPECT_LT(CatalogueConfidence(calibration, 1e6, 1e6, n), 0.15) << n;
     EXPECT_EQ(CatalogueConfidence(calibration, std::numeric_limits<double>::infinity(), 1, n), 0);
     EXPECT_EQ(CatalogueConfidence(calibration, 1, std::numeric_limits<double>::quiet_NaN(), n), 0);
   }
