@@ -103,6 +103,18 @@ std::vector<ReliabilityBin> Reliability(const std::vector<const EvaluationCell*>
   return bins;
 }
 
+std::optional<ReliabilityGap> LargestReliabilityGap(const std::vector<ReliabilityBin>& bins,
+                                                    int least) {
+  std::optional<ReliabilityGap> largest;
+  for (const ReliabilityBin& bin : bins) {
+    if (bin.updates < least || bin.updates == 0) continue;
+    const double points =
+        100 * (static_cast<double>(bin.right) / bin.updates - bin.mean_confidence);
+    if (!largest || std::abs(points) > std::abs(largest->points)) largest = {bin, points};
+  }
+  return largest;
+}
+
 std::string ReliabilityMarkdown(const EvaluationReport& report) {
   std::map<std::string, std::vector<const EvaluationCell*>> by_method;
   std::vector<std::string> order;
@@ -118,13 +130,28 @@ std::string ReliabilityMarkdown(const EvaluationReport& report) {
     out << "\n"
         << key << "\n\n| confidence | updates | mean confidence | right (%) |\n"
         << "|---|---|---|---|\n";
-    for (const ReliabilityBin& bin : Reliability(by_method[key])) {
+    const std::vector<ReliabilityBin> bins = Reliability(by_method[key]);
+    for (const ReliabilityBin& bin : bins) {
       if (bin.updates == 0) continue;
       char row[128];
       std::snprintf(row, sizeof row, "| %.1f-%.1f | %d | %.3f | %s |\n", bin.low, bin.high,
                     bin.updates, bin.mean_confidence, Percent(bin.right, bin.updates).c_str());
       out << row;
     }
+    const std::optional<ReliabilityGap> gap = LargestReliabilityGap(bins, kReliabilityGapLeast);
+    char line[192];
+    if (gap) {
+      std::snprintf(line, sizeof line,
+                    "\nFarthest from the share right, of the bins of at least %d updates: "
+                    "%.1f-%.1f, %+.1f points (share right less mean confidence).\n",
+                    kReliabilityGapLeast, gap->bin.low, gap->bin.high, gap->points);
+    } else {
+      std::snprintf(line, sizeof line,
+                    "\nNo bin holds %d updates: too few to judge the "
+                    "confidence by.\n",
+                    kReliabilityGapLeast);
+    }
+    out << line;
   }
   return out.str();
 }

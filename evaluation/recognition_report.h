@@ -7,11 +7,13 @@
 //   pose: median and 90th percentile of the error of known hits, degrees (the protocol's
 //         queries only: a captured query's azimuths do not say which side of the model it shows)
 //   reliability: confidence in bins of 0.1 against the share of those updates that were right
-//                (a right update: a known query whose top-1 object is right)
+//                (a right update: a known query whose top-1 object is right), and the bin of
+//                at least kReliabilityGapLeast updates where the two lie farthest apart
 //
 // Pure functions of the report; thread-safe.
 #pragma once
 
+#include <optional>
 #include <ostream>
 #include <string>
 #include <vector>
@@ -32,6 +34,20 @@ struct ReliabilityBin {
   double mean_confidence = 0;
 };
 std::vector<ReliabilityBin> Reliability(const std::vector<const EvaluationCell*>& cells);
+
+// The bins the confidence is judged on: at least this many updates (fewer say too little).
+inline constexpr int kReliabilityGapLeast = 100;
+
+// The bin of at least `least` updates whose share right lies farthest from its mean
+// confidence, and that gap in points: 100 x (right / updates - mean confidence), positive where
+// the confidence says less than it is worth. Of equal gaps the lower bin; none when no bin holds
+// `least` updates.
+struct ReliabilityGap {
+  ReliabilityBin bin;
+  double points = 0;
+};
+std::optional<ReliabilityGap> LargestReliabilityGap(const std::vector<ReliabilityBin>& bins,
+                                                    int least);
 
 // The reliability table of every method's cells pooled over distortions and n, as Markdown.
 std::string ReliabilityMarkdown(const EvaluationReport& report);

@@ -3,6 +3,7 @@
 #include "evaluation/recognition_report.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -96,6 +97,34 @@ TEST(RecognitionReportTest, BinsConfidenceAgainstRightAnswers) {
   EXPECT_EQ(bins[4].right, 1);
   EXPECT_EQ(bins[1].updates, 1);
   EXPECT_EQ(bins[0].updates, 0);
+}
+
+// The hand-made bins' gaps, 100 x (right share - mean confidence): 0.9-1.0 (2 updates)
+// 100 - 93.5 = +6.5; 0.8-0.9 (2) 0 - 86.5 = -86.5; 0.4-0.5 (1) 100 - 40 = +60; 0.1-0.2 (1)
+// 0 - 10 = -10.
+TEST(RecognitionReportTest, NamesTheBinFarthestFromTheShareRight) {
+  const EvaluationReport report = HandMadeReport();
+  const std::vector<ReliabilityBin> bins = Reliability({&report.cells[0]});
+  const std::optional<ReliabilityGap> any = LargestReliabilityGap(bins, 1);
+  ASSERT_TRUE(any.has_value());
+  EXPECT_DOUBLE_EQ(any->bin.low, 0.8);
+  EXPECT_NEAR(any->points, -86.5, 1e-9);
+  // Bins of at least 3 updates: none.
+  EXPECT_FALSE(LargestReliabilityGap(bins, 3).has_value());
+  // The report's own threshold is 100 updates: six say too little, and the report says so.
+  const std::string markdown = ReliabilityMarkdown(report);
+  EXPECT_NE(markdown.find("No bin holds 100 updates: too few to judge the confidence by."),
+            std::string::npos)
+      << markdown;
+  // 100 copies of the cell: every bin that held updates holds 100 or more, the same gaps.
+  EvaluationReport many = report;
+  for (int copy = 1; copy < 100; ++copy) many.cells.push_back(report.cells[0]);
+  const std::string many_markdown = ReliabilityMarkdown(many);
+  EXPECT_NE(many_markdown.find("Farthest from the share right, of the bins of at least 100 "
+                               "updates: 0.8-0.9, -86.5 points (share right less mean "
+                               "confidence)."),
+            std::string::npos)
+      << many_markdown;
 }
 
 TEST(RecognitionReportTest, SweepsTheTargetRate) {
