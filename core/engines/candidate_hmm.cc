@@ -52,12 +52,8 @@ class CandidateHmm final : public HmmSession {
           static_cast<std::uint16_t>(std::ceil(candidates.back().similarity * kBoundUnitsPerOne));
     }
     for (const ObjectCandidate& candidate : candidates) {
-      const IndexedObject* object = index.objects()[candidate.position].object;
-      AddEmissions(*object, stored);
-      Tally& tally = tallies_[object];
-      tally.units += stored.best.back();
-      tally.floors += stored.floor;
-      ++tally.frames;
+      AddEmissions(*index.objects()[candidate.position].object, stored);
+      Count(stored.entries.back(), stored);
     }
     stored.Sort();
     floors_ += stored.floor;
@@ -68,14 +64,44 @@ class CandidateHmm final : public HmmSession {
   void DropOldest() override {
     const WindowFrame& oldest = frames_.front();
     for (const Entry& entry : oldest.entries) {
-      if (!entry.candidate) continue;
-      const auto tally = tallies_.find(entry.object);
-      tally->second.units -= oldest.best[entry.offset / states_];
-      tally->second.floors -= oldest.floor;
-      if (--tally->second.frames == 0) tallies_.erase(tally);
+      if (entry.candidate) Uncount(entry, oldest);
     }
     floors_ -= oldest.floor;
     frames_.pop_front();
+  }
+
+  // Keeps what the window's frames proposed across a change of the model set
+  // (docs/design.md#object-candidates): a removed object (deleted, or replaced by a new version)
+  // leaves every frame; an added one joins each frame that would have proposed it, its best
+  // emission there at least the frame's floor (every frame that proposed every object); the
+  // kept objects' emissions and the frames' transitions stay. An enrollment then costs a
+  // session the new object's emissions in each window frame instead of a search of the index
+  // per frame, which hundreds of sessions would all run within a few frames of the change.
+  void Rebase(const ViewIndexSnapshot&, const ViewIndexSnapshot&, const SnapshotChange& change,
+              std::span<const QueryFrame>) override {
+    std::vector<const IndexedObject*> removed(change.removed);
+    std::sort(removed.begin(), removed.end());
+    for (WindowFrame& frame : frames_) {
+      // A removed object's emissions stay in the frame's buffer, unreferenced, until the frame
+      // leaves the window: its entry's offset is all that finds them.
+      std::erase_if(frame.entries, [&](const Entry& entry) {
+        if (!std::binary_search(removed.begin(), removed.end(), entry.object)) return false;
+        if (entry.candidate) Uncount(entry, frame);
+        return true;
+      });
+      for (const ObjectSlot& slot : change.added) {
+        AddEmissions(*slot.object, frame);
+        if (frame.best.back() >= frame.floor) {
+          Count(frame.entries.back(), frame);
+        } else {
+          frame.entries.pop_back();
+          frame.best.pop_back();
+          frame.emissions.resize(frame.emissions.size() - static_cast<std::size_t>(states_));
+        }
+      }
+      frame.Sort();
+    }
+    lanes_.clear();
   }
 
   void Clear() override {
@@ -178,6 +204,20 @@ class CandidateHmm final : public HmmSession {
     std::uint32_t floors = 0;
     int frames = 0;
   };
+
+  // A candidate entry of `frame` joins / leaves its object's tally.
+  void Count(const Entry& entry, const WindowFrame& frame) {
+    Tally& tally = tallies_[entry.object];
+    tally.units += frame.best[entry.offset / states_];
+    tally.floors += frame.floor;
+    ++tally.frames;
+  }
+  void Uncount(const Entry& entry, const WindowFrame& frame) {
+    const auto tally = tallies_.find(entry.object);
+    tally->second.units -= frame.best[entry.offset / states_];
+    tally->second.floors -= frame.floor;
+    if (--tally->second.frames == 0) tallies_.erase(tally);
+  }
 
   // Appends `object`'s emissions in the frame to `stored` (entries left unsorted) and its best
   // emission in BoundUnits, as the HMM over every object computes them.

@@ -9,6 +9,13 @@
 // only when an object that would rank was proposed in none of the window's frames: the
 // candidates are approximate, and an object never proposed is never decoded.
 //
+// When the model set changes, the window keeps what its frames proposed: a removed object leaves
+// them, an added one joins each frame that would have proposed it. A fresh session would search
+// the index again for each frame and could also propose, in a removed object's place, an object
+// just below a frame's last candidate; the kept window leaves that one out until a new frame
+// proposes it. An enrollment then costs each open session the new object's emissions in its
+// window, not a search per window frame.
+//
 // A session switches between the two engines as its catalogue crosses
 // EngineOptions::candidates_above: up to that many objects it scores every object as the HMM
 // always has; above, only candidates (candidate_objects per frame). The switch replays the window

@@ -18,7 +18,8 @@
 // Index updates: each call takes the snapshot to answer from; when it differs from the previous
 // call's, objects enrolled or deleted since are seen from this frame on, with work proportional
 // to the change, not to the index, so that an enrollment does not stall every open session. The
-// answer is the one a fresh session given the same window on the new snapshot would give.
+// answer is the one a fresh session given the same window on the new snapshot would give (the
+// HMM over candidates: up to the objects its frames proposed, core/engines/candidate_hmm.h).
 //
 // Thread safety: an engine (a session) must be used by one thread at a time; different engines
 // may run concurrently on the same snapshot.

@@ -111,5 +111,52 @@ TEST(CandidateHmmTest, ASessionSwitchesEnginesAsItsCatalogueCrossesTheLimit) {
   EXPECT_EQ(back.ranking[0].object, 4);
 }
 
+// Object 42 is enrolled after six frames of it: the session answers it from the next frame on,
+// as a fresh session on the same window does, even when that frame (one of object 3) does not
+// propose it: the window's frames that would have proposed it take it as their candidate.
+TEST(CandidateHmmTest, AnObjectEnrolledMidWalkIsAnsweredFromTheNextFrame) {
+  ViewIndex index(testing::CoilObjects(1, 40, testing::EvenView), {.search = SearchMode::kExact});
+  const EngineOptions options = {.top_k = 5, .candidate_objects = 8, .candidates_above = 8};
+  auto session = CreateEngine("hmm", options);
+  std::vector<QueryFrame> window = Walks({42});
+  window.resize(6);
+  for (const QueryFrame& frame : window) session->Observe(index.Snapshot(), frame);
+  index.Add(testing::CoilObjects(42, 42, testing::EvenView).front());
+  const QueryFrame other{{DescriptorVariant::kCeddLire, testing::CoilView(3, 95)}, 95.0};
+  ASSERT_EQ(index.Snapshot()->ObjectCandidates(other.descriptor.values, 8).size(), 8u);
+  for (const ObjectCandidate& c : index.Snapshot()->ObjectCandidates(other.descriptor.values, 8)) {
+    ASSERT_NE(index.Snapshot()->objects()[c.position].object->id(), 42)
+        << "the test needs a last frame that does not propose object 42";
+  }
+  window.push_back(other);
+  const FrameUpdate rebased = session->Observe(index.Snapshot(), other);
+  const FrameUpdate fresh = CreateEngine("hmm", options)->ObserveSequence(index.Snapshot(), window);
+  ASSERT_FALSE(rebased.ranking.empty());
+  EXPECT_EQ(rebased.ranking[0].object, 42);
+  EXPECT_EQ(rebased.ranking[0].score, fresh.ranking[0].score);
+  EXPECT_EQ(rebased.frame_index, 6);
+}
+
+// Object 7 is deleted while the window holds seven frames of it: from the next frame no answer
+// names it, and the top object is a fresh session's on the same window, score to the last bit.
+TEST(CandidateHmmTest, AnObjectDeletedMidWalkLeavesTheAnswerAtTheNextFrame) {
+  ViewIndex index(testing::CoilObjects(1, 40, testing::EvenView), {.search = SearchMode::kExact});
+  const EngineOptions options = {.top_k = 5, .candidate_objects = 8, .candidates_above = 8};
+  auto session = CreateEngine("hmm", options);
+  const std::vector<QueryFrame> walk = Walks({7});
+  std::vector<QueryFrame> window(walk.begin(), walk.begin() + 7);
+  FrameUpdate before;
+  for (const QueryFrame& frame : window) before = session->Observe(index.Snapshot(), frame);
+  ASSERT_EQ(before.ranking[0].object, 7);
+  index.Remove(7);
+  window.push_back(walk[7]);
+  const FrameUpdate rebased = session->Observe(index.Snapshot(), walk[7]);
+  const FrameUpdate fresh = CreateEngine("hmm", options)->ObserveSequence(index.Snapshot(), window);
+  ASSERT_FALSE(rebased.ranking.empty());
+  for (const RankedObject& ranked : rebased.ranking) EXPECT_NE(ranked.object, 7);
+  EXPECT_EQ(rebased.ranking[0].object, fresh.ranking[0].object);
+  EXPECT_EQ(rebased.ranking[0].score, fresh.ranking[0].score);
+}
+
 }  // namespace
 }  // namespace orbit
