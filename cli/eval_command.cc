@@ -151,7 +151,8 @@ void WriteReport(const EvaluationReport& report, const EvalOptions& o) {
   std::cout << MarkdownReport(report);
   if (!sweeps.empty()) std::cout << SweepMarkdown(report, sweeps);
   if (report.unknown_objects > 0 || !o.verdicts.empty()) {
-    std::cout << RecognitionMarkdown(report) << ReliabilityMarkdown(report);
+    std::cout << RecognitionMarkdown(report) << SeparationMarkdown(report)
+              << ReliabilityMarkdown(report);
   }
   std::cout << std::flush;
   if (!o.csv.empty()) {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 #include <map>
 #include <sstream>
 #include <stdexcept>
@@ -196,6 +197,74 @@ LineFigure RecognitionCurves(const EvaluationReport& report) {
   }
   figure.columns = static_cast<int>(std::min<std::size_t>(figure.panels.size(), 3));
   return figure;
+}
+
+std::optional<UnknownSeparation> SeparationOf(const EvaluationCell& cell) {
+  std::vector<double> known_right, unknown;
+  int known = 0;
+  for (const QueryVerdict& verdict : cell.verdicts) {
+    if (std::isnan(verdict.unknown_statistic)) return std::nullopt;
+    if (!verdict.known) {
+      unknown.push_back(verdict.unknown_statistic);
+    } else {
+      ++known;
+      if (verdict.hit) known_right.push_back(verdict.unknown_statistic);
+    }
+  }
+  if (known == 0 || unknown.empty()) return std::nullopt;
+  std::sort(unknown.begin(), unknown.end());
+  UnknownSeparation separation;
+  double pairs = 0;  // pairs (known right, unknown) in which the known one is lower, ties half
+  for (const double u : known_right) {
+    const auto [low, high] = std::equal_range(unknown.begin(), unknown.end(), u);
+    pairs += static_cast<double>(unknown.end() - high) + 0.5 * static_cast<double>(high - low);
+  }
+  separation.area =
+      known_right.empty()
+          ? 0
+          : pairs / (static_cast<double>(known_right.size()) * static_cast<double>(unknown.size()));
+  const double unknowns = static_cast<double>(unknown.size());
+  for (const double rejected : kSeparationRejected) {
+    // The threshold may accept the `accepted` lowest unknown U values, so it lies just below
+    // the next one; a margin of 1e-9 keeps 0.8 x 40 from rounding down to 31.
+    const auto accepted = static_cast<std::size_t>(std::floor((1 - rejected) * unknowns + 1e-9));
+    const auto below = [&](double u) {
+      return accepted >= unknown.size() || u < unknown[accepted];
+    };
+    separation.known_right.push_back(
+        static_cast<double>(std::count_if(known_right.begin(), known_right.end(), below)) /
+        static_cast<double>(known));
+  }
+  return separation;
+}
+
+std::string SeparationMarkdown(const EvaluationReport& report) {
+  std::ostringstream rows;
+  for (const EvaluationCell& cell : report.cells) {
+    const std::optional<UnknownSeparation> separation = SeparationOf(cell);
+    if (!separation) continue;
+    char area[16];
+    std::snprintf(area, sizeof area, "%.3f", separation->area);
+    rows << "| " << cell.method << " | " << VariantName(cell.variant) << " | "
+         << DistortionLabel(cell.distortion) << " | " << cell.n << " | " << area;
+    for (const double share : separation->known_right) {
+      char text[16];
+      std::snprintf(text, sizeof text, "%.1f", 100 * share);
+      rows << " | " << text;
+    }
+    rows << " |\n";
+  }
+  if (rows.str().empty()) return "";
+  std::ostringstream out;
+  out << "\n### What a threshold on the unknown statistic could do, in hindsight: each cell's own "
+         "queries choose it; known queries right (%) below the threshold that rejects that share "
+         "of its unknown queries\n\n"
+      << "| method | variant | distortion | n | area under the curve |";
+  for (const double rejected : kSeparationRejected) out << " " << 100 * rejected << "% rejected |";
+  out << "\n|---|---|---|---|---";
+  for (std::size_t i = 0; i < std::size(kSeparationRejected); ++i) out << "|---";
+  out << "|\n" << rows.str();
+  return out.str();
 }
 
 void WriteVerdictsCsv(const EvaluationReport& report, std::ostream& out) {

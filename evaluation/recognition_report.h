@@ -9,6 +9,7 @@
 //   reliability: confidence in bins of 0.1 against the share of those updates that were right
 //                (a right update: a known query whose top-1 object is right), and the bin of
 //                at least kReliabilityGapLeast updates where the two lie farthest apart
+//   separation: what any threshold on the unknown statistic could do, in hindsight
 //
 // Pure functions of the report; thread-safe.
 #pragma once
@@ -51,6 +52,27 @@ std::optional<ReliabilityGap> LargestReliabilityGap(const std::vector<Reliabilit
 
 // The reliability table of every method's cells pooled over distortions and n, as Markdown.
 std::string ReliabilityMarkdown(const EvaluationReport& report);
+
+// What a threshold on the unknown statistic U could do on one cell in hindsight, the cell's own
+// queries choosing it: whether a cell's known / unknown pair falls short because the rule's
+// threshold is off or because no threshold on U reaches it.
+//   area: the chance that a known query answered right has a lower U than an unknown query
+//         (ties count half): 1 where U separates them, 0.5 where it says nothing;
+//   known_right[i]: the share of the cell's known queries answered right whose U lies below
+//         the most lenient threshold that still rejects kSeparationRejected[i] of its unknown
+//         queries (of N unknown queries at most floor((1 - r) N) accepted; below every
+//         unknown U when that is 0).
+inline constexpr double kSeparationRejected[] = {0.95, 0.9, 0.8, 0.75};
+struct UnknownSeparation {
+  double area = 0;
+  std::vector<double> known_right;  // [i]: at kSeparationRejected[i]
+};
+// None when the cell lacks known or unknown queries, or a verdict's U is not stated (NaN: a
+// server's answers).
+std::optional<UnknownSeparation> SeparationOf(const EvaluationCell& cell);
+
+// One row per cell with a separation, as Markdown ("" when none has one).
+std::string SeparationMarkdown(const EvaluationReport& report);
 
 // The threshold sweep (`orbit eval --recognition-plot`): for targets t from 0.01 to 1, the
 // share of known queries right and accepted (accepted: p-value <= t) against the share of

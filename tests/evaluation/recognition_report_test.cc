@@ -127,6 +127,57 @@ TEST(RecognitionReportTest, NamesTheBinFarthestFromTheShareRight) {
       << many_markdown;
 }
 
+// Ten unknown queries with U = 1, 2, ..., 10; six known queries: right with U 0.5, 1.5, 2.0,
+// 2.5 and 12, wrong with U 0.2 (it never counts: it is not answered right).
+//   area: 0.5 lies below all 10 unknown U, 1.5 below 9, 2.0 below 8 and ties 1 (half), 2.5
+//         below 8, 12 below none: (10 + 9 + 8.5 + 8 + 0) / (5 x 10) = 0.71;
+//   95% rejected: no unknown accepted, below 1: 0.5 (1 of 6 known queries, 16.7%);
+//   90%: one accepted, below 2: 0.5, 1.5 (33.3%); 80% and 75%: two, below 3: 0.5, 1.5, 2.0,
+//   2.5 (66.7%).
+TEST(RecognitionReportTest, SaysWhatAThresholdOnTheUnknownStatisticCouldDo) {
+  EvaluationCell cell;
+  cell.method = "product";
+  cell.variant = DescriptorVariant::kCeddRobust;
+  cell.distortion = "df";
+  cell.n = 8;
+  for (const double u : {0.5, 1.5, 2.0, 2.5, 12.0}) {
+    cell.verdicts.push_back(Known(true, Decision::kAccept, 0.1, 0.9, 0));
+    cell.verdicts.back().unknown_statistic = u;
+  }
+  cell.verdicts.push_back(Known(false, Decision::kAccept, 0.1, 0.9, 0));
+  cell.verdicts.back().unknown_statistic = 0.2;
+  for (int u = 1; u <= 10; ++u) {
+    cell.verdicts.push_back(Unknown(Decision::kUnknown, 0.5, 0.2));
+    cell.verdicts.back().unknown_statistic = u;
+  }
+  const std::optional<UnknownSeparation> separation = SeparationOf(cell);
+  ASSERT_TRUE(separation.has_value());
+  EXPECT_NEAR(separation->area, 0.71, 1e-12);
+  ASSERT_EQ(separation->known_right.size(), 4u);
+  EXPECT_NEAR(separation->known_right[0], 1.0 / 6, 1e-12);
+  EXPECT_NEAR(separation->known_right[1], 2.0 / 6, 1e-12);
+  EXPECT_NEAR(separation->known_right[2], 4.0 / 6, 1e-12);
+  EXPECT_NEAR(separation->known_right[3], 4.0 / 6, 1e-12);
+  EvaluationReport report;
+  report.cells.push_back(cell);
+  const std::string markdown = SeparationMarkdown(report);
+  EXPECT_NE(markdown.find("| product | cedd-robust | DF | 8 | 0.710 | 16.7 | 33.3 | 66.7 | 66.7 |"),
+            std::string::npos)
+      << markdown;
+  EXPECT_NE(markdown.find("| 95% rejected | 90% rejected | 80% rejected | 75% rejected |"),
+            std::string::npos)
+      << markdown;
+  // A server's answers state no U, and a cell without unknown queries has nothing to separate.
+  EvaluationCell server = cell;
+  server.verdicts[3].unknown_statistic = std::nan("");
+  EXPECT_FALSE(SeparationOf(server).has_value());
+  EvaluationCell known_only = cell;
+  known_only.verdicts.resize(6);
+  EXPECT_FALSE(SeparationOf(known_only).has_value());
+  report.cells = {server, known_only};
+  EXPECT_EQ(SeparationMarkdown(report), "");
+}
+
 TEST(RecognitionReportTest, SweepsTheTargetRate) {
   const LineFigure figure = RecognitionCurves(HandMadeReport());
   ASSERT_EQ(figure.panels.size(), 1u);
