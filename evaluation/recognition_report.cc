@@ -226,7 +226,8 @@ std::optional<UnknownSeparation> SeparationOf(const EvaluationCell& cell) {
   const double unknowns = static_cast<double>(unknown.size());
   for (const double rejected : kSeparationRejected) {
     // The threshold may accept the `accepted` lowest unknown U values, so it lies just below
-    // the next one; a margin of 1e-9 keeps 0.8 x 40 from rounding down to 31.
+    // the next one; a margin of 1e-9 keeps (1 - 0.8) x 10, 1.9999999999999996 in doubles,
+    // from rounding down to 1.
     const auto accepted = static_cast<std::size_t>(std::floor((1 - rejected) * unknowns + 1e-9));
     const auto below = [&](double u) {
       return accepted >= unknown.size() || u < unknown[accepted];
