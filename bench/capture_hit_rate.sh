@@ -4,10 +4,13 @@
 # frames, a noisy drifting compass) and recognised from a second walk on another background
 # (24 frames from azimuth 100, 120 degrees), twice: with the object's box tracked from the first
 # frame (--box), and with the true box of every frame given (--boxes). Prints, for each, the
-# share of updates whose first candidate is the right object, of final updates that are right,
-# the views enrolled and the frames the tracker lost. VARIANT is the server's descriptor variant
+# share of updates whose first candidate is the right object, how many updates were accepted
+# naming the right object and naming another, of final updates that are right, the views
+# enrolled and the frames the tracker lost. VARIANT is the server's descriptor variant
 # (`orbit serve --variant`; the product's by default).
-# TRACKER=name follows the box with that tracker (`--tracker`) instead of the default.
+# TRACKER=name follows the box with that tracker (`--tracker`) instead of the default;
+# OBJECTS="3 8 ..." takes those objects instead of FIRST..LAST. Each object's own line follows
+# its walk: updates whose first candidate is right, accepted right and accepted wrong.
 #   bench/capture_hit_rate.sh [BUILD_DIR] [COIL_DIR] [FIRST] [LAST] [VARIANT]
 set -euo pipefail
 build=${1:-build}
@@ -18,6 +21,7 @@ variant=()
 [[ -n ${5:-} ]] && variant=(--variant "$5")
 tracker=()
 [[ -n ${TRACKER:-} ]] && tracker=(--tracker "$TRACKER")
+objects_list=${OBJECTS:-$(seq "$first" "$last")}
 orbit="$build/orbit"
 work=$(mktemp -d)
 # shellcheck source=bench/serve_in_background.sh
@@ -26,8 +30,8 @@ trap 'kill "${server_pid:-}" 2>/dev/null || true; rm -rf "$work"' EXIT
 
 for mode in tracked true; do
   serve_in_background "$orbit" "$work/serve.log" --db "$work/$mode.db" "${variant[@]}"
-  views=0 lost=0 right=0 updates=0 final_right=0 objects=0
-  for object in $(seq "$first" "$last"); do
+  views=0 lost=0 right=0 updates=0 final_right=0 objects=0 accepted_right=0 accepted_wrong=0
+  for object in $objects_list; do
     for walk in enroll query; do
       if [[ $walk == enroll ]]; then shape="--frames 72 --seed 1"; else
         shape="--frames 24 --turn 120 --start 100 --seed 7"; fi
@@ -44,22 +48,29 @@ for mode in tracked true; do
       fi
     done
   done
-  for object in $(seq "$first" "$last"); do
+  for object in $objects_list; do
     box=$("$orbit" walk --coil "$coil" --object "$object" --video "$work/query.avi" \
       --orientation "$work/query.csv" --boxes "$work/query.boxes" --frames 24 --turn 120 \
       --start 100 --seed 7 | sed 's/.*first box //')
     if [[ $mode == tracked ]]; then where=(--box "$box" "${tracker[@]}"); else where=(--boxes "$work/query.boxes"); fi
-    firsts=$("$orbit" recognize --server "$address" --json --fast --top-k 1 \
+    # One line per update: its decision and its first candidate ("ACCEPT obj3").
+    answers=$("$orbit" recognize --server "$address" --json --fast --top-k 1 \
       --video "$work/query.avi" --orientation "$work/query.csv" "${where[@]}" 2>"$work/err" |
-      sed -n 's/.*"candidates":\[{"id":[0-9]*,"name":"\([^"]*\)".*/\1/p')
+      sed -n 's/.*"decision":"\([A-Z]*\)".*"candidates":\[{"id":[0-9]*,"name":"\([^"]*\)".*/\1 \2/p')
+    firsts=$(cut -d' ' -f2 <<<"$answers")
     n=$(wc -l <<<"$firsts")
     updates=$((updates + n))
     lost=$((lost + 24 - n))
     right=$((right + $(grep -c -x "obj$object" <<<"$firsts" || true)))
+    accepted_right=$((accepted_right + $(grep -c -x "ACCEPT obj$object" <<<"$answers" || true)))
+    accepted_wrong=$((accepted_wrong + $(grep "^ACCEPT " <<<"$answers" | grep -c -v -x "ACCEPT obj$object" || true)))
+    echo "  obj$object ($mode): right first $(grep -c -x "obj$object" <<<"$firsts" || true)/$n," \
+      "accepted right $(grep -c -x "ACCEPT obj$object" <<<"$answers" || true)," \
+      "accepted wrong $(grep "^ACCEPT " <<<"$answers" | grep -c -v -x "ACCEPT obj$object" || true)"
     [[ $(tail -1 <<<"$firsts") == "obj$object" ]] && final_right=$((final_right + 1))
     objects=$((objects + 1))
   done
   kill "$server_pid"; wait "$server_pid" 2>/dev/null || true
   awk -v m="$mode" -v r="$right" -v u="$updates" -v f="$final_right" -v o="$objects" \
-    -v v="$views" -v l="$lost" 'BEGIN { printf "%-8s updates right %5.1f%% (%d/%d), final updates right %d/%d, views enrolled %d, frames lost %d\n", m, 100*r/u, r, u, f, o, v, l }'
+    -v v="$views" -v l="$lost" -v ar="$accepted_right" -v aw="$accepted_wrong" 'BEGIN { printf "%-8s updates right %5.1f%% (%d/%d), accepted right %d, accepted wrong %d, final updates right %d/%d, views enrolled %d, frames lost %d\n", m, 100*r/u, r, u, ar, aw, f, o, v, l }'
 done

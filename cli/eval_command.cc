@@ -447,7 +447,9 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->add_option(
           "--methods", o->methods,
           "comma-separated: product (what `orbit serve` runs by default: " + DescribeProduct() +
-              "; evaluated on its own variant, added when --variant lacks it) and "
+              "; evaluated on its own variant, added when --variant lacks it, and on every "
+              "variant of --variant with appearance channels, as `orbit serve --variant` runs "
+              "it) and "
               "every engine a server runs (the thesis' seven and vci-hmm, the two "
               "together)")
       ->delimiter(',')

@@ -370,10 +370,12 @@ void Count(const Outcome& outcome, EvaluationCell& cell) {
   if (outcome.answered) cell.Add(outcome.verdict, outcome.seconds);
 }
 
-// Whether `method` is evaluated on descriptors of `variant`.
+// Whether `method` is evaluated on descriptors of `variant`, one of the run's variants. The
+// product runs on its own variant and on every other variant with appearance channels the run
+// lists, as a server runs it on a store made in one (`orbit serve --variant`).
 bool Evaluates(std::string_view method, DescriptorVariant variant) {
   const std::optional<DescriptorVariant> only = OnlyVariant(method);
-  return !only || *only == variant;
+  return !only || *only == variant || (method == kProductMethod && HasAppearanceChannels(variant));
 }
 
 // One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,

@@ -189,8 +189,10 @@ std::array<double, kGradientChannelSize> GradientHistogram(const cv::Mat& small,
 
 // The colour layout: per half of the frame (upper first), the hue-saturation-value histogram of
 // its pixels with kLayoutSaturationBins saturations, each pixel counted as ColourHistogram counts
-// it (a dark pixel as hue 0 and saturation 0; the unsure part of a hue spread over every hue) and
-// weighed by the object's share of its colour-histogram bin.
+// it (the unsure part of a hue spread over every hue) and weighed by the object's share of its
+// colour-histogram bin. Dark pixels are left out (docs/design.md#colour-layout): how many of them
+// each half holds follows the box (a dark ground above and below the object, shadows) more than
+// the object.
 ColourCounts ColourLayout(const cv::Mat& hsv, const ColourPixels& pixels,
                           const ColourCounts& foreground) {
   ColourCounts layout{};
@@ -198,12 +200,9 @@ ColourCounts ColourLayout(const cv::Mat& hsv, const ColourPixels& pixels,
     const cv::Vec3b* row = hsv.ptr<cv::Vec3b>(y);
     double* band = layout.data() + (y * kLayoutBands / hsv.rows) * kLayoutBandSize;
     for (int x = 0; x < hsv.cols; ++x) {
-      const double object = foreground[pixels.bin[y * kAppearanceSide + x]];
       const int value = row[x][2] * kValueBins / 256;
-      if (value == 0) {
-        band[kDarkBin] += object;
-        continue;
-      }
+      if (value == 0) continue;
+      const double object = foreground[pixels.bin[y * kAppearanceSide + x]];
       const int saturation = row[x][1] * kLayoutSaturationBins / 256;
       const int hue = row[x][0] * kHueBins / 180;
       const double sure = HueCertainty(row[x]);

@@ -22,7 +22,8 @@
 //   colour layout  the object's colours in the frame's upper and lower halves, each a
 //                  12 x 2 x 4 hue-saturation-value histogram (bin = hue_bin * 8 +
 //                  saturation_bin * 4 + value_bin, 96 values a half, the upper half first), each
-//                  pixel counted as the colour histogram counts it (dark pixels, kSureChroma) and
+//                  pixel but a dark one (value bin 0, left out: how many each half holds follows
+//                  the box) counted as the colour histogram counts it (kSureChroma) and
 //                  weighed by the object's share of its colour-histogram bin (the foreground
 //                  estimate, which stays that of the 192 bins).
 // Why: two look-alike objects differ in where their colours are (a cup's print, a cow's patches)

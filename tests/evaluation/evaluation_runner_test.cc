@@ -2,9 +2,11 @@
 
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -134,9 +136,9 @@ TEST(RunEvaluationTest, RefusesAnObjectBothKnownAndUnknownOrWithTooFewViews) {
 }
 
 // `product` is the product pipeline (core/engines/product_pipeline.h): its engine with its options,
-// on its own variant only, which the evaluation adds when it was not asked for. With the engine's
-// options set to the product's it is therefore exactly that engine on that variant, query for
-// query.
+// on its own variant, which the evaluation adds when it was not asked for, and on no CEDD-only
+// variant (the next test: variants with appearance channels). With the engine's options set to
+// the product's it is therefore exactly that engine on that variant, query for query.
 TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   EvaluationOptions options;
   options.methods = {std::string(kProductMethod), std::string(Product().engine)};
@@ -169,6 +171,35 @@ TEST(RunEvaluationTest, ProductRunsTheProductsEngineOnItsOwnVariant) {
   }
   ASSERT_EQ(report.memory.size(), 2u);
   EXPECT_EQ(report.memory[1].variant, Product().variant);
+}
+
+// A server runs the product on a store made in another variant (`orbit serve --variant`); so does
+// the evaluation on every listed variant with appearance channels, never on a CEDD-only one it
+// was not asked for, and there too it is the product's engine with the product's options.
+TEST(RunEvaluationTest, ProductAlsoRunsOnTheListedVariantsWithAppearanceChannels) {
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod), std::string(Product().engine)};
+  options.variants = {DescriptorVariant::kCeddLire, DescriptorVariant::kCeddHsvLayout};
+  options.distortions = {ParseDistortionSpec("mb")};
+  options.query_lengths = {2};
+  options.trials = 2;
+  options.engine = Product().options;
+  const EvaluationReport report =
+      RunEvaluation(ListCoil100(testing::CoilDir(), std::vector<int>{1, 2, 3, 4}), {}, options);
+
+  // lire: the engine; layout and the product's own variant (added): product and the engine.
+  ASSERT_EQ(report.cells.size(), 5u);
+  std::map<std::pair<std::string, DescriptorVariant>, const EvaluationCell*> cells;
+  for (const EvaluationCell& cell : report.cells) cells[{cell.method, cell.variant}] = &cell;
+  const std::string product(kProductMethod), engine(Product().engine);
+  ASSERT_TRUE(cells.count({engine, DescriptorVariant::kCeddLire}));
+  ASSERT_TRUE(cells.count({product, Product().variant}));
+  ASSERT_TRUE(cells.count({product, DescriptorVariant::kCeddHsvLayout}));
+  ASSERT_TRUE(cells.count({engine, DescriptorVariant::kCeddHsvLayout}));
+  const EvaluationCell& product_on_layout = *cells[{product, DescriptorVariant::kCeddHsvLayout}];
+  EXPECT_EQ(product_on_layout.trials, 4 * 2);
+  const EvaluationCell& engine_on_layout = *cells[{engine, DescriptorVariant::kCeddHsvLayout}];
+  EXPECT_EQ(product_on_layout.hits, engine_on_layout.hits);
 }
 
 // --distractors: the queries are the dataset's alone (the same counts per cell), the report

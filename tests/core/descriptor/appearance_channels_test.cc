@@ -169,6 +169,35 @@ TEST(AppearanceChannelsTest, TheColourLayoutTellsWhichColourIsAbove) {
   EXPECT_LT(Tanimoto(a, b), 0.9);
 }
 
+// The layout's 192 values of `values`, every other value 0.
+DescriptorValues LayoutOnly(const DescriptorValues& values) {
+  DescriptorValues layout{};
+  std::copy_n(values.begin() + kLayoutOffset, kColourChannelSize, layout.begin() + kLayoutOffset);
+  return layout;
+}
+
+TEST(AppearanceChannelsTest, TheColourLayoutDoesNotCountTheDarkGroundItsBoxHolds) {
+  // Red above blue, framed tightly, and the same object in a box a quarter of whose height above
+  // and below is a black ground (COIL-100's, or a shadow): the halves hold the same colours in
+  // the same proportions, so the layouts agree but for the blurred edge from the black to the
+  // red, a darker red (bin 6: value 2). Every bin present clips at 7, so the coefficient is 4
+  // bins shared of 5 present, 0.8; counting the black in each half's dark bin, 4 of 7.
+  const cv::Scalar red(0, 0, 255), blue(255, 0, 0);
+  const cv::Mat tight = Halves(red, blue);
+  cv::Mat framed(128, 128, CV_8UC3, cv::Scalar(0, 0, 0));
+  framed(cv::Rect(0, 32, 128, 32)).setTo(red);
+  framed(cv::Rect(0, 64, 128, 32)).setTo(blue);
+  constexpr auto kLayout = DescriptorVariant::kCeddHsvLayout;
+  const DescriptorValues a = Channels(tight, kLayout), b = Channels(framed, kLayout);
+  constexpr int kUpper = kLayoutOffset, kLower = kLayoutOffset + kLayoutBandSize;
+  EXPECT_EQ(b[kUpper + 0], 0);  // hue 0, saturation 0, value 0: the dark bin
+  EXPECT_EQ(b[kLower + 0], 0);
+  EXPECT_EQ(b[kUpper + 7], a[kUpper + 7]);    // red above (bins as in the test above)
+  EXPECT_EQ(b[kLower + 71], a[kLower + 71]);  // blue below
+  EXPECT_EQ(b[kUpper + 6], 7);
+  EXPECT_NEAR(Tanimoto(LayoutOnly(a), LayoutOnly(b)), 0.8, 1e-6);
+}
+
 TEST(AppearanceChannelsTest, TwoRedsThatCeddCallsOneAreTwoHere) {
   // A red and a purplish red: CEDD's fuzzy colour bins give both the same descriptor; the
   // hue-saturation-value histogram puts them in bins 15 (hue 0) and 191 (hue 330..345 degrees).
