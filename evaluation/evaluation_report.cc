@@ -170,10 +170,18 @@ std::string MarkdownReport(const EvaluationReport& report) {
   } else if (std::any_of(report.cells.begin(), report.cells.end(), [](const EvaluationCell& cell) {
                return cell.method == kProductMethod;
              })) {
-    out << "product: what `orbit serve` runs by default, " << DescribeProduct() << ".\n\n";
+    out << "product: what `orbit serve` runs by default, " << DescribeProduct();
+    if (std::any_of(report.cells.begin(), report.cells.end(), [](const EvaluationCell& cell) {
+          return cell.method == kProductMethod && cell.variant != Product().variant;
+        })) {
+      out << "; under another variant, the same pipeline on a store made in that variant "
+             "(`orbit serve --variant`)";
+    }
+    out << ".\n\n";
   }
   // Only the variants some method ran on: the runner also describes and indexes a variant
-  // that is listed but evaluated by no method (a --variant beside --methods product alone).
+  // that is listed but evaluated by no method (a CEDD-only --variant beside --methods product
+  // alone).
   for (const ModelMemory& memory : report.memory) {
     if (CellsOf(report, memory.variant).empty()) continue;
     out << "Model memory (" << VariantName(memory.variant) << "): " << memory.objects

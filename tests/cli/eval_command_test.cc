@@ -379,6 +379,28 @@ TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
   EXPECT_THAT(r.out, HasSubstr("| gn:var=0.004+jpeg:q=30 | hmm |"));
 }
 
+// `--methods product --variant cedd-hsv-layout`: the product on a layout store, as `orbit serve
+// --variant cedd-hsv-layout` runs it, in the layout's table beside its own variant's, and the
+// report says what the row under the other variant is.
+TEST_F(EvalCommandTest, ProductOnAnotherVariantIsReportedUnderThatVariant) {
+  const auto r = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
+                                     " --objects 1-3 --n 2 --trials 1 --methods product"
+                                     " --variant cedd-hsv-layout --distortions df --no-progress");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-layout: hit rate"));
+  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate"));
+  EXPECT_EQ(LinesStartingWith(r.out, "| DF | product |").size(), 2u) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("; under another variant, the same pipeline on a store made in "
+                               "that variant (`orbit serve --variant`)."));
+  // Not said where the product ran on its own variant alone.
+  const auto own = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
+                                       " --objects 1-3 --n 2 --trials 1 --methods product"
+                                       " --distortions df --no-progress");
+  ASSERT_EQ(own.exit_code, 0) << own.err;
+  EXPECT_THAT(own.out, HasSubstr("product: what `orbit serve` runs by default"));
+  EXPECT_THAT(own.out, Not(HasSubstr("under another variant")));
+}
+
 // --sweep: only the swept distortions run (no --distortions given), the report gains the sweep's
 // table, --csv holds the sweep and --plot draws hit rate against strength.
 TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
