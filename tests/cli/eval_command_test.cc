@@ -70,6 +70,12 @@ class EvalCommandTest : public ::testing::Test {
   }
   void TearDown() override { std::filesystem::remove_all(dir_); }
 
+  // `orbit eval` on COIL-100's objects 1-3, one trial, n = 2, without a progress bar, and `args`.
+  testing::CommandResult EvalThreeObjects(const std::string& args) const {
+    return testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
+                               " --objects 1-3 --n 2 --trials 1 --no-progress " + args);
+  }
+
   std::filesystem::path dir_;
   std::string coil_;
 };
@@ -371,9 +377,7 @@ TEST_F(EvalCommandTest, HelpSaysWhereTheCsvFilesPathsAreReadFrom) {
 // Parameterised distortions reach the report under their canonical names, next to the
 // protocol's, which keep theirs (in capitals).
 TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
-  const auto r = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
-                                     " --objects 1-3 --n 2 --trials 1 --methods hmm --no-progress"
-                                     " --distortions gn,gn:var=0.004+jpeg:q=30");
+  const auto r = EvalThreeObjects("--methods hmm --distortions gn,gn:var=0.004+jpeg:q=30");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("| GN | hmm |"));
   EXPECT_THAT(r.out, HasSubstr("| gn:var=0.004+jpeg:q=30 | hmm |"));
@@ -383,9 +387,7 @@ TEST_F(EvalCommandTest, ParameterisedDistortionsAreReportedUnderTheirNames) {
 // --variant cedd-hsv-layout` runs it, in the layout's table beside its own variant's, and the
 // report says what the row under the other variant is.
 TEST_F(EvalCommandTest, ProductOnAnotherVariantIsReportedUnderThatVariant) {
-  const auto r = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
-                                     " --objects 1-3 --n 2 --trials 1 --methods product"
-                                     " --variant cedd-hsv-layout --distortions df --no-progress");
+  const auto r = EvalThreeObjects("--methods product --variant cedd-hsv-layout --distortions df");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-layout: hit rate"));
   EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate"));
@@ -393,9 +395,7 @@ TEST_F(EvalCommandTest, ProductOnAnotherVariantIsReportedUnderThatVariant) {
   EXPECT_THAT(r.out, HasSubstr("; under another variant, the same pipeline on a store made in "
                                "that variant (`orbit serve --variant`)."));
   // Not said where the product ran on its own variant alone.
-  const auto own = testing::RunCommand(testing::OrbitBinary() + " eval --data " + coil_ +
-                                       " --objects 1-3 --n 2 --trials 1 --methods product"
-                                       " --distortions df --no-progress");
+  const auto own = EvalThreeObjects("--methods product --distortions df");
   ASSERT_EQ(own.exit_code, 0) << own.err;
   EXPECT_THAT(own.out, HasSubstr("product: what `orbit serve` runs by default"));
   EXPECT_THAT(own.out, Not(HasSubstr("under another variant")));
