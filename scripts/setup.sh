@@ -21,6 +21,7 @@ packages=(
   python3-grpcio python3-protobuf
   postgresql-15  # the tests' PostgreSQL server (tests/support/postgres_test_cluster.h)
   haproxy  # the gRPC balancer of docker/haproxy.cfg, run by tests/docker/replicas_test.cc
+  jq  # bench/served_frame_cost.sh reads orbit loadtest's JSON
 )
 
 missing=()
