@@ -61,12 +61,14 @@ for mode in tracked true; do
     n=$(wc -l <<<"$firsts")
     updates=$((updates + n))
     lost=$((lost + 24 - n))
-    right=$((right + $(grep -c -x "obj$object" <<<"$firsts" || true)))
-    accepted_right=$((accepted_right + $(grep -c -x "ACCEPT obj$object" <<<"$answers" || true)))
-    accepted_wrong=$((accepted_wrong + $(grep "^ACCEPT " <<<"$answers" | grep -c -v -x "ACCEPT obj$object" || true)))
-    echo "  obj$object ($mode): right first $(grep -c -x "obj$object" <<<"$firsts" || true)/$n," \
-      "accepted right $(grep -c -x "ACCEPT obj$object" <<<"$answers" || true)," \
-      "accepted wrong $(grep "^ACCEPT " <<<"$answers" | grep -c -v -x "ACCEPT obj$object" || true)"
+    walk_right=$(grep -c -x "obj$object" <<<"$firsts" || true)
+    walk_accepted_right=$(grep -c -x "ACCEPT obj$object" <<<"$answers" || true)
+    walk_accepted_wrong=$(grep "^ACCEPT " <<<"$answers" | grep -c -v -x "ACCEPT obj$object" || true)
+    echo "  obj$object ($mode): right first $walk_right/$n, accepted right $walk_accepted_right," \
+      "accepted wrong $walk_accepted_wrong"
+    right=$((right + walk_right))
+    accepted_right=$((accepted_right + walk_accepted_right))
+    accepted_wrong=$((accepted_wrong + walk_accepted_wrong))
     [[ $(tail -1 <<<"$firsts") == "obj$object" ]] && final_right=$((final_right + 1))
     objects=$((objects + 1))
   done

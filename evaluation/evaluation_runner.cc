@@ -60,27 +60,27 @@ void RunStage(std::size_t count, int threads, std::string_view stage,
   });
 }
 
-// The one variant method `name` is evaluated on (the product's own), or none for every variant.
-std::optional<DescriptorVariant> OnlyVariant(std::string_view name) {
+// The variant method `name` is always evaluated on, added to the run's when it lacks it (the
+// product's own), or none: a thesis' engine runs on every variant of the run.
+std::optional<DescriptorVariant> OwnVariant(std::string_view name) {
   if (name == kProductMethod) return Product().variant;
   return std::nullopt;
 }
 
-// A method as the runner runs it: an engine with its options, on the variants it is measured on.
+// A method as the runner runs it: an engine with its options (the variants it is measured on:
+// Evaluates).
 struct Method {
   std::string_view engine;  // one of EngineNames()
   EngineOptions options;
-  std::optional<DescriptorVariant> only_variant;  // none: every variant of the run
 };
 
 // The method called `name` in a run whose engines take `run`: an engine of EngineNames() with
 // `run`, or kProductMethod, the product pipeline (core/engines/product_pipeline.h): its engine
 // with its own options, the window raised and the false-accept and known-accept rates set as the
-// run's, and the run's object candidates when it sets them (candidate_objects > 0), on its own
-// variant only.
+// run's, and the run's object candidates when it sets them (candidate_objects > 0).
 // Throws std::invalid_argument for any other name.
 Method ResolveMethod(std::string_view name, const EngineOptions& run) {
-  if (name != kProductMethod) return {FindEngine(name).name, run, OnlyVariant(name)};
+  if (name != kProductMethod) return {FindEngine(name).name, run};
   EngineOptions options = Product().options;
   options.window = std::max(options.window, run.window);
   options.false_accept_rate = run.false_accept_rate;
@@ -89,7 +89,7 @@ Method ResolveMethod(std::string_view name, const EngineOptions& run) {
     options.candidate_objects = run.candidate_objects;
     options.candidates_above = run.candidates_above;
   }
-  return {Product().engine, options, OnlyVariant(name)};
+  return {Product().engine, options};
 }
 
 // Throws std::invalid_argument for options out of range or no known image (RunEvaluation's
@@ -122,14 +122,14 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
 }
 
-// `options` with the variants its methods are evaluated on only (the product's) added, last, when
-// `variants` lacks them.
+// `options` with its methods' own variants (the product's) added, last, when `variants` lacks
+// them.
 EvaluationOptions WithProductVariant(EvaluationOptions options) {
   for (const std::string& method : options.methods) {
-    const std::optional<DescriptorVariant> only = OnlyVariant(method);
-    if (only && std::find(options.variants.begin(), options.variants.end(), *only) ==
-                    options.variants.end()) {
-      options.variants.push_back(*only);
+    const std::optional<DescriptorVariant> own = OwnVariant(method);
+    if (own && std::find(options.variants.begin(), options.variants.end(), *own) ==
+                   options.variants.end()) {
+      options.variants.push_back(*own);
     }
   }
   return options;
@@ -374,8 +374,8 @@ void Count(const Outcome& outcome, EvaluationCell& cell) {
 // product runs on its own variant and on every other variant with appearance channels the run
 // lists, as a server runs it on a store made in one (`orbit serve --variant`).
 bool Evaluates(std::string_view method, DescriptorVariant variant) {
-  const std::optional<DescriptorVariant> only = OnlyVariant(method);
-  return !only || *only == variant || (method == kProductMethod && HasAppearanceChannels(variant));
+  const std::optional<DescriptorVariant> own = OwnVariant(method);
+  return !own || *own == variant || HasAppearanceChannels(variant);
 }
 
 // One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,
