@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -76,7 +77,7 @@ struct EvalOptions {
   int kd_candidates = ViewIndexOptions{}.kd_candidates;
   double threshold = EngineOptions{}.threshold;
   std::string rejection = std::string(RejectionRuleName(EngineOptions{}.rejection));
-  double false_accept_rate = EngineOptions{}.false_accept_rate;
+  std::optional<double> false_accept_rate;  // unset: the engines' default, the product's variant's
   double known_accept_rate = EngineOptions{}.known_accept_rate;
   std::string verdicts;
   bool active = false;
@@ -132,7 +133,9 @@ EvaluationOptions ToEvaluationOptions(const EvalOptions& o) {
   options.engine.rejection = ParseRejectionRule(o.rejection);
   options.active_step = o.active ? o.active_step : 0;
   options.active_policy = *ParseActivePolicy(o.active_policy);
-  options.engine.false_accept_rate = o.false_accept_rate;
+  options.engine.false_accept_rate =
+      o.false_accept_rate.value_or(EngineOptions{}.false_accept_rate);
+  options.product_false_accept_rate = o.false_accept_rate;
   options.engine.known_accept_rate = o.known_accept_rate;
   options.engine.orientation_weight = o.orientation_weight;
   options.engine.list_length = o.list_length;
@@ -557,11 +560,17 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
                    "uses its own")
       ->check(CLI::IsMember({"th", "calibrated"}))
       ->capture_default_str();
+  std::ostringstream engines_rate;
+  engines_rate << EngineOptions{}.false_accept_rate;
   command
       ->add_option("--false-accept-rate", o->false_accept_rate,
-                   "the calibrated rule's target share of unknown objects accepted, in (0, 1)")
-      ->check(CLI::Range(1e-6, 1 - 1e-6))
-      ->capture_default_str();
+                   "the calibrated rule's target share of unknown objects accepted, in (0, 1) "
+                   "(default: " +
+                       engines_rate.str() +
+                       " for the engines; for the product, on each variant the variant's, as "
+                       "`orbit serve` takes it: " +
+                       DescribeProductFalseAcceptRates() + ")")
+      ->check(CLI::Range(1e-6, 1 - 1e-6));
   command
       ->add_option("--known-accept-rate", o->known_accept_rate,
                    "the share of the known objects' own windows the calibrated rule raises its "

@@ -251,11 +251,12 @@ void AddServeCommand(CLI::App& app, int& exit_code) {
                   "docs/design.md, --threshold)")
       ->check(CLI::IsMember({"calibrated", "th"}))
       ->capture_default_str();
-  cmd->add_option("--false-accept-rate", c.session_defaults.options.false_accept_rate,
-                  "the calibrated rule's target share of unknown objects accepted, in (0, 1); "
-                  "measured in docs/results/recognition.md and real-objects.md")
-      ->check(CLI::Range(1e-6, 1 - 1e-6))
-      ->capture_default_str();
+  cmd->add_option("--false-accept-rate", c.false_accept_rate,
+                  "the calibrated rule's target share of unknown objects accepted, in (0, 1) "
+                  "(default: the variant's, " +
+                      DescribeProductFalseAcceptRates() +
+                      "; measured in docs/results/recognition.md and real-objects.md)")
+      ->check(CLI::Range(1e-6, 1 - 1e-6));
   cmd->add_option("--known-accept-rate", c.session_defaults.options.known_accept_rate,
                   "the share of the known objects' own simulated windows the calibrated rule "
                   "raises its threshold to accept where look-alikes need more, within a bound "

@@ -74,16 +74,19 @@ struct Method {
   EngineOptions options;
 };
 
-// The method called `name` in a run whose engines take `run`: an engine of EngineNames() with
-// `run`, or kProductMethod, the product pipeline (core/engines/product_pipeline.h): its engine
-// with its own options, the window raised and the false-accept and known-accept rates set as the
-// run's, and the run's object candidates when it sets them (candidate_objects > 0).
+// The method called `name` on descriptors of `variant` in a run whose engines take `run`: an
+// engine of EngineNames() with `run`, or kProductMethod, the product pipeline
+// (core/engines/product_pipeline.h): its engine with its own options, the window raised, the
+// known-accept rate set as the run's, the false-accept rate `product_rate` or, unset, the
+// variant's own (ProductFalseAcceptRate, as a server on a store in `variant` takes it), and the
+// run's object candidates when it sets them (candidate_objects > 0).
 // Throws std::invalid_argument for any other name.
-Method ResolveMethod(std::string_view name, const EngineOptions& run) {
+Method ResolveMethod(std::string_view name, const EngineOptions& run, DescriptorVariant variant,
+                     std::optional<double> product_rate) {
   if (name != kProductMethod) return {FindEngine(name).name, run};
   EngineOptions options = Product().options;
   options.window = std::max(options.window, run.window);
-  options.false_accept_rate = run.false_accept_rate;
+  options.false_accept_rate = product_rate.value_or(ProductFalseAcceptRate(variant));
   options.known_accept_rate = run.known_accept_rate;
   if (run.candidate_objects > 0) {
     options.candidate_objects = run.candidate_objects;
@@ -119,6 +122,11 @@ void ValidateOptions(const std::vector<DatasetImage>& known, const EvaluationOpt
           "distractors must be in 0.." + std::to_string(kMaxDistractors) + ", got " +
               std::to_string(options.distractors));
   ValidateEngineOptions(options.engine);
+  if (options.product_false_accept_rate) {
+    EngineOptions product = options.engine;
+    product.false_accept_rate = *options.product_false_accept_rate;
+    ValidateEngineOptions(product, "product ");
+  }
   ViewIndex probe(options.variants.front(), options.index);  // validates the index options
 }
 
@@ -378,41 +386,50 @@ bool Evaluates(std::string_view method, DescriptorVariant variant) {
   return !own || *own == variant || HasAppearanceChannels(variant);
 }
 
-// One engine per method, reused across tasks (ObserveSequence resets them): a task takes a set,
-// made anew when none is idle, and gives it back. Thread-safe.
+// One engine per method and variant of the run (a method's options may depend on the variant:
+// ResolveMethod), reused across tasks (ObserveSequence resets them): a task takes a set for its
+// variant, made anew when none is idle, and gives it back. Thread-safe.
 class EnginePool {
  public:
   using Engines = std::vector<std::unique_ptr<RecognitionEngine>>;
 
-  EnginePool(const std::vector<std::string>& methods, const EngineOptions& options) {
-    for (const std::string& name : methods) methods_.push_back(ResolveMethod(name, options));
+  explicit EnginePool(const EvaluationOptions& options, const EngineOptions& engine_options)
+      : idle_(options.variants.size()) {
+    for (DescriptorVariant variant : options.variants) {
+      std::vector<Method>& methods = methods_.emplace_back();
+      for (const std::string& name : options.methods) {
+        methods.push_back(
+            ResolveMethod(name, engine_options, variant, options.product_false_accept_rate));
+      }
+    }
   }
 
-  Engines Take() ABSL_LOCKS_EXCLUDED(mutex_) {
+  // A set of engines for the run's variant at position `variant`.
+  Engines Take(std::size_t variant) ABSL_LOCKS_EXCLUDED(mutex_) {
     {
       MutexLock lock(&mutex_);
-      if (!idle_.empty()) {
-        Engines engines = std::move(idle_.back());
-        idle_.pop_back();
+      if (!idle_[variant].empty()) {
+        Engines engines = std::move(idle_[variant].back());
+        idle_[variant].pop_back();
         return engines;
       }
     }
     Engines engines;
-    for (const Method& method : methods_) {
+    for (const Method& method : methods_[variant]) {
       engines.push_back(CreateEngine(method.engine, method.options));
     }
     return engines;
   }
 
-  void Give(Engines engines) ABSL_LOCKS_EXCLUDED(mutex_) {
+  void Give(std::size_t variant, Engines engines) ABSL_LOCKS_EXCLUDED(mutex_) {
     MutexLock lock(&mutex_);
-    idle_.push_back(std::move(engines));
+    idle_[variant].push_back(std::move(engines));
   }
 
  private:
-  std::vector<Method> methods_;
+  std::vector<std::vector<Method>> methods_;  // [variant][method]
   Mutex mutex_;
-  std::vector<Engines> idle_ ABSL_GUARDED_BY(mutex_);
+  std::vector<std::vector<Engines>> idle_ ABSL_GUARDED_BY(mutex_);  // [variant]
 };
 
 // The index a trial of known object `object` queries: every model, the object's own without
@@ -568,12 +585,12 @@ std::vector<Outcome> RunTasks(const TrialGrid& grid, const EvaluationOptions& op
                               const EngineOptions& engine_options, int threads,
                               const std::function<TaskQuery(const TrialGrid::Task&)>& query_of) {
   std::vector<Outcome> outcomes(grid.outcome_count());
-  EnginePool pool(options.methods, engine_options);
+  EnginePool pool(options, engine_options);
   RunStage(grid.task_count(), threads, "trials", options, [&](std::size_t task) {
     const TrialGrid::Task t = grid.TaskAt(task);
     const TaskQuery query = query_of(t);
     if (query.skipped) return;
-    EnginePool::Engines engines = pool.Take();
+    EnginePool::Engines engines = pool.Take(t.variant);
     for (std::size_t d = 0; d < grid.distortions; ++d) {
       for (std::size_t m = 0; m < grid.methods; ++m) {
         if (!Evaluates(options.methods[m], options.variants[t.variant])) continue;
@@ -587,7 +604,7 @@ std::vector<Outcome> RunTasks(const TrialGrid& grid, const EvaluationOptions& op
               answer.latest_azimuth, outcome);
       }
     }
-    pool.Give(std::move(engines));
+    pool.Give(t.variant, std::move(engines));
   });
   return outcomes;
 }

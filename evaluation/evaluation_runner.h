@@ -67,9 +67,9 @@ std::optional<ActivePolicy> ParseActivePolicy(std::string_view name);
 struct EvaluationOptions {
   std::vector<DescriptorVariant> variants{DescriptorVariant::kCeddLire};
   // Engine names (EngineNames()) and kProductMethod, the product pipeline (core/
-  // product_pipeline.h: its engine with its options, whatever `engine` says, and only on its
-  // variant, which is evaluated, added last, when `variants` lacks it). By default the product
-  // and every engine.
+  // product_pipeline.h: its engine with its options, whatever `engine` says, on its own variant,
+  // which is evaluated, added last, when `variants` lacks it, and on every other variant with
+  // appearance channels `variants` lists). By default the product and every engine.
   std::vector<std::string> methods = DefaultMethods();
   // Query distortions (evaluation/distortion_spec.h); by default the protocol's df, mb and gn.
   std::vector<DistortionSpec> distortions{ParseDistortionSpec("df"), ParseDistortionSpec("mb"),
@@ -104,7 +104,10 @@ struct EvaluationOptions {
   std::function<std::vector<ObjectModel>(int count, DescriptorVariant variant)> distractor_models;
   std::string distractors_from;
   EngineOptions engine;  // the engines' options; the window is raised to the largest n
-  int threads = 0;       // worker threads; 0: every CPU this process may run on
+  // The product's target false-accept rate; unset: on each variant, the variant's own
+  // (ProductFalseAcceptRate), as a server takes it. The engines' is engine.false_accept_rate.
+  std::optional<double> product_false_accept_rate;
+  int threads = 0;  // worker threads; 0: every CPU this process may run on
   // Called from the worker threads (never concurrently) as work completes: the stage
   // ("descriptors" or "trials"), tasks done and tasks in the stage. May be empty.
   std::function<void(std::string_view stage, std::size_t done, std::size_t total)> progress;

@@ -79,6 +79,8 @@ OrbitServer::OrbitServer(const ServerConfig& config) : config_(config) {
   if (!config_.variant) config_.variant = StoreVariant(*store_).value_or(Product().variant);
   config_.session_defaults.options.candidates_above =
       config_.candidates_above.value_or(ProductCandidatesAbove(*config_.variant));
+  config_.session_defaults.options.false_accept_rate =
+      config_.false_accept_rate.value_or(ProductFalseAcceptRate(*config_.variant));
   const int cpus = AvailableCpus();
   // The store's load (and a replica's reload) builds the index on every CPU: a server serves
   // nothing before its first load ends (docs/design.md#view-index).

@@ -37,6 +37,7 @@ void ValidateServerConfig(const ServerConfig& config) {
   // The sessions' options as OrbitServer will run them, given threshold included.
   EngineOptions sessions = config.session_defaults.options;
   if (config.candidates_above) sessions.candidates_above = *config.candidates_above;
+  if (config.false_accept_rate) sessions.false_accept_rate = *config.false_accept_rate;
   ValidateEngineOptions(sessions);
   ValidateConnectionLimits(config.connections);
   if (config.store_grace_seconds < 0) {
@@ -120,7 +121,14 @@ std::string ServerConfig::Describe() const {
       << d.options.hmm_states << ", HMM sharpness " << d.options.hmm_sharpness << ", rejection "
       << RejectionRuleName(d.options.rejection);
   if (d.options.rejection == RejectionRule::kCalibrated) {
-    out << " (false-accept rate " << d.options.false_accept_rate << ", known-accept rate "
+    std::ostringstream rate;
+    if (false_accept_rate || variant) {
+      rate << false_accept_rate.value_or(
+          ProductFalseAcceptRate(variant.value_or(Product().variant)));
+    } else {
+      rate << "the variant's: " << DescribeProductFalseAcceptRates();
+    }
+    out << " (false-accept rate " << rate.str() << ", known-accept rate "
         << d.options.known_accept_rate << ")\n";
   } else {
     out << " (Th " << d.options.threshold << ")\n";

@@ -42,6 +42,10 @@ struct ServerConfig {
   // (EngineOptions::candidates_above of session_defaults, set by OrbitServer once the variant is
   // known). Unset: ProductCandidatesAbove(variant).
   std::optional<int> candidates_above;
+  // The calibrated rule's target false-accept rate of sessions that ask for none
+  // (EngineOptions::false_accept_rate of session_defaults, set by OrbitServer once the variant
+  // is known). Unset: ProductFalseAcceptRate(variant).
+  std::optional<double> false_accept_rate;
   ViewIndexOptions index{.search = SearchMode::kKdTree};
   SessionSettings session_defaults;
   ServerLimits limits;

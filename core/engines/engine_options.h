@@ -40,9 +40,10 @@ struct EngineOptions {
   double threshold = 2.0;  // Th (finite, > 0)
   // kCalibrated's target share of unknown objects' windows accepted, in (0, 1), and the share of
   // the known objects' own windows it is raised to accept where look-alikes need more, in [0, 1)
-  // (0: the target alone; docs/design.md#known-share). Why these defaults:
-  // docs/results/recognition.md, "Why 0.15 by default", and docs/results/real-objects.md,
-  // "The known share".
+  // (0: the target alone; docs/design.md#known-share). The product's engine takes its variant's
+  // target instead (ProductFalseAcceptRate, core/engines/product_pipeline.h). Why these
+  // defaults: docs/results/recognition.md, "Why 0.15 by default", and
+  // docs/results/real-objects.md, "The known share".
   double false_accept_rate = 0.15;
   double known_accept_rate = 0.95;
   int top_k = 5;  // objects in each update's ranking (1..kMaxTopK)

@@ -11,6 +11,18 @@ int ProductCandidatesAbove(DescriptorVariant variant) {
   return HasAppearanceChannels(variant) ? kProductCandidatesAbove : kCeddCandidatesAbove;
 }
 
+double ProductFalseAcceptRate(DescriptorVariant variant) {
+  return variant == DescriptorVariant::kCeddHsvLayout ? kLayoutFalseAcceptRate
+                                                      : kProductFalseAcceptRate;
+}
+
+std::string DescribeProductFalseAcceptRates() {
+  std::ostringstream text;
+  text << kProductFalseAcceptRate << ", " << kLayoutFalseAcceptRate << " on "
+       << VariantName(DescriptorVariant::kCeddHsvLayout);
+  return text.str();
+}
+
 const ProductPipeline& Product() {
   static const ProductPipeline product;
   return product;

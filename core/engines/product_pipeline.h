@@ -32,6 +32,17 @@ inline constexpr int kCeddCandidatesAbove = 5000;
 // The candidates_above of the product's engine on a model set in `variant`.
 int ProductCandidatesAbove(DescriptorVariant variant);
 
+// The calibrated rule's target false-accept rate (EngineOptions::false_accept_rate) of the
+// product's engine on a model set in `variant`. Each variant's unknown statistic spreads its own
+// way over the same objects, so each has its own target, chosen by one rule: the largest rate at
+// which every goal of the tuning split holds (docs/design.md#target-rate). The colour layout's
+// is kLayoutFalseAcceptRate; every other variant's kProductFalseAcceptRate.
+inline constexpr double kProductFalseAcceptRate = 0.15;
+inline constexpr double kLayoutFalseAcceptRate = 0.09;
+double ProductFalseAcceptRate(DescriptorVariant variant);
+// The rates above in words, for --help and the server's account: "0.15, 0.09 on cedd-hsv-layout".
+std::string DescribeProductFalseAcceptRates();
+
 struct ProductPipeline {
   DescriptorVariant variant = DescriptorVariant::kCeddHsvHog;
   std::string_view engine = "hmm";  // one of EngineNames()
@@ -51,6 +62,7 @@ struct ProductPipeline {
     options.move_prefers_new_side = true;
     options.candidate_objects = kProductCandidateObjects;
     options.candidates_above = ProductCandidatesAbove(variant);
+    options.false_accept_rate = ProductFalseAcceptRate(variant);
     return options;
   }(variant);
 };

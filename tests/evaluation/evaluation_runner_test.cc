@@ -202,6 +202,62 @@ TEST(RunEvaluationTest, ProductAlsoRunsOnTheListedVariantsWithAppearanceChannels
   EXPECT_EQ(product_on_layout.hits, engine_on_layout.hits);
 }
 
+// The decisions of every query in `cell`, in order.
+std::vector<Decision> DecisionsOf(const EvaluationCell& cell) {
+  std::vector<Decision> decisions;
+  for (const QueryVerdict& verdict : cell.verdicts) decisions.push_back(verdict.decision);
+  return decisions;
+}
+
+// On each variant the product takes that variant's target rate, as a server does on a store
+// made in it (ProductFalseAcceptRate), unless the run gives one. The engine beside it runs with
+// the product's options at the layout's rate throughout: its decisions match the product's on
+// the layout query by query, and on the product's own variant, where the rates differ, some do
+// not. (The known share is off, so that the target alone places the threshold.)
+TEST(RunEvaluationTest, ProductTakesEachVariantsOwnTargetRateUnlessTheRunGivesOne) {
+  ASSERT_NE(ProductFalseAcceptRate(DescriptorVariant::kCeddHsvLayout),
+            ProductFalseAcceptRate(Product().variant));
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod), std::string(Product().engine)};
+  options.variants = {DescriptorVariant::kCeddHsvLayout};
+  options.distortions = {ParseDistortionSpec("df")};
+  options.query_lengths = {1};
+  options.trials = 3;
+  options.engine = Product().options;
+  options.engine.false_accept_rate = ProductFalseAcceptRate(DescriptorVariant::kCeddHsvLayout);
+  options.engine.known_accept_rate = 0;
+  // Look-alikes, whose windows' p-values spread between the two rates: eth-80-dev's objects
+  // numbered 1-7 known, the 13 others unknown (apples, cows and cups 8-10; cars 9, 11, 12, 14).
+  std::vector<DatasetImage> known, unknown;
+  for (DatasetImage& image : ReadManifest(testing::DataDir() / "eth-80-dev" / "ring.csv")) {
+    const int number = std::stoi(image.object.substr(image.object.find_first_of("0123456789")));
+    (number <= 7 ? known : unknown).push_back(std::move(image));
+  }
+  // The cell of `method` on `variant`.
+  const auto cell = [](const EvaluationReport& report, std::string_view method,
+                       DescriptorVariant variant) {
+    for (const EvaluationCell& c : report.cells) {
+      if (c.method == method && c.variant == variant) return c;
+    }
+    ADD_FAILURE() << method << " has no cell on " << VariantName(variant);
+    return EvaluationCell{};
+  };
+  const std::string_view product = kProductMethod, engine = Product().engine;
+  const DescriptorVariant layout = DescriptorVariant::kCeddHsvLayout, own = Product().variant;
+
+  EvaluationReport report = RunEvaluation(known, unknown, options);
+  ASSERT_EQ(report.cells.size(), 4u);
+  EXPECT_EQ(cell(report, product, layout).unknown_trials, 13 * 3);
+  EXPECT_EQ(DecisionsOf(cell(report, product, layout)), DecisionsOf(cell(report, engine, layout)));
+  EXPECT_NE(DecisionsOf(cell(report, product, own)), DecisionsOf(cell(report, engine, own)))
+      << "the product on its own variant ran at the layout's rate";
+
+  // A rate given for the run is the product's on every variant.
+  options.product_false_accept_rate = options.engine.false_accept_rate;
+  report = RunEvaluation(known, unknown, options);
+  EXPECT_EQ(DecisionsOf(cell(report, product, own)), DecisionsOf(cell(report, engine, own)));
+}
+
 // --distractors: the queries are the dataset's alone (the same counts per cell), the report
 // says how many objects joined the model set, and the product still finds COIL-100's objects
 // among them on clean frames. Each verdict names its query's object and the object answered,

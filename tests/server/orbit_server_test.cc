@@ -294,6 +294,21 @@ TEST(Server, EnrollsListsAndRecognisesCoilObjects) {
   }
 }
 
+// Sessions that ask for no target rate take the store's variant's (ProductFalseAcceptRate), as
+// `orbit info` shows a device, unless the operator gave one.
+TEST(Server, SessionsTakeTheVariantsTargetRateUnlessTheOperatorGivesOne) {
+  const auto served_rate = [](std::vector<std::string> args) {
+    ServerProcess server({.extra_args = std::move(args)});
+    v1::ServerInfoResponse info;
+    const grpc::Status s = Client(server.address()).Info(&info);
+    EXPECT_TRUE(s.ok()) << s.error_message();
+    return info.session_defaults().false_accept_rate();
+  };
+  EXPECT_EQ(served_rate({}), kProductFalseAcceptRate);
+  EXPECT_EQ(served_rate({"--variant", "cedd-hsv-layout"}), kLayoutFalseAcceptRate);
+  EXPECT_EQ(served_rate({"--variant", "cedd-hsv-layout", "--false-accept-rate", "0.2"}), 0.2);
+}
+
 TEST(Server, RecognizeAnswersABatchLikeASession) {
   ServerProcess server;
   Client client(server.address());

@@ -61,6 +61,7 @@ TEST(ServerConfigTest, TheCandidatesThresholdIsTheVariantsUnlessGivenAndGivenOnl
   EXPECT_NE(config.Describe().find("proposed by the index, above 5000 objects\n"),
             std::string::npos)
       << config.Describe();
+
   config.candidates_above = 0;
   EXPECT_NE(config.Describe().find("proposed by the index, above 0 objects\n"), std::string::npos)
       << config.Describe();
@@ -71,6 +72,28 @@ TEST(ServerConfigTest, TheCandidatesThresholdIsTheVariantsUnlessGivenAndGivenOnl
     ADD_FAILURE() << "accepted -1";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "engine option candidates_above must be in 0..1000000000, got -1");
+  }
+}
+
+TEST(ServerConfigTest, TheTargetRateIsTheVariantsUnlessGivenAndGivenOnlyInRange) {
+  ServerConfig config;
+  EXPECT_NE(config.Describe().find("rejection calibrated (false-accept rate the variant's: 0.15, "
+                                   "0.09 on cedd-hsv-layout, known-accept rate 0.95)\n"),
+            std::string::npos)
+      << config.Describe();
+  config.variant = DescriptorVariant::kCeddHsvLayout;
+  EXPECT_NE(config.Describe().find("(false-accept rate 0.09, known-accept rate"), std::string::npos)
+      << config.Describe();
+  config.false_accept_rate = 0.2;
+  EXPECT_NE(config.Describe().find("(false-accept rate 0.2, known-accept rate"), std::string::npos)
+      << config.Describe();
+  EXPECT_NO_THROW(ValidateServerConfig(config));
+  config.false_accept_rate = 1;
+  try {
+    ValidateServerConfig(config);
+    ADD_FAILURE() << "accepted 1";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_STREQ(e.what(), "engine option false_accept_rate must be in (0, 1), got 1");
   }
 }
 
