@@ -175,7 +175,9 @@ std::string MarkdownReport(const EvaluationReport& report) {
           return cell.method == kProductMethod && cell.variant != Product().variant;
         })) {
       out << "; under another variant, the same pipeline on a store made in that variant "
-             "(`orbit serve --variant`)";
+             "(`orbit serve --variant`), at that variant's target false-accept rate unless "
+             "the run gives one ("
+          << DescribeProductFalseAcceptRates() << ")";
     }
     out << ".\n\n";
   }

@@ -393,7 +393,9 @@ TEST_F(EvalCommandTest, ProductOnAnotherVariantIsReportedUnderThatVariant) {
   EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate"));
   EXPECT_EQ(LinesStartingWith(r.out, "| DF | product |").size(), 2u) << r.out;
   EXPECT_THAT(r.out, HasSubstr("; under another variant, the same pipeline on a store made in "
-                               "that variant (`orbit serve --variant`)."));
+                               "that variant (`orbit serve --variant`), at that variant's "
+                               "target false-accept rate unless the run gives one (0.15, 0.09 "
+                               "on cedd-hsv-layout)."));
   // Not said where the product ran on its own variant alone.
   const auto own = EvalThreeObjects("--methods product --distortions df");
   ASSERT_EQ(own.exit_code, 0) << own.err;
