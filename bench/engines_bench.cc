@@ -3,7 +3,9 @@
 // recall against exact search on COIL-100.
 //
 //   exact-scan/<objects>             one brute-force Tanimoto pass over every view
-//                                    (ViewIndexSnapshot::SimilarityToEveryView)
+//                                    (ViewIndexSnapshot::SimilarityToEveryView);
+//                                    exact-scan/<variant>/1000 the same over objects in the
+//                                    product's variant
 //   session-frame/<engine>/<objects> one incremental frame update with the window full (W = 8),
 //                                    kd-tree index, default options; engine "product" is the
 //                                    product pipeline's engine with its options (the
@@ -33,8 +35,9 @@
 //                                    multiples of 10 degrees, queried with the views in between;
 //                                    the kd-tree reports recall@4 against exact search
 //
-// The synthetic objects are bench/synthetic_objects.h's. Queries are views 2.5 degrees off
-// the model views. Everything is seeded: every run sees the same sets.
+// The synthetic objects are bench/synthetic_objects.h's: in the product's variant for the product
+// and its relatives (BenchVariant), CEDD alone for the thesis' engines and the scans. Queries
+// are views 2.5 degrees off the model views. Everything is seeded: every run sees the same sets.
 //
 // Run: build/orbit_bench --benchmark_filter='exact-scan|session-frame|coil100'
 #include <benchmark/benchmark.h>
@@ -48,6 +51,7 @@
 #include <random>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "bench/bench_data.h"
@@ -73,18 +77,19 @@ struct SyntheticSet {
   std::unique_ptr<ViewIndex> index;
 };
 
-// Built once per size and mode, on first use.
-SyntheticSet& Synthetic(int objects, SearchMode mode) {
-  static std::map<std::pair<int, SearchMode>, SyntheticSet> sets;
+// Built once per size, mode and variant, on first use.
+SyntheticSet& Synthetic(int objects, SearchMode mode,
+                        DescriptorVariant variant = DescriptorVariant::kCeddLire) {
+  static std::map<std::tuple<int, SearchMode, DescriptorVariant>, SyntheticSet> sets;
   // Two sets of 100,000 objects do not fit this machine's memory together: a large set is
   // dropped when another one is asked for (and built again if it is asked for later).
   constexpr int kLargeSet = 10000;
-  if (objects > kLargeSet && !sets.contains({objects, mode})) {
-    std::erase_if(sets, [](const auto& entry) { return entry.first.first > kLargeSet; });
+  if (objects > kLargeSet && !sets.contains({objects, mode, variant})) {
+    std::erase_if(sets, [](const auto& entry) { return std::get<0>(entry.first) > kLargeSet; });
   }
-  SyntheticSet& set = sets[{objects, mode}];
+  SyntheticSet& set = sets[{objects, mode, variant}];
   if (!set.index) {
-    set.objects = std::make_unique<SyntheticObjects>(objects);
+    set.objects = std::make_unique<SyntheticObjects>(objects, variant);
     // Loaded on every CPU, as a server loads its store (only sets above 1000 objects differ).
     set.index = std::make_unique<ViewIndex>(
         set.objects->Models(), ViewIndexOptions{.search = mode, .build_threads = AvailableCpus()});
@@ -92,8 +97,8 @@ SyntheticSet& Synthetic(int objects, SearchMode mode) {
   return set;
 }
 
-void BM_ExactScan(benchmark::State& state, int objects) {
-  SyntheticSet& set = Synthetic(objects, SearchMode::kExact);
+void BM_ExactScan(benchmark::State& state, int objects, DescriptorVariant variant) {
+  SyntheticSet& set = Synthetic(objects, SearchMode::kExact, variant);
   const auto snapshot = set.index->Snapshot();
   const DescriptorValues query = set.objects->View(objects / 2, 102.5);
   std::vector<float> similarities;
@@ -151,20 +156,19 @@ void BM_FittedConfidence(benchmark::State& state) {
   }
 }
 
-// The product pipeline's engine options as a server of the synthetic objects runs them: their
-// descriptors are CEDD only (cedd-lire), so candidates above that variant's size.
-EngineOptions ProductOptions() {
-  EngineOptions options = Product().options;
-  options.candidates_above = ProductCandidatesAbove(DescriptorVariant::kCeddLire);
-  return options;
+// The variant of the synthetic objects engine `name` runs on: the product's own for the product
+// pipeline and its variants ("product", "product-every-object", "product-candidates:C"), as a
+// server of a store made by default holds them; CEDD alone for the thesis' engines.
+DescriptorVariant BenchVariant(const std::string& name) {
+  return name.starts_with(kProductMethod) ? Product().variant : DescriptorVariant::kCeddLire;
 }
 
 // The engine called `name` with its default options; for "product" the product pipeline's
-// engine with its options (core/engines/product_pipeline.h, ProductOptions above); for
+// engine with its options (core/engines/product_pipeline.h); for
 // "product-every-object" the same scoring every object at any catalogue size
 // (candidate_objects 0), the reference that shows what the candidates save.
 std::unique_ptr<RecognitionEngine> BenchEngine(const std::string& name) {
-  if (name == kProductMethod) return CreateEngine(Product().engine, ProductOptions());
+  if (name == kProductMethod) return CreateEngine(Product().engine, Product().options);
   if (name == "product-every-object") {
     EngineOptions options = Product().options;
     options.candidate_objects = 0;
@@ -180,7 +184,7 @@ std::unique_ptr<RecognitionEngine> BenchEngine(const std::string& name) {
 }
 
 void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objects) {
-  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree, BenchVariant(engine_name));
   const auto snapshot = set.index->Snapshot();
   const auto engine = BenchEngine(engine_name);
   const int window = engine->options().window;
@@ -210,7 +214,7 @@ void BM_SessionFrame(benchmark::State& state, std::string engine_name, int objec
 // One frame each of `sessions` sessions in turn, windows full: what a frame costs when many
 // sessions share the server, their per-frame state evicted from the caches by the others'.
 void BM_SessionFrames(benchmark::State& state, std::string engine_name, int objects, int sessions) {
-  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree);
+  SyntheticSet& set = Synthetic(objects, SearchMode::kKdTree, BenchVariant(engine_name));
   const auto snapshot = set.index->Snapshot();
   std::vector<std::unique_ptr<RecognitionEngine>> engines;
   for (int s = 0; s < sessions; ++s) engines.push_back(BenchEngine(engine_name));
@@ -242,10 +246,11 @@ void BM_FrameAfterModelChange(benchmark::State& state, std::string engine_name, 
     std::unique_ptr<ViewIndex> index;
     ObjectModel enrolled;  // enrolled and deleted in turn
   };
-  static std::map<int, ChangingSet> sets;
-  ChangingSet& set = sets[objects];
+  static std::map<std::pair<int, DescriptorVariant>, ChangingSet> sets;
+  const DescriptorVariant variant = BenchVariant(engine_name);
+  ChangingSet& set = sets[{objects, variant}];
   if (!set.index) {
-    set.source = std::make_unique<SyntheticObjects>(objects + 1);
+    set.source = std::make_unique<SyntheticObjects>(objects + 1, variant);
     std::vector<ObjectModel> models = set.source->Models();
     set.enrolled = std::move(models.back());
     models.pop_back();
@@ -348,9 +353,14 @@ int RegisterEngineBenchmarks() {
   // exact scan and the product, which never builds the view kd-trees (docs/design.md#view-index).
   for (const int objects : {100, 1000, 10000, 100000}) {
     benchmark::RegisterBenchmark(("exact-scan/" + std::to_string(objects)).c_str(), BM_ExactScan,
-                                 objects)
+                                 objects, DescriptorVariant::kCeddLire)
         ->Unit(benchmark::kMicrosecond);
   }
+  // The product's budget against a scan of views in its own variant.
+  benchmark::RegisterBenchmark(
+      ("exact-scan/" + std::string(VariantName(Product().variant)) + "/1000").c_str(), BM_ExactScan,
+      1000, Product().variant)
+      ->Unit(benchmark::kMicrosecond);
   for (const int objects : {100, 1000, 2000, 10000}) {
     benchmark::RegisterBenchmark(("rejection-calibration/" + std::to_string(objects)).c_str(),
                                  BM_RejectionCalibration, objects, false)

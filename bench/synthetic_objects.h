@@ -4,6 +4,10 @@
 // About 21 non-zero bins of 144, values mostly 1-2, bins of unequal popularity: each object has
 // three keyframe descriptors around the circle and its view at azimuth a blends the two nearest
 // keyframes, with +-1 jitter on some bins. Models hold kViewsPerObject views 5 degrees apart.
+// In a variant with appearance channels (cedd-hsv-hog, the product's), each keyframe also holds
+// about 34 non-zero colour bins of 192, values 1-7 spread as COIL-100's, and about 47 non-zero
+// gradient values of 144, each 1, as COIL-100's (the channels' values are scaled to small norms:
+// core/descriptor/appearance_channels.h).
 #pragma once
 
 #include <array>
@@ -20,7 +24,9 @@ constexpr int kViewsPerObject = 72;
 
 class SyntheticObjects {
  public:
-  explicit SyntheticObjects(int objects);
+  explicit SyntheticObjects(int objects, DescriptorVariant variant = DescriptorVariant::kCeddLire);
+
+  DescriptorVariant variant() const { return variant_; }
 
   int object_count() const { return static_cast<int>(keyframes_.size()); }
 
@@ -38,8 +44,10 @@ class SyntheticObjects {
  private:
   DescriptorValues Keyframe();
 
+  DescriptorVariant variant_;
   std::mt19937 random_;
   std::discrete_distribution<int> bins_;
+  std::discrete_distribution<int> colour_bins_;  // of the colour channel's 192
   std::vector<std::array<DescriptorValues, 3>> keyframes_;
 };
 
