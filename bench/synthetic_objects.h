@@ -26,8 +26,6 @@ class SyntheticObjects {
  public:
   explicit SyntheticObjects(int objects, DescriptorVariant variant = DescriptorVariant::kCeddLire);
 
-  DescriptorVariant variant() const { return variant_; }
-
   int object_count() const { return static_cast<int>(keyframes_.size()); }
 
   // View of object o (0-based) at azimuth a (degrees), blended from the keyframes with jitter.

@@ -122,9 +122,10 @@ std::string ServerConfig::Describe() const {
       << RejectionRuleName(d.options.rejection);
   if (d.options.rejection == RejectionRule::kCalibrated) {
     std::ostringstream rate;
-    if (false_accept_rate || variant) {
-      rate << false_accept_rate.value_or(
-          ProductFalseAcceptRate(variant.value_or(Product().variant)));
+    if (false_accept_rate) {
+      rate << *false_accept_rate;
+    } else if (variant) {
+      rate << ProductFalseAcceptRate(*variant);
     } else {
       rate << "the variant's: " << DescribeProductFalseAcceptRates();
     }
