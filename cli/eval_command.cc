@@ -362,14 +362,17 @@ int RunEval(const EvalOptions& o) {
   try {
     auto [known, unknown] =
         SelectDataset({o.layout, o.data, o.manifest, o.objects, o.unknown_objects});
+    EvaluationOptions options = ToEvaluationOptions(o);
     if (!o.boxes.empty()) {
       const std::map<std::string, ImageBox> boxes = ReadBoxes(o.boxes);
       AttachBoxes(known, boxes, o.box_margin);
       AttachBoxes(unknown, boxes, o.box_margin);
+      // Captured frames are described in their boxes as the model views are.
+      if (!o.queries.empty()) options.boxes = boxes;
     }
     SetBoxMargin(known, o.box_margin);
     SetBoxMargin(unknown, o.box_margin);
-    EvaluationOptions options = ToEvaluationOptions(o);
+    options.box_margin = o.box_margin;
     SetDistractorsFrom(o, options);
     const std::vector<int> counts = DistractorCounts(o);
     std::unique_ptr<ProgressBar> progress;
@@ -528,7 +531,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
   command->add_option("--boxes", o->boxes,
                       "CSV with columns path,x,y,w,h (a dataset's boxes.csv): describe each "
                       "image's box, grown by --box-margin, instead of the whole image (with "
-                      "--server: each query frame's, a row for every frame); " +
+                      "--queries: each query frame's too, a row for every frame); " +
                           std::string(kRelativePathsHelp));
   AddBoxMarginOption(*command, o->box_margin);
   command->add_option("--objects", o->objects,

@@ -469,6 +469,18 @@ cv::Mat ReadCaptureImage(const CaptureFrame& frame) {
   }
 }
 
+std::vector<DatasetImage> CaptureImages(const std::vector<CaptureFrame>& captures,
+                                        const std::map<std::string, ImageBox>& boxes,
+                                        double margin) {
+  std::vector<DatasetImage> images(captures.size());
+  for (std::size_t f = 0; f < captures.size(); ++f) {
+    images[f].path = captures[f].path;
+    images[f].object = captures[f].object;
+  }
+  if (!boxes.empty()) AttachBoxes(images, boxes, margin);
+  return images;
+}
+
 std::vector<DatasetObject> GroupByObject(const std::vector<DatasetImage>& images) {
   std::vector<DatasetObject> objects;
   std::map<std::string, std::size_t> position;  // name -> its place in `objects`

@@ -158,6 +158,14 @@ std::vector<CaptureSequence> GroupCaptureSequences(const std::vector<CaptureFram
 // may be named relative to the capture file's folder.
 cv::Mat ReadCaptureImage(const CaptureFrame& frame);
 
+// The captured frames as dataset images, in their order (path and object), each with its box
+// from `boxes` (AttachBoxes: every frame must have one) grown by `margin` when `boxes` is not
+// empty, so that a frame is described in its box as a model view with a box is
+// (DescribedRegion). Throws std::invalid_argument as AttachBoxes does.
+std::vector<DatasetImage> CaptureImages(const std::vector<CaptureFrame>& captures,
+                                        const std::map<std::string, ImageBox>& boxes,
+                                        double margin);
+
 // One object of a dataset: the images sharing a name.
 struct DatasetObject {
   std::string name;

@@ -836,6 +836,8 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
   dataset.known = GroupByObject(known);
   for (const DatasetImage& image : known) dataset.images.push_back(&image);
   const std::vector<CaptureSequence> sequences = GroupCaptureSequences(captures);
+  const std::vector<DatasetImage> frames =
+      CaptureImages(captures, options.boxes, options.box_margin);
 
   EvaluationReport report = ReportOf(options);
   report.known_objects = dataset.known.size();
@@ -864,8 +866,12 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                described[i] = DescribeImage(known[i], i, options.variants, {}, options.seed);
                return;
              }
-             const cv::Mat image = ReadCaptureImage(captures[i - known.size()]);
-             auto& frame = queries[i - known.size()];
+             // The region alone is distorted, as for the model set's images (DescribeImage).
+             const std::size_t f = i - known.size();
+             const cv::Mat whole = ReadCaptureImage(captures[f]);
+             const cv::Mat image =
+                 frames[f].box ? whole(DescribedRegion(frames[f], whole.size())) : whole;
+             auto& frame = queries[f];
              frame.assign(options.variants.size(), {});
              for (const DistortionSpec& distortion : options.distortions) {
                const cv::Mat query =
@@ -875,7 +881,7 @@ EvaluationReport RunCaptureEvaluation(const std::vector<DatasetImage>& known,
                for (std::size_t v = 0; v < options.variants.size(); ++v) {
                  frame[v].push_back(ExtractCedd(query, options.variants[v]).values);
                }
-               quality[i - known.size()].push_back(MeasureFrameQuality(query));
+               quality[f].push_back(MeasureFrameQuality(query));
              }
            });
   report.descriptor_seconds = SecondsSince(descriptor_start);

@@ -26,12 +26,14 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <map>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "client/frame_quality.h"
+#include "client/object_region.h"
 #include "core/base/parallel_for.h"
 #include "core/descriptor/descriptor.h"
 #include "core/engines/engine_registry.h"
@@ -83,6 +85,11 @@ struct EvaluationOptions {
   // does not measure them (`--quality-reading ignore`); the calibrated rule then makes no
   // allowance for degraded frames (core/decision/quality_allowance.h).
   bool use_quality_reading = true;
+  // RunCaptureEvaluation: the object's box in each captured frame (ReadBoxes' keys, matched as
+  // AttachBoxes matches paths; every frame needs one): each frame is described in its box grown
+  // by box_margin, as a model view with a box is. Empty: the whole frames.
+  std::map<std::string, ImageBox> boxes;
+  double box_margin = kDefaultBoxMargin;
   std::uint64_t seed = 1;  // every random draw derives from it
   // Active vision (`orbit eval --active`, docs/design.md#other-query-modes): 0 for the protocol's
   // random views; else each query takes the protocol's first two views, then each next view this

@@ -140,9 +140,8 @@ EvaluationReport RunServerEvaluation(const Connection& connection,
                                      const ServerEvaluationOptions& options) {
   ValidateQueryLengths(options.query_lengths);
   const std::vector<CaptureSequence> sequences = GroupCaptureSequences(captures);
-  std::vector<DatasetImage> frames(captures.size());
-  for (std::size_t f = 0; f < captures.size(); ++f) frames[f].path = captures[f].path;
-  if (!options.boxes.empty()) AttachBoxes(frames, options.boxes, options.box_margin);
+  const std::vector<DatasetImage> frames =
+      CaptureImages(captures, options.boxes, options.box_margin);
 
   ModelsClient models(connection);
   const v1::ServerInfoResponse info = models.ServerInfo();

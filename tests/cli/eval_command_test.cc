@@ -361,6 +361,37 @@ TEST_F(CapturedQueriesTest, AMissingFrameIsNamedWithTheLineOfTheQueriesFile) {
                                ": no such file"));
 }
 
+// With --boxes, the captured frames are described in their boxes as the model views are, so each
+// frame needs a row as each model image does: boxes for the model set alone name the first
+// frame without one instead of describing the frames whole.
+TEST_F(CapturedQueriesTest, WithBoxesEveryFrameNeedsOneAsTheModelViewsDo) {
+  const std::filesystem::path boxes = dir_ / "boxes.csv";
+  {
+    std::ofstream file(boxes);
+    file << "path,x,y,w,h\n";
+    for (int object : {1, 2, 3}) {
+      for (int azimuth = 0; azimuth < 360; azimuth += 10) {
+        file << coil_ << "/obj" << object << "__" << azimuth << ".png,16,16,96,96\n";
+      }
+    }
+  }
+  const testing::CommandResult models_only = Eval(" --n 1 --boxes " + boxes.string());
+  EXPECT_EQ(models_only.exit_code, 1);
+  EXPECT_THAT(models_only.err,
+              HasSubstr("no box for " + (dir_ / "walks" / "frames" / "obj1__5.png").string()));
+
+  {
+    std::ofstream file(boxes, std::ios::app);
+    for (const std::string name :
+         {"obj1__5", "obj1__15", "obj1__25", "obj1__35", "obj9__5", "obj9__15"}) {
+      file << (dir_ / "walks" / "frames" / (name + ".png")).string() << ",16,16,96,96\n";
+    }
+  }
+  const testing::CommandResult every_frame = Eval(" --n 1 --boxes " + boxes.string());
+  ASSERT_EQ(every_frame.exit_code, 0) << every_frame.err;
+  EXPECT_THAT(every_frame.out, HasSubstr("| DF | product | 100.0 |"));
+}
+
 TEST_F(EvalCommandTest, HelpSaysWhereTheCsvFilesPathsAreReadFrom) {
   const testing::CommandResult r = testing::RunCommand(testing::OrbitBinary() + " eval --help");
   ASSERT_EQ(r.exit_code, 0) << r.err;

@@ -415,5 +415,43 @@ TEST(RunCaptureEvaluationTest, EachSequenceIsOneQueryAskedWithItsFirstNFrames) {
             "sequence \"a\" shows two objects (\"obj1\" and \"obj2\")");
 }
 
+// Captured frames are described in their boxes, as the model views are: eth-80-dev's ring views
+// of apple1 and cup1, cut to their boxes, are the models, and the captures are four of those
+// very images. Each frame cut to its box is then its own model view, matched exactly (U = 0);
+// described whole, as frames were before boxes reached the captures, it matches no view exactly.
+TEST(RunCaptureEvaluationTest, FramesAreDescribedInTheirBoxesAsTheModelViewsAre) {
+  const std::filesystem::path eth = testing::DataDir() / "eth-80-dev";
+  const std::map<std::string, ImageBox> boxes = ReadBoxes(eth / "boxes.csv");
+  std::vector<DatasetImage> known;
+  for (DatasetImage& image : ReadManifest(eth / "ring.csv")) {
+    if (image.object == "apple1" || image.object == "cup1") known.push_back(std::move(image));
+  }
+  ASSERT_EQ(known.size(), 32u);
+  AttachBoxes(known, boxes, kDefaultBoxMargin);
+  std::vector<CaptureFrame> captures;
+  for (const std::size_t i : {0u, 5u, 16u, 21u}) {
+    captures.push_back({known[i].path, known[i].object, known[i].azimuth, known[i].object});
+  }
+  EvaluationOptions options;
+  options.methods = {std::string(kProductMethod)};
+  options.variants = {Product().variant};
+  options.distortions = {ParseDistortionSpec("df")};
+  options.query_lengths = {1};
+
+  const auto statistics = [&](const EvaluationOptions& o) {
+    const EvaluationReport report = RunCaptureEvaluation(known, captures, o);
+    std::vector<double> u;
+    for (const QueryVerdict& verdict : report.cells.at(0).verdicts) {
+      EXPECT_TRUE(verdict.hit) << verdict.object;
+      u.push_back(verdict.unknown_statistic);
+    }
+    return u;
+  };
+  options.boxes = boxes;
+  EXPECT_THAT(statistics(options), ::testing::ElementsAre(0.0, 0.0));
+  options.boxes.clear();
+  for (const double u : statistics(options)) EXPECT_GT(u, 0.0);
+}
+
 }  // namespace
 }  // namespace orbit
