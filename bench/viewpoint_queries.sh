@@ -9,9 +9,12 @@
 # model view to its box as viewpoint.sh's cropped queries do.
 #   bench/viewpoint_queries.sh [ETH80_DIR] [ELEVATION] > queries.csv
 set -euo pipefail
-data=$(realpath "${1:-../shared/data/eth-80-dev}")
-elevation=${2:-24}
+# Absolute, with its links kept as given: `orbit eval --boxes` matches a frame to its box row by
+# the path as written, so the frames must be named under the folder the boxes file is given in.
+data=${1:-../shared/data/eth-80-dev}
 [[ -f $data/all.csv ]] || { echo "viewpoint_queries.sh: no all.csv in $data" >&2; exit 1; }
+data=$(cd "$data" && pwd -L)
+elevation=${2:-24}
 echo "path,object,sequence,azimuth"
 awk -F, -v e="$elevation" 'NR > 1 && $4 == e { print $2, $3, $1 }' "$data/all.csv" |
   sort -k1,1 -k2,2n |
