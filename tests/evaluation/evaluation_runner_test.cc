@@ -416,9 +416,10 @@ TEST(RunCaptureEvaluationTest, EachSequenceIsOneQueryAskedWithItsFirstNFrames) {
 }
 
 // Captured frames are described in their boxes, as the model views are: eth-80-dev's ring views
-// of apple1 and cup1, cut to their boxes, are the models, and the captures are four of those
-// very images. Each frame cut to its box is then its own model view, matched exactly (U = 0);
-// described whole, as frames were before boxes reached the captures, it matches no view exactly.
+// of apple1 and cup1, cut to their boxes, are the models, and the captures are two of those
+// very images, one a sequence. Each frame cut to its box is then its own model view, matched
+// exactly (U = 0); described whole, as frames were before boxes reached the captures, it matches no
+// view exactly.
 TEST(RunCaptureEvaluationTest, FramesAreDescribedInTheirBoxesAsTheModelViewsAre) {
   const std::filesystem::path eth = testing::DataDir() / "eth-80-dev";
   const std::map<std::string, ImageBox> boxes = ReadBoxes(eth / "boxes.csv");
@@ -429,7 +430,7 @@ TEST(RunCaptureEvaluationTest, FramesAreDescribedInTheirBoxesAsTheModelViewsAre)
   ASSERT_EQ(known.size(), 32u);
   AttachBoxes(known, boxes, kDefaultBoxMargin);
   std::vector<CaptureFrame> captures;
-  for (const std::size_t i : {0u, 5u, 16u, 21u}) {
+  for (const std::size_t i : {0u, 16u}) {
     captures.push_back({known[i].path, known[i].object, known[i].azimuth, known[i].object});
   }
   EvaluationOptions options;
@@ -450,7 +451,7 @@ TEST(RunCaptureEvaluationTest, FramesAreDescribedInTheirBoxesAsTheModelViewsAre)
   options.boxes = boxes;
   EXPECT_THAT(statistics(options), ::testing::ElementsAre(0.0, 0.0));
   options.boxes.clear();
-  for (const double u : statistics(options)) EXPECT_GT(u, 0.0);
+  EXPECT_THAT(statistics(options), ::testing::ElementsAre(::testing::Gt(0.0), ::testing::Gt(0.0)));
 }
 
 }  // namespace
