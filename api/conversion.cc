@@ -13,6 +13,7 @@ v1::DescriptorVariant ToProtoVariant(DescriptorVariant variant) {
     case DescriptorVariant::kCeddRobust: return v1::CEDD_ROBUST;
     case DescriptorVariant::kCeddHsvHog: return v1::CEDD_HSV_HOG;
     case DescriptorVariant::kCeddHsvLayout: return v1::CEDD_HSV_LAYOUT;
+    case DescriptorVariant::kCeddSoftHsvHog: return v1::CEDD_SOFT_HSV_HOG;
   }
   return v1::DESCRIPTOR_VARIANT_UNSPECIFIED;
 }
@@ -24,6 +25,7 @@ DescriptorVariant FromProtoVariant(v1::DescriptorVariant variant) {
     case v1::CEDD_ROBUST: return DescriptorVariant::kCeddRobust;
     case v1::CEDD_HSV_HOG: return DescriptorVariant::kCeddHsvHog;
     case v1::CEDD_HSV_LAYOUT: return DescriptorVariant::kCeddHsvLayout;
+    case v1::CEDD_SOFT_HSV_HOG: return DescriptorVariant::kCeddSoftHsvHog;
     default: throw std::invalid_argument("descriptor variant is " + ProtoVariantName(variant));
   }
 }
@@ -34,7 +36,8 @@ std::string ProtoVariantName(v1::DescriptorVariant variant) {
     case v1::CEDD_FULL:
     case v1::CEDD_ROBUST:
     case v1::CEDD_HSV_HOG:
-    case v1::CEDD_HSV_LAYOUT: return std::string(VariantName(FromProtoVariant(variant)));
+    case v1::CEDD_HSV_LAYOUT:
+    case v1::CEDD_SOFT_HSV_HOG: return std::string(VariantName(FromProtoVariant(variant)));
     case v1::DESCRIPTOR_VARIANT_UNSPECIFIED: return "unspecified";
     default: return "unknown (" + std::to_string(variant) + ")";
   }

@@ -52,7 +52,7 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
   CLI::App* command = app.add_subcommand(
       "descriptor",
       "Print the descriptor of each image: one line per file, `FILE v0 v1 ... v143` (v479 in\n"
-      "cedd-hsv-hog and cedd-hsv-layout: CEDD, then their appearance channels), values 0..7 "
+      "the variants with appearance channels: CEDD, then those channels), values 0..7 "
       "(docs/design.md). A file "
       "that cannot be read is reported on stderr and\n"
       "makes the exit status 1; the other files are still processed.");
@@ -62,9 +62,11 @@ void AddDescriptorCommand(CLI::App& app, int& exit_code) {
                    "cedd-full: a 40x40 grid covering every pixel;\n"
                    "cedd-robust: cedd-full of the canonical frame;\n"
                    "cedd-hsv-hog: cedd-robust, then a colour histogram and gradient cells of the\n"
-                   "same frame, its background's colours taken off (the product's variant);\n"
+                   "same frame, its background's colours taken off;\n"
                    "cedd-hsv-layout: cedd-hsv-hog with the object's colours in the frame's\n"
-                   "upper and lower halves instead of one colour histogram")
+                   "upper and lower halves instead of one colour histogram;\n"
+                   "cedd-soft-hsv-hog: cedd-hsv-hog with a hue near a colour bin's edge shared\n"
+                   "with the bin beyond, and its own channel weights (the product's variant)")
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();
   command->add_option("FILE", options->files, "image files (PNG, JPEG, ...)")->required();

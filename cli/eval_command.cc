@@ -465,7 +465,7 @@ void AddEvalCommand(CLI::App& app, int& exit_code) {
       ->add_option(
           "--variant", o->variants,
           "descriptor variant(s) of the thesis' engines: cedd-lire, cedd-full, cedd-robust, "
-          "cedd-hsv-hog, cedd-hsv-layout")
+          "cedd-hsv-hog, cedd-hsv-layout, cedd-soft-hsv-hog")
       ->delimiter(',')
       ->check(CLI::IsMember(VariantNames()))
       ->capture_default_str();

@@ -78,6 +78,12 @@ constexpr const char* kMigrations[] = {
         ADD CONSTRAINT objects_variant_check CHECK (variant IN ('cedd-lire', 'cedd-full',
           'cedd-robust', 'cedd-hsv-hog', 'cedd-hsv-layout'));
     )sql",
+    // 5: the cedd-soft-hsv-hog variant, 480 bytes as cedd-hsv-hog.
+    R"sql(
+      ALTER TABLE objects DROP CONSTRAINT objects_variant_check,
+        ADD CONSTRAINT objects_variant_check CHECK (variant IN ('cedd-lire', 'cedd-full',
+          'cedd-robust', 'cedd-hsv-hog', 'cedd-hsv-layout', 'cedd-soft-hsv-hog'));
+    )sql",
 };
 static_assert(std::size(kMigrations) == kPostgresSchemaVersion);
 

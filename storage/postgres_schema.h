@@ -17,8 +17,9 @@ namespace orbit {
 
 // Version 1: objects, views (as the SQLite store's version 3) and the change log model_changes.
 // Version 2: the cedd-hsv-hog variant. Version 3: replica_progress and change_log_horizon, for
-// pruning the change log. Version 4: the cedd-hsv-layout variant.
-inline constexpr int kPostgresSchemaVersion = 4;
+// pruning the change log. Version 4: the cedd-hsv-layout variant. Version 5: the
+// cedd-soft-hsv-hog variant.
+inline constexpr int kPostgresSchemaVersion = 5;
 
 // The schema version of the store on `connection`: 0 when the current schema has no tables.
 // Throws StoreError kIncompatible when it has tables but is not an Orbit model store.

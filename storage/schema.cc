@@ -122,6 +122,27 @@ constexpr const char* kMigrations[] = {
       DROP TABLE objects;
       ALTER TABLE objects_v5 RENAME TO objects;
     )sql",
+    // 6: the cedd-soft-hsv-hog variant, 480 bytes as cedd-hsv-hog. objects is rebuilt as in 3.
+    R"sql(
+      CREATE TABLE objects_v6 (
+        id INTEGER PRIMARY KEY AUTOINCREMENT,
+        name TEXT NOT NULL UNIQUE CHECK (length(name) BETWEEN 1 AND 64),
+        variant TEXT NOT NULL CHECK (variant IN ('cedd-lire', 'cedd-full', 'cedd-robust',
+                                                 'cedd-hsv-hog', 'cedd-hsv-layout',
+                                                 'cedd-soft-hsv-hog')),
+        created_at TEXT NOT NULL,
+        updated_at TEXT NOT NULL,
+        metadata TEXT NOT NULL DEFAULT '{}'
+          CHECK (json_valid(metadata) AND json_type(metadata) = 'object')
+      ) STRICT;
+      INSERT INTO objects_v6 (id, name, variant, created_at, updated_at, metadata)
+        SELECT id, name, variant, created_at, updated_at, metadata FROM objects;
+      DELETE FROM sqlite_sequence WHERE name = 'objects_v6';
+      INSERT INTO sqlite_sequence (name, seq)
+        SELECT 'objects_v6', seq FROM sqlite_sequence WHERE name = 'objects';
+      DROP TABLE objects;
+      ALTER TABLE objects_v6 RENAME TO objects;
+    )sql",
 };
 static_assert(std::size(kMigrations) == kSchemaVersion);
 

@@ -12,8 +12,8 @@ namespace orbit {
 
 // Version 1: objects and views (the recognition data). Version 2: objects.metadata (JSON text)
 // and views.thumbnail. Version 3: objects.variant may be cedd-robust. Version 4: cedd-hsv-hog, and
-// views.descriptor 144 or 480 bytes. Version 5: cedd-hsv-layout.
-inline constexpr int kSchemaVersion = 5;
+// views.descriptor 144 or 480 bytes. Version 5: cedd-hsv-layout. Version 6: cedd-soft-hsv-hog.
+inline constexpr int kSchemaVersion = 6;
 
 // The schema version of the database on `connection`: 0 for an empty database.
 // Throws StoreError kIncompatible when the database has tables but is not an Orbit model store.

@@ -60,7 +60,8 @@ struct AllowanceSlopes {
 };
 
 // CEDD's variants (fitted on cedd-robust, the product's variant then) and cedd-hsv-hog, whose
-// slopes cedd-hsv-layout uses too (not refitted for it: docs/results/real-objects.md).
+// slopes cedd-hsv-layout and cedd-soft-hsv-hog use too (not refitted for them:
+// docs/results/real-objects.md).
 inline constexpr AllowanceSlopes kCeddAllowanceSlopes = {0.006, 0.5};
 inline constexpr AllowanceSlopes kHsvHogAllowanceSlopes = {0.005, 0.2};
 

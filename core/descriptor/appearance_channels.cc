@@ -57,8 +57,27 @@ void SpreadOverHues(const std::array<double, kSaturationBins * kValueBins>& any_
   }
 }
 
-// `hsv`: the 64x64 frame in OpenCV's 8-bit HSV (hue 0..179, saturation and value 0..255).
-ColourPixels ColourHistogram(const cv::Mat& hsv) {
+// A hue's neighbouring bin across the nearer edge of its own (circularly) and the share of its
+// count that bin takes: 1/2 at the edge, falling linearly to 0 at `reach` bin widths from it
+// (docs/design.md#soft-hue-edges). `reach` 0: hard edges, the share is always 0.
+struct HueEdgeShare {
+  int neighbour;
+  double share;
+};
+HueEdgeShare ShareAcrossHueEdge(int hue, double reach) {
+  const double position = hue * static_cast<double>(kHueBins) / 180.0;  // in bin widths
+  const int own = hue * kHueBins / 180;
+  const double from_lower = position - own;  // 0..1 within the own bin
+  const bool lower_edge = from_lower < 0.5;
+  const double distance = lower_edge ? from_lower : 1 - from_lower;
+  const int neighbour = (own + (lower_edge ? kHueBins - 1 : 1)) % kHueBins;
+  if (distance >= reach) return {neighbour, 0.0};
+  return {neighbour, 0.5 * (1 - distance / reach)};
+}
+
+// `hsv`: the 64x64 frame in OpenCV's 8-bit HSV (hue 0..179, saturation and value 0..255);
+// `hue_edge_reach`: ShareAcrossHueEdge's reach.
+ColourPixels ColourHistogram(const cv::Mat& hsv, double hue_edge_reach) {
   ColourPixels pixels;
   // Per saturation and value bin, the count spread over every hue (below).
   std::array<double, kSaturationBins * kValueBins> any_hue{}, border_any_hue{};
@@ -84,10 +103,17 @@ ColourPixels ColourHistogram(const cv::Mat& hsv) {
       const double sure = HueCertainty(row[x]);
       const int bin = (hue * kSaturationBins + saturation) * kValueBins + value;
       pixels.bin[y * kAppearanceSide + x] = static_cast<std::uint8_t>(bin);
-      pixels.whole[bin] += sure;
+      const HueEdgeShare across = ShareAcrossHueEdge(row[x][0], hue_edge_reach);
+      const int neighbour_bin =
+          (across.neighbour * kSaturationBins + saturation) * kValueBins + value;
+      const double own_count = sure * (1 - across.share);
+      const double neighbour_count = sure * across.share;
+      pixels.whole[bin] += own_count;
+      pixels.whole[neighbour_bin] += neighbour_count;
       any_hue[saturation * kValueBins + value] += 1 - sure;
       if (border) {
-        pixels.border[bin] += sure;
+        pixels.border[bin] += own_count;
+        pixels.border[neighbour_bin] += neighbour_count;
         border_any_hue[saturation * kValueBins + value] += 1 - sure;
       }
     }
@@ -235,16 +261,17 @@ void AddAppearanceChannels(const cv::Mat& canonical, DescriptorVariant variant,
   cv::resize(canonical, small, cv::Size(kAppearanceSide, kAppearanceSide), 0, 0, cv::INTER_LINEAR);
   cv::Mat hsv;
   cv::cvtColor(small, hsv, cv::COLOR_BGR2HSV);
-  const ColourPixels pixels = ColourHistogram(hsv);
+  const bool soft = variant == DescriptorVariant::kCeddSoftHsvHog;
+  const ColourPixels pixels = ColourHistogram(hsv, soft ? kHueEdgeReach : 0.0);
   const ColourCounts foreground = ForegroundShares(pixels);
   ColourCounts colour;
-  if (variant == DescriptorVariant::kCeddHsvHog) {
+  if (variant != DescriptorVariant::kCeddHsvLayout) {
     for (int b = 0; b < kColourChannelSize; ++b) colour[b] = pixels.whole[b] * foreground[b];
   } else {
     colour = ColourLayout(hsv, pixels, foreground);
   }
   const auto gradient = GradientHistogram(small, pixels, foreground);
-  ScaleChannel(colour, kColourNorm,
+  ScaleChannel(colour, soft ? kSoftColourNorm : kColourNorm,
                std::span<std::uint8_t>(values.data() + kColourChannelOffset, kColourChannelSize));
   ScaleChannel(
       gradient, kGradientNorm,

@@ -1,5 +1,6 @@
-// The appearance channels of the cedd-hsv-hog and cedd-hsv-layout variants
-// (docs/design.md#appearance-channels, docs/design.md#colour-layout): what
+// The appearance channels of the cedd-hsv-hog, cedd-hsv-layout and cedd-soft-hsv-hog variants
+// (docs/design.md#appearance-channels, docs/design.md#colour-layout,
+// docs/design.md#soft-hue-edges): what
 // look-alike real objects need and CEDD lacks. CEDD's 24 coarse colour bins cannot tell a red
 // apple from a redder one, and its texture classes move under blur; a finer colour histogram and
 // a coarse layout of gradient orientations can.
@@ -26,6 +27,13 @@
 //                  the box) counted as the colour histogram counts it (kSureChroma) and
 //                  weighed by the object's share of its colour-histogram bin (the foreground
 //                  estimate, which stays that of the 192 bins).
+// cedd-soft-hsv-hog is cedd-hsv-hog with
+//   soft hue edges  a pixel whose hue lies within kHueEdgeReach of a bin's width from its hue
+//                   bin's edge shares its hue count with the bin beyond: half at the edge,
+//                   linearly less further in, none from kHueEdgeReach on;
+//   its own weight  kSoftColourNorm for the colour histogram.
+// Why: noise and compression move a hue by a few degrees; a hard edge turns that into a whole
+// count moved to another bin, and an object whose colour lies on an edge into another object.
 // Why: two look-alike objects differ in where their colours are (a cup's print, a cow's patches)
 // more often than in which colours they hold; halves one above the other move little as the
 // object turns about its vertical axis, the way a walk around it turns it.
@@ -67,7 +75,12 @@ static_assert(kLayoutBands * kLayoutBandSize == kColourChannelSize);
 
 // Euclidean norm each channel is scaled to before rounding (values then clipped to 0..7).
 inline constexpr double kColourNorm = 48.0;
+inline constexpr double kSoftColourNorm = 40.0;  // cedd-soft-hsv-hog's
 inline constexpr double kGradientNorm = 5.0;
+
+// cedd-soft-hsv-hog: how far from a hue bin's edge, in bin widths, a pixel shares its hue count
+// with the bin beyond (docs/design.md#soft-hue-edges); at most 0.5.
+inline constexpr double kHueEdgeReach = 0.25;
 
 // Chroma (max - min of a pixel's channels, 0..255) from which its hue counts in full
 // (docs/design.md#appearance-channels).

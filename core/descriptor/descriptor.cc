@@ -13,6 +13,7 @@ std::string_view VariantName(DescriptorVariant variant) {
     case DescriptorVariant::kCeddRobust: return "cedd-robust";
     case DescriptorVariant::kCeddHsvHog: return "cedd-hsv-hog";
     case DescriptorVariant::kCeddHsvLayout: return "cedd-hsv-layout";
+    case DescriptorVariant::kCeddSoftHsvHog: return "cedd-soft-hsv-hog";
   }
   return "unknown";
 }
@@ -43,7 +44,9 @@ void ValidateDescriptorValues(std::span<const std::uint8_t> values, std::string_
 }
 
 bool HasAppearanceChannels(DescriptorVariant variant) {
-  return variant == DescriptorVariant::kCeddHsvHog || variant == DescriptorVariant::kCeddHsvLayout;
+  return variant == DescriptorVariant::kCeddHsvHog ||
+         variant == DescriptorVariant::kCeddHsvLayout ||
+         variant == DescriptorVariant::kCeddSoftHsvHog;
 }
 
 int DescriptorLength(DescriptorVariant variant) {

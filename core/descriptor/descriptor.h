@@ -4,7 +4,7 @@
 // Layout: values 0..143 are CEDD's histogram (docs/design.md#histogram): value i belongs to
 // texture class i / 24 and fuzzy colour bin i % 24. Classes: 0 non-edge, 1 non-directional,
 // 2 horizontal, 3 vertical, 4 diagonal 45, 5 diagonal 135. The CEDD variants stop there; the
-// cedd-hsv-hog and cedd-hsv-layout variants append their appearance channels
+// cedd-hsv-hog, cedd-hsv-layout and cedd-soft-hsv-hog variants append their appearance channels
 // (core/descriptor/appearance_channels.h).
 // Values past a variant's DescriptorLength are 0, so one Tanimoto over every value serves
 // every variant.
@@ -42,17 +42,24 @@ enum class DescriptorVariant {
   // the frame's upper and lower halves (core/descriptor/appearance_channels.h,
   // docs/design.md#colour-layout)
   kCeddHsvLayout,
+  // cedd-hsv-hog whose colour histogram shares a pixel near a hue bin's edge with the bin
+  // beyond, with its own channel weights (core/descriptor/appearance_channels.h,
+  // docs/design.md#soft-hue-edges): the product's variant
+  kCeddSoftHsvHog,
 };
-inline constexpr std::array<DescriptorVariant, 5> kDescriptorVariants = {
-    DescriptorVariant::kCeddLire, DescriptorVariant::kCeddFull, DescriptorVariant::kCeddRobust,
-    DescriptorVariant::kCeddHsvHog, DescriptorVariant::kCeddHsvLayout};
+inline constexpr std::array<DescriptorVariant, 6> kDescriptorVariants = {
+    DescriptorVariant::kCeddLire,      DescriptorVariant::kCeddFull,
+    DescriptorVariant::kCeddRobust,    DescriptorVariant::kCeddHsvHog,
+    DescriptorVariant::kCeddHsvLayout, DescriptorVariant::kCeddSoftHsvHog};
 
-// Whether `variant` appends the appearance channels to CEDD (cedd-hsv-hog, cedd-hsv-layout):
+// Whether `variant` appends the appearance channels to CEDD (cedd-hsv-hog, cedd-hsv-layout,
+// cedd-soft-hsv-hog):
 // its descriptors are kDescriptorSize values and are taken from the canonical frame.
 bool HasAppearanceChannels(DescriptorVariant variant);
 
 // The variant's name as it appears on the command line, in the API and in the model store:
-// "cedd-lire", "cedd-full", "cedd-robust", "cedd-hsv-hog" or "cedd-hsv-layout".
+// "cedd-lire", "cedd-full", "cedd-robust", "cedd-hsv-hog", "cedd-hsv-layout" or
+// "cedd-soft-hsv-hog".
 std::string_view VariantName(DescriptorVariant variant);
 
 // Inverse of VariantName; nullopt for any other text.

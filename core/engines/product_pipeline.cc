@@ -45,9 +45,13 @@ std::string DescribeProduct() {
        << " px, brightness scaled so that the " << kBrightnessPercentile * 100
        << "th percentile of the brightest channel is " << kBrightnessTarget;
   if (HasAppearanceChannels(p.variant)) {
-    if (p.variant == DescriptorVariant::kCeddHsvHog) {
+    if (p.variant != DescriptorVariant::kCeddHsvLayout) {
       text << "; then a " << kHueBins << " x " << kSaturationBins << " x " << kValueBins
            << " hue-saturation-value histogram of the object's colours";
+      if (p.variant == DescriptorVariant::kCeddSoftHsvHog) {
+        text << " (a hue within " << kHueEdgeReach
+             << " of a bin's width of its edge shared with the bin beyond)";
+      }
     } else {
       text << "; then " << kHueBins << " x " << kLayoutSaturationBins << " x " << kValueBins
            << " hue-saturation-value histograms of the object's colours in the frame's upper "

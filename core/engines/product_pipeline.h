@@ -44,7 +44,7 @@ double ProductFalseAcceptRate(DescriptorVariant variant);
 std::string DescribeProductFalseAcceptRates();
 
 struct ProductPipeline {
-  DescriptorVariant variant = DescriptorVariant::kCeddHsvHog;
+  DescriptorVariant variant = DescriptorVariant::kCeddSoftHsvHog;
   std::string_view engine = "hmm";  // one of EngineNames()
   // The engine's options: EngineOptions' defaults but for the HMM's sharpened emissions
   // (hmm_sharpness 5: emissions to the 32nd power), with which using the measured turns no

@@ -213,7 +213,7 @@ TEST_F(EvalCommandTest, DistractorsFromAStoreJoinTheModelSet) {
     ASSERT_EQ(imported.exit_code, 0) << import << ": " << imported.err;
   }
   const std::string eval = orbit + " eval --data " + coil_ +
-                           " --objects 1-3 --methods product --variant cedd-hsv-hog --n 1 "
+                           " --objects 1-3 --methods product --variant cedd-soft-hsv-hog --n 1 "
                            "--trials 3 --no-progress --csv ";
   const auto hits = [this](const std::string& csv) {
     std::vector<std::string> counts;
@@ -265,7 +265,7 @@ TEST_F(EvalCommandTest, DistractorsFromAStoreJoinTheModelSet) {
   EXPECT_THAT(variant.err,
               HasSubstr("--distractors-from " + other_variant +
                         ": object \"obj2\" is described in cedd-robust, the evaluation in "
-                        "cedd-hsv-hog (choose --variant cedd-robust)"));
+                        "cedd-soft-hsv-hog (choose --variant cedd-robust)"));
 }
 
 // The lines of `text` that start with `prefix`.
@@ -331,13 +331,14 @@ TEST_F(CapturedQueriesTest, AnNLongerThanEverySequenceReadsAsNothingCounted) {
   EXPECT_THAT(rows[0], Not(HasSubstr("| - | - | - |")));  // n=1 and n=4 were counted
   EXPECT_THAT(rows[1], ::testing::EndsWith(" | - / - |"));
   EXPECT_THAT(rows[1], HasSubstr("| 100.0 / 100.0 |"));  // n=1: object 1 found, object 9 rejected
-  EXPECT_THAT(r.out, HasSubstr("| product | cedd-hsv-hog | DF | 6 | - | - | - | - | - | - | - |"));
+  EXPECT_THAT(r.out,
+              HasSubstr("| product | cedd-soft-hsv-hog | DF | 6 | - | - | - | - | - | - | - |"));
 }
 
 TEST_F(CapturedQueriesTest, TheReportNamesOnlyWhatRanAndSaysWhyPoseIsNotMeasured) {
   const testing::CommandResult r = Eval(" --n 2");
   ASSERT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("Model memory (cedd-hsv-hog): 3 objects, 108 views"));
+  EXPECT_THAT(r.out, HasSubstr("Model memory (cedd-soft-hsv-hog): 3 objects, 108 views"));
   // The default --variant cedd-lire is listed but no method ran on it; the thesis' engine
   // options (window, N_L, Th, ...) are not the product's.
   EXPECT_THAT(r.out, Not(HasSubstr("cedd-lire")));
@@ -421,7 +422,7 @@ TEST_F(EvalCommandTest, ProductOnAnotherVariantIsReportedUnderThatVariant) {
   const auto r = EvalThreeObjects("--methods product --variant cedd-hsv-layout --distortions df");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-layout: hit rate"));
-  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate"));
+  EXPECT_THAT(r.out, HasSubstr("### cedd-soft-hsv-hog: hit rate"));
   EXPECT_EQ(LinesStartingWith(r.out, "| DF | product |").size(), 2u) << r.out;
   EXPECT_THAT(r.out, HasSubstr("; under another variant, the same pipeline on a store made in "
                                "that variant (`orbit serve --variant`), at that variant's "
@@ -446,7 +447,7 @@ TEST_F(EvalCommandTest, SweepReportsHitRateAgainstStrength) {
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("### Sweep: JPEG quality (hit rate %, top-1)"));
   EXPECT_THAT(r.out, HasSubstr("| method | n | 20 | 40 | 60 | worst |"));
-  EXPECT_THAT(r.out, HasSubstr("| product (cedd-hsv-hog) | 1 |"));
+  EXPECT_THAT(r.out, HasSubstr("| product (cedd-soft-hsv-hog) | 1 |"));
   EXPECT_THAT(r.out, Not(HasSubstr("| DF |")));
   const auto [header, rows] = ReadCsv(csv);
   EXPECT_EQ(header, "axis,strength,distortion,method,variant,n,trials,hits,hit_rate");
@@ -549,7 +550,7 @@ TEST_F(ServerQueriesTest, ReportsTheServersAnswersAsTheLocalModeReportsItsOwn) {
   EXPECT_THAT(r.out, HasSubstr("server (product): the server's session defaults, engine hmm, "
                                "window 8"));
   // Object 3's two-frame sequence counts at n = 1, not at n = 3: 3 known queries, then 2.
-  EXPECT_THAT(r.out, HasSubstr("### cedd-hsv-hog: hit rate (%), top-1, 2-3 queries per cell"));
+  EXPECT_THAT(r.out, HasSubstr("### cedd-soft-hsv-hog: hit rate (%), top-1, 2-3 queries per cell"));
   EXPECT_THAT(r.out, Not(HasSubstr("Model memory")));
   EXPECT_THAT(r.out, Not(HasSubstr("Seed ")));
   // Views 10 degrees from enrolled ones of three very different objects: every known query is
@@ -565,7 +566,7 @@ TEST_F(ServerQueriesTest, ReportsTheServersAnswersAsTheLocalModeReportsItsOwn) {
   ASSERT_EQ(cells.size(), 2u);
   for (const CsvRow& cell : cells) {
     EXPECT_EQ(cell.field.at("method"), "server (product)");
-    EXPECT_EQ(cell.field.at("variant"), "cedd-hsv-hog");
+    EXPECT_EQ(cell.field.at("variant"), "cedd-soft-hsv-hog");
     EXPECT_EQ(cell.field.at("distortion"), "df");
     EXPECT_EQ(cell.number("unknown_trials"), 1);  // object 9's sequence, at each n
     EXPECT_GT(cell.number("ms_per_query"), 0);

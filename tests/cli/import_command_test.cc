@@ -65,7 +65,8 @@ TEST(ImportCommandTest, AnExistingStoreKeepsItsVariantAndANewOneGetsTheProducts)
   }
   const std::string new_db = (dir / "new.db").string();
   ASSERT_EQ(RunOrbit("import --db " + new_db + coil + " --objects 4").exit_code, 0);
-  EXPECT_THAT(RunOrbit("list --db " + new_db).out, ::testing::StartsWith("1 obj4 cedd-hsv-hog 72"));
+  EXPECT_THAT(RunOrbit("list --db " + new_db).out,
+              ::testing::StartsWith("1 obj4 cedd-soft-hsv-hog 72"));
 }
 
 TEST(ImportCommandTest, ImportStoresLireDescriptorsAndTypicalDistances) {
@@ -266,7 +267,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto listed_local = RunCommand(orbit + "list --db " + db);
   ASSERT_EQ(listed_remote.exit_code, 0) << listed_remote.err;
   EXPECT_EQ(WithoutTimestamps(listed_remote.out), WithoutTimestamps(listed_local.out));
-  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-hsv-hog 72");
+  EXPECT_EQ(WithoutTimestamps(listed_remote.out)[2], "3 obj3 cedd-soft-hsv-hog 72");
   const auto json = RunCommand(orbit + "list --json" + at);
   ASSERT_EQ(OutputLines(json.out).size(), 3u);
   EXPECT_EQ(nlohmann::json::parse(OutputLines(json.out)[0])["name"], "obj1");
@@ -290,7 +291,7 @@ TEST(ImportCommandTest, ImportListAndDeleteWorkOnAServerAsOnAFile) {
   const auto variant =
       RunCommand(orbit + "import" + at + coil + " --objects 4 --variant cedd-full");
   EXPECT_EQ(variant.exit_code, 1);
-  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-hsv-hog)"),
+  EXPECT_NE(variant.err.find("--variant cedd-full is not the server's (cedd-soft-hsv-hog)"),
             std::string::npos)
       << variant.err;
 }

@@ -39,9 +39,9 @@ TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   const testing::CommandResult listed = RunOrbit("list --db " + db);
   ASSERT_EQ(listed.exit_code, 0) << listed.err;
   EXPECT_THAT(OutputLines(listed.out),
-              ElementsAre(MatchesRegex("1 obj1 cedd-hsv-hog 72 [-0-9T:.]+Z"),
-                          MatchesRegex("2 obj2 cedd-hsv-hog 72 [-0-9T:.]+Z"),
-                          MatchesRegex("3 obj3 cedd-hsv-hog 72 [-0-9T:.]+Z")));
+              ElementsAre(MatchesRegex("1 obj1 cedd-soft-hsv-hog 72 [-0-9T:.]+Z"),
+                          MatchesRegex("2 obj2 cedd-soft-hsv-hog 72 [-0-9T:.]+Z"),
+                          MatchesRegex("3 obj3 cedd-soft-hsv-hog 72 [-0-9T:.]+Z")));
 
   const testing::CommandResult json = RunOrbit("list --db " + db + " --json");
   ASSERT_EQ(json.exit_code, 0) << json.err;
@@ -50,7 +50,7 @@ TEST(ListCommandTest, ImportListDeleteAndBackupCoil100) {
   const nlohmann::json second = nlohmann::json::parse(json_lines[1]);
   EXPECT_EQ(second["id"], 2);
   EXPECT_EQ(second["name"], "obj2");
-  EXPECT_EQ(second["variant"], "cedd-hsv-hog");
+  EXPECT_EQ(second["variant"], "cedd-soft-hsv-hog");
   EXPECT_EQ(second["views"], 72);
   EXPECT_EQ(second["metadata"], nlohmann::json::object());
 

@@ -102,7 +102,7 @@ TEST(NetworkOptionsTest, TokensAndTlsFromTheCommandLine) {
   const auto file_wins =
       RunCommand("ORBIT_TOKEN=stale-token-000000000 " + orbit + "list" + net + reader_file);
   ASSERT_EQ(file_wins.exit_code, 0) << file_wins.err;
-  EXPECT_EQ(file_wins.out.rfind("1 obj1 cedd-hsv-hog 18 ", 0), 0u) << file_wins.out;
+  EXPECT_EQ(file_wins.out.rfind("1 obj1 cedd-soft-hsv-hog 18 ", 0), 0u) << file_wins.out;
   const auto recognised =
       RunCommand(orbit + "recognize --json" + net + reader_file + CoilImageArguments(1, {30, 50}));
   ASSERT_EQ(recognised.exit_code, 0) << recognised.err;

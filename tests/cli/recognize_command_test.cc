@@ -56,7 +56,7 @@ TEST(RecognizeCommandTest, EnrollsThenRecognisesWithJsonAndTextOutput) {
   const auto info_json = nlohmann::json::parse(info.out);
   EXPECT_EQ(info_json["objects"], 3);
   EXPECT_EQ(info_json["views"], 54);
-  EXPECT_EQ(info_json["variant"], "cedd-hsv-hog");
+  EXPECT_EQ(info_json["variant"], "cedd-soft-hsv-hog");
   EXPECT_EQ(info_json["session_defaults"]["rejection"], "calibrated");
   EXPECT_EQ(info_json["session_defaults"]["false_accept_rate"], 0.15);
   EXPECT_EQ(info_json["session_defaults"]["known_accept_rate"], 0.95);

@@ -30,7 +30,7 @@ TEST(ModelsClientTest, EnrollsListsGetsAndDeletesObjects) {
   const v1::ServerInfoResponse info = models.ServerInfo();
   EXPECT_EQ(info.object_count(), 3);
   EXPECT_EQ(info.view_count(), 3 * 36);
-  EXPECT_EQ(info.variant(), v1::CEDD_HSV_HOG);  // the product's, for a new store
+  EXPECT_EQ(info.variant(), v1::CEDD_SOFT_HSV_HOG);  // the product's, for a new store
   const DescriptorVariant variant = FromProtoVariant(info.variant());
 
   // Paged listing: two pages of two and one, in id order.

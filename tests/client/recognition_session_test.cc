@@ -73,7 +73,7 @@ TEST(RecognitionSession, RecognisesCoilObjectsFromStreamedImages) {
 
   for (const int object : {3, 5}) {
     auto session = RecognitionSession::Open(connection, testing::TopK(3));
-    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddHsvHog);  // asked from the server
+    EXPECT_EQ(session->variant(), DescriptorVariant::kCeddSoftHsvHog);  // asked from the server
     EXPECT_EQ(session->window(), 8);
     for (int k = 0; k < 6; ++k) {
       EXPECT_EQ(PushSweepFrame(*session, object, k), k);

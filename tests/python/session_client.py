@@ -99,8 +99,8 @@ def main():
 
             # Frames: even ones as descriptors computed by `orbit descriptor`, odd ones as PNGs.
             files = [coil(args.data, 2, a) for a in QUERY_AZIMUTHS]
-            # In the server's variant (CEDD_HSV_HOG -> cedd-hsv-hog): its first 144 values are
-            # the frame's cedd field, any others its appearance field.
+            # In the server's variant (CEDD_SOFT_HSV_HOG -> cedd-soft-hsv-hog): its first 144
+            # values are the frame's cedd field, any others its appearance field.
             variant = types_pb2.DescriptorVariant.Name(info.variant).lower().replace("_", "-")
             described = subprocess.run([args.orbit, "descriptor", "--variant", variant] + files,
                                        check=True, capture_output=True, text=True).stdout

@@ -255,19 +255,27 @@ Enrollment AppearanceObject(const std::string& name, DescriptorVariant variant, 
   return object;
 }
 
-// A cedd-hsv-layout object (the SQLite store's schema 5, PostgreSQL's 4) comes back in its own
-// variant with every one of its 480 values.
-TYPED_TEST(ModelStoreTest, TheLayoutVariantIsStoredAsItself) {
+// A cedd-hsv-layout object (the SQLite store's schema 5, PostgreSQL's 4) and a cedd-soft-hsv-hog
+// one (6 and 5) come back each in its own variant with every one of its 480 values.
+TYPED_TEST(ModelStoreTest, TheLayoutAndSoftHueVariantsAreStoredAsThemselves) {
   ModelStore& store = *this->store_;
-  const Enrollment layout = AppearanceObject("layout", DescriptorVariant::kCeddHsvLayout, 3);
-  const ObjectId id = store.Enroll(layout);
-  const std::optional<StoredObject> stored = store.Get(id);
-  ASSERT_TRUE(stored.has_value());
-  EXPECT_EQ(stored->summary.variant, DescriptorVariant::kCeddHsvLayout);
-  ASSERT_EQ(stored->views.size(), 2u);
-  EXPECT_EQ(stored->views[0].descriptor, layout.views[0].descriptor);
-  EXPECT_EQ(stored->views[1].descriptor, layout.views[1].descriptor);
-  EXPECT_EQ(store.LoadAll().at(0).variant, DescriptorVariant::kCeddHsvLayout);
+  int seed = 3;
+  for (const DescriptorVariant variant :
+       {DescriptorVariant::kCeddHsvLayout, DescriptorVariant::kCeddSoftHsvHog}) {
+    SCOPED_TRACE(VariantName(variant));
+    const Enrollment object = AppearanceObject(std::string(VariantName(variant)), variant, seed++);
+    const ObjectId id = store.Enroll(object);
+    const std::optional<StoredObject> stored = store.Get(id);
+    ASSERT_TRUE(stored.has_value());
+    EXPECT_EQ(stored->summary.variant, variant);
+    ASSERT_EQ(stored->views.size(), 2u);
+    EXPECT_EQ(stored->views[0].descriptor, object.views[0].descriptor);
+    EXPECT_EQ(stored->views[1].descriptor, object.views[1].descriptor);
+  }
+  const std::vector<ObjectModel> loaded = store.LoadAll();
+  ASSERT_EQ(loaded.size(), 2u);
+  EXPECT_EQ(loaded.at(0).variant, DescriptorVariant::kCeddHsvLayout);
+  EXPECT_EQ(loaded.at(1).variant, DescriptorVariant::kCeddSoftHsvHog);
 }
 
 // An object of the appearance variant keeps every one of its 480 values, through AddViews too,

@@ -99,7 +99,7 @@ TEST(SchemaMigrationTest, AnEmptyFileBecomesACurrentStore) {
   }
   RawDatabase raw(dir / "empty.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3", "4", "5"));
+              ElementsAre("1", "2", "3", "4", "5", "6"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('objects')"),
               ElementsAre("id", "name", "variant", "created_at", "updated_at", "metadata"));
   EXPECT_THAT(raw.Column("SELECT name FROM pragma_table_info('views')"),
@@ -136,7 +136,7 @@ TEST(SchemaMigrationTest, AVersion1StoreIsMigratedWithItsDataIntact) {
   EXPECT_EQ(store.Get(8)->thumbnails[0], "png");
   RawDatabase raw(dir / "v1.db");
   EXPECT_THAT(raw.Column("SELECT version FROM schema_version ORDER BY version"),
-              ElementsAre("1", "2", "3", "4", "5"));
+              ElementsAre("1", "2", "3", "4", "5", "6"));
   EXPECT_EQ(raw.Text("SELECT applied_at FROM schema_version WHERE version = 1"),
             "2024-01-01T00:00:00.000Z");
 }

@@ -26,7 +26,7 @@ file(GLOB_RECURSE images ${folder}/*.png ${folder}/*.jpg ${folder}/*.jpeg)
 list(LENGTH images image_count)
 string(REGEX MATCHALL "\n" newlines "${fastest}")
 list(LENGTH newlines line_count)
-math(EXPR expected "${image_count} * 5")  # cedd-lire, cedd-full, cedd-robust, cedd-hsv-hog, -layout
+math(EXPR expected "${image_count} * 6")  # every variant: lire, full, robust, hsv-hog, -layout, soft
 if(image_count EQUAL 0 OR NOT line_count EQUAL expected)
   message(FATAL_ERROR "${line_count} lines for ${image_count} images, expected ${expected}")
 endif()

@@ -13,11 +13,13 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include "client/image_file.h"
 #include "core/descriptor/canonical_frame.h"
 #include "core/descriptor/cedd.h"
+#include "core/descriptor/distortion.h"
 #include "core/descriptor/similarity.h"
 #include "tests/support/test_data.h"
 
@@ -233,6 +235,61 @@ TEST(AppearanceChannelsTest, AFaintTintCountsAsEveryHue) {
   EXPECT_EQ(Sum(blue, kColourChannelOffset, kColourChannelSize), 7);
 }
 
+DescriptorValues ColourPart(const DescriptorValues& values) {
+  DescriptorValues part{};
+  std::copy(values.begin() + kColourChannelOffset,
+            values.begin() + kColourChannelOffset + kColourChannelSize, part.begin());
+  return part;
+}
+
+TEST(AppearanceChannelsTest, SoftHueEdgesKeepAHueThatMovesAcrossAnEdgeInBothBins) {
+  // Orange, BGR (0, G, 200), unchanged by the canonical frame (its brightest channel is already
+  // 200): OpenCV's hue is 14 for G = 93, 15 for G = 100, 16 for G = 107 (30 degrees, and 2
+  // degrees either side: what compression or noise does to a hue), saturation 255, value 200.
+  // A hue bin is 15 units wide and hue 15 is
+  // the edge between hue bins 0 and 1: bins (0 * 4 + 3) * 4 + 3 = 15 and (1 * 4 + 3) * 4 + 3 = 31.
+  const auto orange = [](int green) { return cv::Mat(64, 64, CV_8UC3, cv::Scalar(0, green, 200)); };
+  const DescriptorVariant soft = DescriptorVariant::kCeddSoftHsvHog;
+  // On the edge: half in each bin, both clipped to 7 (norm 40 over two equal bins: 28).
+  const DescriptorValues edge = Channels(orange(100), soft);
+  for (int i = 0; i < kColourChannelSize; ++i) {
+    EXPECT_EQ(edge[kColourChannelOffset + i], i == 15 || i == 31 ? 7 : 0) << "colour bin " << i;
+  }
+  // Hues 14 and 16 lie 1/15 of a bin from the edge (inside the reach of a quarter): each gives
+  // the bin beyond 0.5 * (1 - (1/15) / 0.25) = 0.37 of its count, so both hold both bins, at
+  // 40 * sqrt(0.37) = 24 and 40 * sqrt(0.63) = 32, each clipped to 7: the colours are the same.
+  const DescriptorValues below = Channels(orange(93), soft);
+  const DescriptorValues above = Channels(orange(107), soft);
+  EXPECT_EQ(below[kColourChannelOffset + 15], 7);
+  EXPECT_EQ(below[kColourChannelOffset + 31], 7);
+  EXPECT_EQ(Tanimoto(ColourPart(below), ColourPart(above)), 1.0);
+  // cedd-hsv-hog's hard edges put the two shades in different bins: nothing in common.
+  const DescriptorValues hard_below = Channels(orange(93));
+  const DescriptorValues hard_above = Channels(orange(107));
+  EXPECT_EQ(hard_below[kColourChannelOffset + 15], 7);
+  EXPECT_EQ(hard_above[kColourChannelOffset + 31], 7);
+  EXPECT_EQ(Tanimoto(ColourPart(hard_below), ColourPart(hard_above)), 0.0);
+  // A hue in the middle half of its bin stays in it: hue 19 (BGR 0, 127, 200) is 4/15 of a bin
+  // from the edge, beyond the reach.
+  const DescriptorValues inside = Channels(orange(127), soft);
+  EXPECT_EQ(inside[kColourChannelOffset + 31], 7);
+  EXPECT_EQ(Sum(inside, kColourChannelOffset, kColourChannelSize), 7);
+}
+
+TEST(AppearanceChannelsTest, SoftHueEdgesLeaveCeddAndTheGradientCellsAsTheyWere) {
+  // A red square on grey: cedd-soft-hsv-hog's CEDD is cedd-robust's and its gradient cells are
+  // cedd-hsv-hog's; only the colour histogram differs in definition.
+  cv::Mat image(128, 128, CV_8UC3, cv::Scalar(120, 120, 120));
+  cv::rectangle(image, cv::Rect(32, 32, 64, 64), cv::Scalar(30, 40, 210), cv::FILLED);
+  const Descriptor soft = ExtractCedd(image, DescriptorVariant::kCeddSoftHsvHog);
+  const Descriptor hard = ExtractCedd(image, DescriptorVariant::kCeddHsvHog);
+  EXPECT_EQ(soft.variant, DescriptorVariant::kCeddSoftHsvHog);
+  EXPECT_TRUE(std::equal(soft.values.begin(), soft.values.begin() + kCeddSize,
+                         ExtractCedd(image, DescriptorVariant::kCeddRobust).values.begin()));
+  EXPECT_TRUE(std::equal(soft.values.begin() + kGradientChannelOffset, soft.values.end(),
+                         hard.values.begin() + kGradientChannelOffset));
+}
+
 TEST(AppearanceChannelsTest, SensorNoiseDoesNotMoveAGreysColours) {
   // A grey card on a darker grey wall, then the same under sensor noise of deviation 25 grey
   // levels (what a dim room's camera adds). Noise turns a grey pixel's hue random; were that
@@ -327,6 +384,61 @@ TEST(AppearanceChannelsTest, TellsRealLookAlikeObjectsApartWhereCeddCannot) {
   EXPECT_GE(appearance, 93.0) << "cedd-hsv-hog " << appearance << "%";
   EXPECT_LT(2 * (100 - appearance), 100 - cedd)
       << "cedd-robust " << cedd << "%, cedd-hsv-hog " << appearance << "%";
+}
+
+// COIL-100's 100 objects, each described at every 20 degrees; queries 10 degrees from those
+// views (at 10 and 190), each compressed at JPEG quality 10 and noisy at variance 0.03 (a
+// deviation of 44 grey levels): the share whose most similar view shows the same object.
+struct CoilHitRates {
+  double jpeg = 0;
+  double noise = 0;
+};
+CoilHitRates CoilNearestViewHitRates(DescriptorVariant variant) {
+  std::vector<std::pair<int, DescriptorValues>> views;
+  const auto file = [](int object, int azimuth) {
+    return testing::CoilDir() + "/obj" + std::to_string(object) + "__" + std::to_string(azimuth) +
+           ".png";
+  };
+  for (int object = 1; object <= 100; ++object) {
+    for (int azimuth = 0; azimuth < 360; azimuth += 20) {
+      views.emplace_back(object, ExtractCedd(ReadImageFile(file(object, azimuth)), variant).values);
+    }
+  }
+  const auto nearest = [&views](const DescriptorValues& query) {
+    double best = -1;
+    int object = 0;
+    for (const auto& [candidate, values] : views) {
+      const double similarity = Tanimoto(query, values);
+      if (similarity > best) best = similarity, object = candidate;
+    }
+    return object;
+  };
+  int jpeg_hits = 0, noise_hits = 0, queries = 0;
+  for (int object = 1; object <= 100; ++object) {
+    for (const int azimuth : {10, 190}) {
+      const cv::Mat image = ReadImageFile(file(object, azimuth));
+      std::vector<std::uint8_t> encoded;
+      cv::imencode(".jpg", image, encoded, {cv::IMWRITE_JPEG_QUALITY, 10});
+      const cv::Mat compressed = cv::imdecode(encoded, cv::IMREAD_COLOR);
+      const cv::Mat noisy = AddGaussianNoise(image, 0.03, 100 * object + azimuth);
+      jpeg_hits += nearest(ExtractCedd(compressed, variant).values) == object ? 1 : 0;
+      noise_hits += nearest(ExtractCedd(noisy, variant).values) == object ? 1 : 0;
+      ++queries;
+    }
+  }
+  return {100.0 * jpeg_hits / queries, 100.0 * noise_hits / queries};
+}
+
+TEST(AppearanceChannelsTest, SoftHueEdgesKeepCoilObjectsUnderStrongCompressionAndNoise) {
+  const CoilHitRates hard = CoilNearestViewHitRates(DescriptorVariant::kCeddHsvHog);
+  const CoilHitRates soft = CoilNearestViewHitRates(DescriptorVariant::kCeddSoftHsvHog);
+  // docs/results/real-objects.md, "Soft hue edges": hard edges took objects whose colour lies
+  // near a hue edge for their neighbour of the next hue under both. Measured: 87.5 and 86.0
+  // against 93.5 and 94.0; asked, at least 8 queries of 200 more found under each.
+  EXPECT_GE(soft.jpeg, hard.jpeg + 4)
+      << "JPEG 10: hard edges " << hard.jpeg << "%, soft " << soft.jpeg << "%";
+  EXPECT_GE(soft.noise, hard.noise + 4)
+      << "noise 0.03: hard edges " << hard.noise << "%, soft " << soft.noise << "%";
 }
 
 TEST(AppearanceChannelsTest, TheColourLayoutTellsMoreLookAlikesApart) {

@@ -24,11 +24,14 @@ TEST(DescriptorTest, VariantNamesRoundTrip) {
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddRobust), "cedd-robust");
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddHsvHog), "cedd-hsv-hog");
   EXPECT_EQ(VariantName(DescriptorVariant::kCeddHsvLayout), "cedd-hsv-layout");
-  EXPECT_EQ(VariantNames(), (std::vector<std::string>{"cedd-lire", "cedd-full", "cedd-robust",
-                                                      "cedd-hsv-hog", "cedd-hsv-layout"}));
+  EXPECT_EQ(VariantName(DescriptorVariant::kCeddSoftHsvHog), "cedd-soft-hsv-hog");
+  EXPECT_EQ(VariantNames(),
+            (std::vector<std::string>{"cedd-lire", "cedd-full", "cedd-robust", "cedd-hsv-hog",
+                                      "cedd-hsv-layout", "cedd-soft-hsv-hog"}));
   EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddRobust), 144);
   EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddHsvHog), 480);
   EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddHsvLayout), 480);
+  EXPECT_EQ(DescriptorLength(DescriptorVariant::kCeddSoftHsvHog), 480);
   EXPECT_EQ(ParseVariant("CEDD-LIRE"), std::nullopt);
   EXPECT_EQ(ParseVariant(""), std::nullopt);
 }

@@ -20,21 +20,22 @@ namespace {
 
 using ::testing::HasSubstr;
 
-TEST(ProductPipelineTest, IsTheHsvHogVariantWithTheHmmAndSaysSo) {
-  EXPECT_EQ(Product().variant, DescriptorVariant::kCeddHsvHog);
+TEST(ProductPipelineTest, IsTheSoftHsvHogVariantWithTheHmmAndSaysSo) {
+  EXPECT_EQ(Product().variant, DescriptorVariant::kCeddSoftHsvHog);
   EXPECT_EQ(Product().engine, "hmm");
   const auto names = EngineNames();
   EXPECT_NE(std::find(names.begin(), names.end(), Product().engine), names.end());
   const std::string text = DescribeProduct();
   EXPECT_THAT(text, HasSubstr("hmm (8 states, window 8, emissions to the power 32, the path's "
                               "best 5 objects scored by their nearest and blended views) on "
-                              "cedd-hsv-hog"));
+                              "cedd-soft-hsv-hog"));
   EXPECT_EQ(Product().options.hmm_sharpness, 5);
   EXPECT_EQ(Product().options.nearest_view_weight, 1);
   EXPECT_THAT(text, HasSubstr("Gaussian blur of 2 px"));
   EXPECT_THAT(text, HasSubstr("then a 12 x 4 x 4 hue-saturation-value histogram of the object's "
-                              "colours, its background's taken off, and 4 x 4 cells of 9 "
-                              "gradient orientations)"));
+                              "colours (a hue within 0.25 of a bin's width of its edge shared "
+                              "with the bin beyond), its background's taken off, and 4 x 4 cells "
+                              "of 9 gradient orientations)"));
   // The calibrated rule's target, raised for the known objects' windows where look-alikes need it.
   EXPECT_EQ(Product().options.false_accept_rate, 0.15);
   EXPECT_EQ(Product().options.known_accept_rate, 0.95);
