@@ -65,6 +65,7 @@ struct HueEdgeShare {
   double share;
 };
 HueEdgeShare ShareAcrossHueEdge(int hue, double reach) {
+  if (reach <= 0) return {0, 0.0};  // hard edges: nothing crosses, whichever the neighbour
   const double position = hue * static_cast<double>(kHueBins) / 180.0;  // in bin widths
   const int own = hue * kHueBins / 180;
   const double from_lower = position - own;  // 0..1 within the own bin

@@ -171,8 +171,9 @@ TEST(AppearanceChannelsTest, TheColourLayoutTellsWhichColourIsAbove) {
   EXPECT_LT(Tanimoto(a, b), 0.9);
 }
 
-// The layout's 192 values of `values`, every other value 0.
-DescriptorValues LayoutOnly(const DescriptorValues& values) {
+// The colour channel's 192 values of `values` (the histogram's, or the layout's in its place),
+// every other value 0.
+DescriptorValues ColourChannelOnly(const DescriptorValues& values) {
   DescriptorValues layout{};
   std::copy_n(values.begin() + kLayoutOffset, kColourChannelSize, layout.begin() + kLayoutOffset);
   return layout;
@@ -197,7 +198,7 @@ TEST(AppearanceChannelsTest, TheColourLayoutDoesNotCountTheDarkGroundItsBoxHolds
   EXPECT_EQ(b[kUpper + 7], a[kUpper + 7]);    // red above (bins as in the test above)
   EXPECT_EQ(b[kLower + 71], a[kLower + 71]);  // blue below
   EXPECT_EQ(b[kUpper + 6], 7);
-  EXPECT_NEAR(Tanimoto(LayoutOnly(a), LayoutOnly(b)), 0.8, 1e-6);
+  EXPECT_NEAR(Tanimoto(ColourChannelOnly(a), ColourChannelOnly(b)), 0.8, 1e-6);
 }
 
 TEST(AppearanceChannelsTest, TwoRedsThatCeddCallsOneAreTwoHere) {
@@ -235,13 +236,6 @@ TEST(AppearanceChannelsTest, AFaintTintCountsAsEveryHue) {
   EXPECT_EQ(Sum(blue, kColourChannelOffset, kColourChannelSize), 7);
 }
 
-DescriptorValues ColourPart(const DescriptorValues& values) {
-  DescriptorValues part{};
-  std::copy(values.begin() + kColourChannelOffset,
-            values.begin() + kColourChannelOffset + kColourChannelSize, part.begin());
-  return part;
-}
-
 TEST(AppearanceChannelsTest, SoftHueEdgesKeepAHueThatMovesAcrossAnEdgeInBothBins) {
   // Orange, BGR (0, G, 200), unchanged by the canonical frame (its brightest channel is already
   // 200): OpenCV's hue is 14 for G = 93, 15 for G = 100, 16 for G = 107 (30 degrees, and 2
@@ -262,13 +256,13 @@ TEST(AppearanceChannelsTest, SoftHueEdgesKeepAHueThatMovesAcrossAnEdgeInBothBins
   const DescriptorValues above = Channels(orange(107), soft);
   EXPECT_EQ(below[kColourChannelOffset + 15], 7);
   EXPECT_EQ(below[kColourChannelOffset + 31], 7);
-  EXPECT_EQ(Tanimoto(ColourPart(below), ColourPart(above)), 1.0);
+  EXPECT_EQ(Tanimoto(ColourChannelOnly(below), ColourChannelOnly(above)), 1.0);
   // cedd-hsv-hog's hard edges put the two shades in different bins: nothing in common.
   const DescriptorValues hard_below = Channels(orange(93));
   const DescriptorValues hard_above = Channels(orange(107));
   EXPECT_EQ(hard_below[kColourChannelOffset + 15], 7);
   EXPECT_EQ(hard_above[kColourChannelOffset + 31], 7);
-  EXPECT_EQ(Tanimoto(ColourPart(hard_below), ColourPart(hard_above)), 0.0);
+  EXPECT_EQ(Tanimoto(ColourChannelOnly(hard_below), ColourChannelOnly(hard_above)), 0.0);
   // A hue in the middle half of its bin stays in it: hue 19 (BGR 0, 127, 200) is 4/15 of a bin
   // from the edge, beyond the reach.
   const DescriptorValues inside = Channels(orange(127), soft);
@@ -303,13 +297,7 @@ TEST(AppearanceChannelsTest, SensorNoiseDoesNotMoveAGreysColours) {
   clean.convertTo(noisy, CV_16SC3);
   noisy += noise;
   noisy.convertTo(noisy, CV_8UC3);
-  const auto colours = [](const DescriptorValues& v) {
-    DescriptorValues part{};
-    std::copy(v.begin() + kColourChannelOffset,
-              v.begin() + kColourChannelOffset + kColourChannelSize, part.begin());
-    return part;
-  };
-  EXPECT_GE(Tanimoto(colours(Channels(clean)), colours(Channels(noisy))), 0.9);
+  EXPECT_GE(Tanimoto(ColourChannelOnly(Channels(clean)), ColourChannelOnly(Channels(noisy))), 0.9);
 }
 
 // eth-80-dev's ring views, each cropped to its box grown by 10% a side.
